@@ -1,0 +1,37 @@
+#pragma once
+// SDO server (device side): answers expedited and segmented transfers from its dictionary.
+#include <array>
+#include <cstdint>
+
+#include "firmware/canopen/object_dictionary.h"
+#include "planter/hal/can_bus.h"
+
+namespace planter::canopen {
+
+class SdoServer {
+ public:
+  SdoServer(std::uint8_t node_id, ObjectDictionary& od) : node_id_(node_id), od_(od) {}
+  // Returns true when the frame was an SDO request for this node (answered or aborted).
+  bool on_frame(const hal::CanFrame& frame, hal::CanBus& bus);
+  void set_node_id(std::uint8_t node_id) { node_id_ = node_id; }
+  // Counts writes so the device can react to reconfiguration.
+  [[nodiscard]] std::uint32_t writes() const { return writes_; }
+
+ private:
+  void reply(const std::array<std::uint8_t, 8>& payload, hal::CanBus& bus);
+  void abort(std::uint16_t index, std::uint8_t sub, std::uint32_t code, hal::CanBus& bus);
+  std::uint32_t write_value(ObjectEntry& entry, const std::uint8_t* data, std::size_t n);
+
+  std::uint8_t node_id_;
+  ObjectDictionary& od_;
+  // Segmented transfer in progress.
+  ObjectEntry* segment_entry_ = nullptr;
+  bool segment_upload_ = false;
+  bool toggle_ = false;
+  std::size_t offset_ = 0;
+  std::size_t total_ = 0;
+  std::array<std::uint8_t, 64> buffer_{};
+  std::uint32_t writes_ = 0;
+};
+
+}  // namespace planter::canopen

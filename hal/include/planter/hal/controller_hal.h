@@ -1,0 +1,16 @@
+#pragma once
+// Everything the controller touches, handed in through its constructor (no global HAL object).
+#include "planter/hal/can_bus.h"
+#include "planter/hal/clock.h"
+#include "planter/hal/gpio.h"
+
+namespace planter::hal {
+
+struct ControllerHal {
+  CanBus& can;
+  GpioEdgeSource& encoder;  // soil-wheel quadrature encoder: line 0 = A, line 1 = B
+  DigitalInput& estop;
+  DigitalOutput& status_lamp;
+};
+
+}  // namespace planter::hal

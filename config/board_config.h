@@ -1,0 +1,34 @@
+#pragma once
+// A board file (boards/<board>/board.toml): the machine's buses, lines, nodes and loop
+// settings. Loaded and validated once at start; the firmware only sees ControllerConfig.
+#include <string>
+
+#include "firmware/controller/controller_config.h"
+
+namespace planter::config {
+
+// The lowest peak radial compressive force measured on a seedling (the paper's six tests:
+// 127.2-191.6 N). A clamp ceiling must stay below it.
+constexpr double kSeedlingDamageThresholdN = 127.2;
+
+struct GpioLines {
+  std::string chip = "sim";
+  int encoder_a = 0;
+  int encoder_b = 1;
+  int estop = 2;
+  int status = 3;
+};
+
+struct BoardConfig {
+  std::string file;
+  std::string name;
+  std::string toolchain;
+  std::string can_interface = "sim";
+  GpioLines gpio;
+  ControllerConfig controller;
+};
+
+// Throws ConfigError on any problem.
+BoardConfig load_board(const std::string& path);
+
+}  // namespace planter::config

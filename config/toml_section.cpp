@@ -1,0 +1,165 @@
+#include "config/toml_section.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <toml++/toml.h>
+
+namespace planter::config {
+namespace {
+std::string format_number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+}  // namespace
+
+TomlSection::TomlSection(const toml::table& table, std::string path, std::string file)
+    : table_(&table), path_(std::move(path)), file_(std::move(file)) {}
+TomlSection::~TomlSection() = default;
+TomlSection::TomlSection(TomlSection&&) noexcept = default;
+
+std::string TomlSection::dotted(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+int TomlSection::line() const { return static_cast<int>(table_->source().begin.line); }
+
+int TomlSection::line_of(const std::string& key) const {
+  const toml::node* n = table_->get(key);
+  return n != nullptr ? static_cast<int>(n->source().begin.line) : line();
+}
+
+void TomlSection::fail(const std::string& key, const std::string& what) const {
+  throw ConfigError(file_, line_of(key), dotted(key), what);
+}
+
+const toml::node* TomlSection::get(const std::string& key) {
+  used_.insert(key);
+  return table_->get(key);
+}
+
+bool TomlSection::has(const std::string& key) const { return table_->contains(key); }
+
+double TomlSection::number(const std::string& key, double fallback, double min, double max, const char* unit) {
+  const toml::node* n = get(key);
+  if (n == nullptr) return fallback;
+  double v = 0;
+  if (auto f = n->value_exact<double>()) {
+    v = *f;
+  } else if (auto i = n->value_exact<std::int64_t>()) {
+    v = static_cast<double>(*i);
+  } else {
+    fail(key, "must be a number");
+  }
+  if (!std::isfinite(v) || v < min || v > max) {
+    fail(key, format_number(v) + " is out of range; allowed [" + format_number(min) + ", " + format_number(max) +
+                  "]" + (unit[0] != 0 ? std::string(" ") + unit : std::string()));
+  }
+  return v;
+}
+
+double TomlSection::required_number(const std::string& key, double min, double max, const char* unit) {
+  if (!has(key)) throw ConfigError(file_, line(), dotted(key), "is required (a number in [" + format_number(min) + ", " + format_number(max) + "])");
+  return number(key, 0.0, min, max, unit);
+}
+
+std::int64_t TomlSection::integer(const std::string& key, std::int64_t fallback, std::int64_t min, std::int64_t max) {
+  const toml::node* n = get(key);
+  if (n == nullptr) return fallback;
+  auto i = n->value_exact<std::int64_t>();
+  if (!i) fail(key, "must be an integer");
+  if (*i < min || *i > max) {
+    fail(key, std::to_string(*i) + " is out of range; allowed [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  }
+  return *i;
+}
+
+std::int64_t TomlSection::required_integer(const std::string& key, std::int64_t min, std::int64_t max) {
+  if (!has(key)) throw ConfigError(file_, line(), dotted(key), "is required (an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "])");
+  return integer(key, 0, min, max);
+}
+
+bool TomlSection::boolean(const std::string& key, bool fallback) {
+  const toml::node* n = get(key);
+  if (n == nullptr) return fallback;
+  auto b = n->value_exact<bool>();
+  if (!b) fail(key, "must be true or false");
+  return *b;
+}
+
+std::string TomlSection::string(const std::string& key, const std::string& fallback) {
+  const toml::node* n = get(key);
+  if (n == nullptr) return fallback;
+  auto s = n->value_exact<std::string>();
+  if (!s) fail(key, "must be a string");
+  return *s;
+}
+
+std::vector<std::string> TomlSection::strings(const std::string& key) {
+  const toml::node* n = get(key);
+  std::vector<std::string> out;
+  if (n == nullptr) return out;
+  const toml::array* a = n->as_array();
+  if (a == nullptr) fail(key, "must be an array of strings");
+  for (const auto& item : *a) {
+    auto s = item.value_exact<std::string>();
+    if (!s) fail(key, "must be an array of strings");
+    out.push_back(*s);
+  }
+  return out;
+}
+
+std::optional<TomlSection> TomlSection::table(const std::string& key) {
+  const toml::node* n = get(key);
+  if (n == nullptr) return std::nullopt;
+  const toml::table* t = n->as_table();
+  if (t == nullptr) fail(key, "must be a table");
+  return TomlSection(*t, dotted(key), file_);
+}
+
+std::vector<TomlSection> TomlSection::array_of_tables(const std::string& key) {
+  const toml::node* n = get(key);
+  std::vector<TomlSection> out;
+  if (n == nullptr) return out;
+  const toml::array* a = n->as_array();
+  if (a == nullptr) fail(key, "must be an array of tables");
+  std::size_t i = 0;
+  for (const auto& item : *a) {
+    const toml::table* t = item.as_table();
+    if (t == nullptr) fail(key, "must be an array of tables");
+    out.emplace_back(*t, dotted(key) + "[" + std::to_string(i++) + "]", file_);
+  }
+  return out;
+}
+
+std::vector<std::string> TomlSection::keys() const {
+  std::vector<std::string> out;
+  for (const auto& [k, v] : *table_) out.emplace_back(k.str());
+  return out;
+}
+
+void TomlSection::reject_unknown_keys() const {
+  for (const auto& [k, v] : *table_) {
+    const std::string key(k.str());
+    if (used_.count(key) == 0) {
+      throw ConfigError(file_, static_cast<int>(v.source().begin.line), dotted(key), "unknown key");
+    }
+  }
+}
+
+TomlDocument::TomlDocument(const std::string& file) : file_(file) {
+  std::ifstream in(file);
+  if (!in) throw ConfigError(file, 0, "", "cannot open file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  try {
+    table_ = std::make_unique<toml::table>(toml::parse(buffer.str(), file));
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(file, static_cast<int>(e.source().begin.line), "", std::string(e.description()));
+  }
+}
+
+TomlDocument::~TomlDocument() = default;
+
+TomlSection TomlDocument::root() { return TomlSection(*table_, "", file_); }
+
+}  // namespace planter::config

@@ -1,0 +1,147 @@
+#include "sim/devices/canopen_device.h"
+
+#include <algorithm>
+
+namespace planter::sim {
+
+using canopen::Access;
+
+CanopenDevice::CanopenDevice(const DeviceIdentity& id, hal::CanBus& bus)
+    : identity_(id), bus_(bus), sdo_(id.node_id, od_) {
+  od_.add(0x1000, 0, 4, Access::kConst, id.device_type);
+  od_.add(0x1001, 0, 1, Access::kReadOnly, 0);
+  od_.add_string(0x1008, 0, id.name);
+  od_.add_string(0x1009, 0, "sim-1");
+  od_.add_string(0x100A, 0, "0.1.0");
+  od_.add(0x1010, 1, 4, Access::kReadWrite, 1);
+  od_.add(0x1017, 0, 2, Access::kReadWrite, 0);
+  od_.add(0x1018, 0, 1, Access::kConst, 4);
+  od_.add(0x1018, 1, 4, Access::kConst, id.vendor_id);
+  od_.add(0x1018, 2, 4, Access::kConst, id.product_code);
+  od_.add(0x1018, 3, 4, Access::kConst, id.revision);
+  od_.add(0x1018, 4, 4, Access::kConst, id.serial);
+  for (std::uint16_t k = 0; k < 4; ++k) {
+    for (std::uint16_t comm : {static_cast<std::uint16_t>(0x1400 + k), static_cast<std::uint16_t>(0x1800 + k)}) {
+      od_.add(comm, 0, 1, Access::kConst, 5);
+      od_.add(comm, 1, 4, Access::kReadWrite, 0);
+      od_.add(comm, 2, 1, Access::kReadWrite, 255);
+      od_.add(comm, 3, 2, Access::kReadWrite, 0);
+      od_.add(comm, 5, 2, Access::kReadWrite, 0);
+    }
+    for (std::uint16_t map : {static_cast<std::uint16_t>(0x1600 + k), static_cast<std::uint16_t>(0x1A00 + k)}) {
+      od_.add(map, 0, 1, Access::kReadWrite, 0);
+      for (std::uint8_t s = 1; s <= 8; ++s) od_.add(map, s, 4, Access::kReadWrite, 0);
+    }
+  }
+  reset_communication(0);
+}
+
+void CanopenDevice::reset_communication(std::int64_t now_ns) {
+  // Default connection set, every PDO invalid until the master configures it.
+  for (std::uint16_t k = 0; k < 4; ++k) {
+    od_.set(static_cast<std::uint16_t>(0x1400 + k), 1, 0x80000000u | (canopen::kRpdoBase[k] + identity_.node_id));
+    od_.set(static_cast<std::uint16_t>(0x1800 + k), 1, 0x80000000u | (canopen::kTpdoBase[k] + identity_.node_id));
+    od_.set(static_cast<std::uint16_t>(0x1600 + k), 0, 0);
+    od_.set(static_cast<std::uint16_t>(0x1A00 + k), 0, 0);
+  }
+  od_.set(0x1017, 0, 0);
+  nmt_ = canopen::NmtState::kPreOperational;
+  next_heartbeat_ns_ = now_ns;
+}
+
+void CanopenDevice::power_on(std::int64_t now_ns) {
+  reset_communication(now_ns);
+  send_heartbeat(static_cast<std::uint8_t>(canopen::NmtState::kBootUp));
+}
+
+void CanopenDevice::send_heartbeat(std::uint8_t state) {
+  hal::CanFrame f{};
+  f.id = canopen::kHeartbeatBase + identity_.node_id;
+  f.dlc = 1;
+  f.data[0] = state;
+  bus_.send(f);
+}
+
+void CanopenDevice::send_emcy(std::uint16_t code, std::uint8_t error_register) {
+  hal::CanFrame f{};
+  f.id = canopen::kEmcyBase + identity_.node_id;
+  f.dlc = 8;
+  f.data[0] = static_cast<std::uint8_t>(code);
+  f.data[1] = static_cast<std::uint8_t>(code >> 8);
+  f.data[2] = error_register;
+  od_.set(0x1001, 0, error_register);
+  bus_.send(f);
+}
+
+void CanopenDevice::process(std::int64_t now_ns) {
+  hal::CanFrame f;
+  while (bus_.receive(f)) handle(f, now_ns);
+  const auto period_ms = od_.get(0x1017, 0);
+  if (period_ms > 0 && now_ns >= next_heartbeat_ns_) {
+    send_heartbeat(static_cast<std::uint8_t>(nmt_));
+    next_heartbeat_ns_ = now_ns + static_cast<std::int64_t>(period_ms) * 1'000'000;
+  }
+}
+
+canopen::PdoMapping CanopenDevice::mapping(std::uint16_t map_index) const {
+  canopen::PdoMapping m;
+  m.count = static_cast<std::uint8_t>(std::min<std::uint64_t>(od_.get(map_index, 0), 8));
+  for (std::uint8_t i = 0; i < m.count; ++i) {
+    m.entries[i] = canopen::PdoEntry::from_mapping_value(static_cast<std::uint32_t>(od_.get(map_index, i + 1)));
+  }
+  return m;
+}
+
+void CanopenDevice::handle(const hal::CanFrame& f, std::int64_t now_ns) {
+  if (!f.is_standard_data()) return;
+  const std::uint16_t cob = f.cob_id();
+  if (cob == canopen::kNmtCobId) {
+    if (f.dlc < 2 || (f.data[1] != 0 && f.data[1] != identity_.node_id)) return;
+    switch (static_cast<canopen::NmtCommand>(f.data[0])) {
+      case canopen::NmtCommand::kStart: nmt_ = canopen::NmtState::kOperational; break;
+      case canopen::NmtCommand::kStop: nmt_ = canopen::NmtState::kStopped; break;
+      case canopen::NmtCommand::kPreOperational: nmt_ = canopen::NmtState::kPreOperational; break;
+      case canopen::NmtCommand::kResetNode:
+        on_reset();
+        power_on(now_ns);
+        break;
+      case canopen::NmtCommand::kResetCommunication: power_on(now_ns); break;
+    }
+    return;
+  }
+  if (nmt_ != canopen::NmtState::kStopped && sdo_.on_frame(f, bus_)) return;
+  if (nmt_ != canopen::NmtState::kOperational) return;
+  if (cob == canopen::kSyncCobId) {
+    on_sync();
+    return;
+  }
+  for (std::uint16_t k = 0; k < 4; ++k) {
+    const auto cob_entry = od_.get(static_cast<std::uint16_t>(0x1400 + k), 1);
+    if ((cob_entry & 0x80000000u) != 0 || (cob_entry & 0x7FF) != cob) continue;
+    const canopen::PdoMapping m = mapping(static_cast<std::uint16_t>(0x1600 + k));
+    std::uint64_t raw[canopen::PdoMapping::kMaxEntries]{};
+    if (!canopen::pdo_unpack(m, f.data.data(), f.dlc, raw)) return;  // short: ignored
+    for (std::uint8_t i = 0; i < m.count; ++i) od_.set(m.entries[i].index, m.entries[i].sub, raw[i]);
+    on_rpdo();
+    return;
+  }
+}
+
+void CanopenDevice::on_sync() {
+  ++sync_count_;
+  for (std::uint16_t k = 0; k < 4; ++k) {
+    const auto cob_entry = od_.get(static_cast<std::uint16_t>(0x1800 + k), 1);
+    if ((cob_entry & 0x80000000u) != 0) continue;
+    const auto type = od_.get(static_cast<std::uint16_t>(0x1800 + k), 2);
+    if (type == 0 || type > 240 || sync_count_ % type != 0) continue;
+    const canopen::PdoMapping m = mapping(static_cast<std::uint16_t>(0x1A00 + k));
+    std::uint64_t raw[canopen::PdoMapping::kMaxEntries]{};
+    for (std::uint8_t i = 0; i < m.count; ++i) raw[i] = od_.get(m.entries[i].index, m.entries[i].sub);
+    hal::CanFrame f{};
+    f.id = static_cast<std::uint32_t>(cob_entry & 0x7FF);
+    f.dlc = canopen::pdo_pack(m, raw, f.data.data());
+    bus_.send(f);
+  }
+}
+
+}  // namespace planter::sim

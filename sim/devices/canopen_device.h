@@ -1,0 +1,64 @@
+#pragma once
+// A simulated CANopen slave: object dictionary, SDO server, NMT, heartbeat producer and a
+// PDO engine driven by its own communication objects (so the master's configuration is real).
+#include <cstdint>
+#include <string>
+
+#include "firmware/canopen/cob_id.h"
+#include "firmware/canopen/object_dictionary.h"
+#include "firmware/canopen/pdo.h"
+#include "firmware/canopen/sdo_server.h"
+#include "planter/hal/can_bus.h"
+
+namespace planter::sim {
+
+struct DeviceIdentity {
+  std::uint8_t node_id = 1;
+  std::uint32_t device_type = 0;  // 0x1000
+  std::uint32_t vendor_id = 0;
+  std::uint32_t product_code = 0;
+  std::uint32_t revision = 1;
+  std::uint32_t serial = 1;
+  std::string name;
+};
+
+class CanopenDevice {
+ public:
+  CanopenDevice(const DeviceIdentity& identity, hal::CanBus& bus);
+  virtual ~CanopenDevice() = default;
+
+  // Power-on: sends the boot-up frame.
+  void power_on(std::int64_t now_ns);
+  // Handles every pending frame, then produces heartbeats that are due.
+  void process(std::int64_t now_ns);
+
+  [[nodiscard]] canopen::NmtState nmt_state() const { return nmt_; }
+  [[nodiscard]] std::uint8_t node_id() const { return identity_.node_id; }
+  canopen::ObjectDictionary& od() { return od_; }
+  [[nodiscard]] const canopen::ObjectDictionary& od() const { return od_; }
+  // Sends an EMCY frame (code 0 = error reset).
+  void send_emcy(std::uint16_t code, std::uint8_t error_register);
+
+ protected:
+  // After an RPDO updated the dictionary.
+  virtual void on_rpdo() {}
+  // Restores the application's defaults on reset node.
+  virtual void on_reset() {}
+
+ private:
+  void handle(const hal::CanFrame& frame, std::int64_t now_ns);
+  void reset_communication(std::int64_t now_ns);
+  void on_sync();
+  [[nodiscard]] canopen::PdoMapping mapping(std::uint16_t map_index) const;
+  void send_heartbeat(std::uint8_t state);
+
+  DeviceIdentity identity_;
+  hal::CanBus& bus_;
+  canopen::ObjectDictionary od_;
+  canopen::SdoServer sdo_;
+  canopen::NmtState nmt_ = canopen::NmtState::kPreOperational;
+  std::int64_t next_heartbeat_ns_ = 0;
+  std::uint32_t sync_count_ = 0;
+};
+
+}  // namespace planter::sim

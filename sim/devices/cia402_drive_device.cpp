@@ -1,0 +1,98 @@
+#include "sim/devices/cia402_drive_device.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace planter::sim {
+
+using canopen::Access;
+namespace c402 = canopen::cia402;
+
+Cia402DriveDevice::Cia402DriveDevice(const DeviceIdentity& identity, hal::CanBus& bus)
+    : CanopenDevice(identity, bus) {
+  auto& o = od();
+  o.add(c402::kControlword, 0, 2, Access::kReadWrite, 0);
+  o.add(c402::kStatusword, 0, 2, Access::kReadOnly, c402::encode_state(state_));
+  o.add(c402::kModesOfOperation, 0, 1, Access::kReadWrite, 0);
+  o.add(c402::kModesDisplay, 0, 1, Access::kReadOnly, 0);
+  o.add(c402::kErrorCode, 0, 2, Access::kReadOnly, 0);
+  o.add(c402::kPositionActual, 0, 4, Access::kReadOnly, 0);
+  o.add(c402::kVelocityActual, 0, 4, Access::kReadOnly, 0);
+  o.add(c402::kTorqueActual, 0, 2, Access::kReadOnly, 0);
+  o.add(c402::kTargetPosition, 0, 4, Access::kReadWrite, 0);
+  o.add(c402::kProfileVelocity, 0, 4, Access::kReadWrite, 0);
+  o.add(c402::kProfileAcceleration, 0, 4, Access::kReadWrite, 0);
+  o.add(c402::kTargetVelocity, 0, 4, Access::kReadWrite, 0);
+  o.add(c402::kSupportedModes, 0, 4, Access::kConst, (1u << 0) | (1u << 2) | (1u << 5));
+}
+
+std::int8_t Cia402DriveDevice::mode() const {
+  return static_cast<std::int8_t>(od().get(c402::kModesOfOperation, 0));
+}
+
+std::int64_t Cia402DriveDevice::target_velocity() const {
+  return od().get_signed(c402::kTargetVelocity, 0);
+}
+
+std::int64_t Cia402DriveDevice::profile_velocity() const {
+  return static_cast<std::int64_t>(od().get(c402::kProfileVelocity, 0));
+}
+
+void Cia402DriveDevice::on_rpdo() {
+  auto& o = od();
+  const auto cw = static_cast<std::uint16_t>(o.get(c402::kControlword, 0));
+  state_ = c402::apply_controlword(state_, cw, previous_controlword_);
+  const bool new_setpoint = (cw & c402::controlword::kNewSetPoint) != 0 &&
+                            (previous_controlword_ & c402::controlword::kNewSetPoint) == 0;
+  if (new_setpoint && enabled()) position_setpoint_ = o.get_signed(c402::kTargetPosition, 0);
+  previous_controlword_ = cw;
+  o.set(c402::kModesDisplay, 0, o.get(c402::kModesOfOperation, 0));
+  publish_status();
+}
+
+void Cia402DriveDevice::on_reset() {
+  state_ = c402::State::kSwitchOnDisabled;
+  previous_controlword_ = 0;
+  publish_status();
+}
+
+void Cia402DriveDevice::publish_status() {
+  std::uint16_t sw = c402::encode_state(state_);
+  sw |= 0x0010;  // voltage enabled
+  od().set(c402::kStatusword, 0, sw);
+}
+
+void Cia402DriveDevice::set_actual(std::int64_t position, std::int64_t velocity, std::int16_t torque) {
+  auto& o = od();
+  o.set(c402::kPositionActual, 0, static_cast<std::uint64_t>(position));
+  o.set(c402::kVelocityActual, 0, static_cast<std::uint64_t>(velocity));
+  o.set(c402::kTorqueActual, 0, static_cast<std::uint64_t>(static_cast<std::int64_t>(torque)));
+  if (mode() == c402::kModeProfilePosition && std::llabs(position - position_setpoint_) < 20) {
+    o.set(c402::kStatusword, 0, o.get(c402::kStatusword, 0) | c402::statusword::kTargetReached);
+  }
+}
+
+void Cia402DriveDevice::raise_fault(std::uint16_t error_code) {
+  state_ = c402::State::kFault;
+  od().set(c402::kErrorCode, 0, error_code);
+  publish_status();
+  send_emcy(error_code, 0x01);
+}
+
+Cia404ForceSensor::Cia404ForceSensor(const DeviceIdentity& identity, hal::CanBus& bus)
+    : CanopenDevice(identity, bus) {
+  auto& o = od();
+  o.add(0x7130, 0, 1, Access::kConst, 1);
+  o.add(0x7130, 1, 2, Access::kReadOnly, 0);  // process value, 0.1 N
+  o.add(0x6131, 1, 4, Access::kReadWrite, 0x00210000);  // unit: newton (CiA 303-2)
+  o.add(0x6132, 1, 1, Access::kReadWrite, 1);           // one decimal
+  o.add(0x6138, 1, 4, Access::kWriteOnly, 0);           // tare zero
+  o.add(0x6150, 1, 1, Access::kReadOnly, 0);            // status
+}
+
+void Cia404ForceSensor::set_force_N(double force_N) {
+  const double counts = std::clamp(std::round(force_N * 10.0), -32768.0, 32767.0);
+  od().set(0x7130, 1, static_cast<std::uint64_t>(static_cast<std::int64_t>(counts)));
+}
+
+}  // namespace planter::sim

@@ -1,0 +1,43 @@
+#pragma once
+// A simulated CiA 402 drive (profile velocity or profile position). The plant model reads its
+// commands and writes its actual values; the state machine is the firmware's own.
+#include "firmware/canopen/cia402.h"
+#include "sim/devices/canopen_device.h"
+
+namespace planter::sim {
+
+class Cia402DriveDevice final : public CanopenDevice {
+ public:
+  Cia402DriveDevice(const DeviceIdentity& identity, hal::CanBus& bus);
+
+  [[nodiscard]] canopen::cia402::State state() const { return state_; }
+  [[nodiscard]] bool enabled() const { return state_ == canopen::cia402::State::kOperationEnabled; }
+  [[nodiscard]] bool quick_stopping() const { return state_ == canopen::cia402::State::kQuickStopActive; }
+  [[nodiscard]] std::int8_t mode() const;
+  [[nodiscard]] std::int64_t target_velocity() const;
+  [[nodiscard]] std::int64_t position_setpoint() const { return position_setpoint_; }
+  [[nodiscard]] std::int64_t profile_velocity() const;
+
+  void set_actual(std::int64_t position, std::int64_t velocity, std::int16_t torque_per_mille);
+  // A drive fault (e.g. overcurrent): goes to fault and sends EMCY.
+  void raise_fault(std::uint16_t error_code);
+
+ protected:
+  void on_rpdo() override;
+  void on_reset() override;
+
+ private:
+  void publish_status();
+  canopen::cia402::State state_ = canopen::cia402::State::kSwitchOnDisabled;
+  std::uint16_t previous_controlword_ = 0;
+  std::int64_t position_setpoint_ = 0;
+};
+
+class Cia404ForceSensor final : public CanopenDevice {
+ public:
+  Cia404ForceSensor(const DeviceIdentity& identity, hal::CanBus& bus);
+  // Force in newtons; transmitted with one decimal (0x6132 = 1).
+  void set_force_N(double force_N);
+};
+
+}  // namespace planter::sim

@@ -1,0 +1,59 @@
+#pragma once
+// The machine and the field around the simulated drives and sensors: reads what the CANopen
+// devices were commanded, integrates the physics, writes back their measured values and
+// produces the soil-wheel encoder edges.
+#include <cstdint>
+#include <random>
+
+#include "firmware/controller/controller_config.h"
+#include "hal/sim/sim_gpio.h"
+#include "sim/devices/cia402_drive_device.h"
+#include "sim/plant/drive_models.h"
+#include "sim/plant/ground.h"
+#include "sim/plant/plant_config.h"
+#include "sim/plant/seedling_process.h"
+#include "sim/plant/soil_wheel_encoder.h"
+
+namespace planter::sim {
+
+struct PlantDevices {
+  Cia402DriveDevice& disc;
+  Cia402DriveDevice& roller;
+  Cia402DriveDevice& depth;
+  Cia404ForceSensor& force;
+};
+
+// Ground truth, for the recording and the summary (the controller never sees it).
+struct PlantTruth {
+  double x_m = 0, v_mps = 0, slip = 0;
+  double disc_omega_radps = 0, sigma = 0;
+  double clamp_force_N = 0, roller_mm = 0;
+  double depth_mm = 0, draft_N = 0, terrain_mm = 0;
+};
+
+class Plant {
+ public:
+  Plant(const PlantConfig& config, const ControllerConfig& board, std::uint64_t seed);
+
+  void start_moving() { ground_.start(); }
+  void step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& devices, hal::sim::SimEdgeSource& edges);
+
+  [[nodiscard]] const PlantTruth& truth() const { return truth_; }
+  [[nodiscard]] const Ground& ground() const { return ground_; }
+  [[nodiscard]] const SeedlingProcess& seedlings() const { return seedlings_; }
+
+ private:
+  PlantConfig cfg_;
+  ControllerConfig board_;
+  Ground ground_;
+  SoilWheelEncoder wheel_;
+  DiscDriveModel disc_;
+  LinearActuatorModel roller_;
+  LinearActuatorModel depth_;
+  SeedlingProcess seedlings_;
+  std::mt19937_64 noise_rng_;
+  double relaxation_N_ = 0.0;
+  PlantTruth truth_;
+};
+
+}  // namespace planter::sim

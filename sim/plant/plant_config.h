@@ -1,0 +1,103 @@
+#pragma once
+// Parameters of the machine-and-field model. Every richer effect is off by default, so the
+// base model is exactly the nominal structure of PRODUCT.md.
+#include <string>
+#include <vector>
+
+namespace planter::sim {
+
+struct StopEvent {
+  double at_m = 0.0;
+  double duration_s = 0.0;
+};
+
+struct RouteConfig {
+  double distance_m = 30.0;
+  double speed_mps = 0.06;
+  double accel_mps2 = 0.03;
+  double speed_variation_pct = 0.0;  // slow sinusoidal variation of the driver's speed
+  double speed_variation_period_s = 20.0;
+  std::vector<StopEvent> stops;
+};
+
+struct TerrainConfig {
+  double roughness_mm = 0.0;  // amplitude of micro-terrain
+  double wavelength_m = 0.5;
+};
+
+struct SoilConfig {
+  double wheel_radius_m = 0.150;    // true soil-wheel radius
+  double slip_mean_pct = 0.0;       // travel reduction of the towed soil wheel
+  double slip_variation_pct = 0.0;  // slow variation along the row
+  double draft_coeff = 4.8e5;       // depth_force = c_s * v * depth^2 (v m/s, depth m)
+};
+
+struct SeedlingConfig {
+  double length_min_mm = 182.6, length_max_mm = 210.8;
+  double diameter_min_mm = 8.3, diameter_max_mm = 11.4;
+  double reference_diameter_mm = 10.0;
+  double feed_pitch_mm = 44.25;  // along the disc rim; planted spacing = pitch / sigma
+  double feed_miss_pct = 1.0;
+  // Strength: the paper's text mean (140.6 N) with the spread of its six measured peaks.
+  double strength_mean_N = 140.6;
+  double strength_sd_N = 24.9;
+  double tilt_noise_deg = 2.5;
+};
+
+struct MechanismConfig {
+  double contact_area_mm2 = 245.0;
+  double release_angle_deg = 15.0;  // before the lowest point
+  double carry_angle_deg = 150.0;   // pickup to release
+  double kinematic_gain = 0.2;      // share of the release-velocity angle that tilts the seedling
+  double optimum_sigma = 1.45;      // sigma at which soil backflow cancels the release velocity at 102 mm
+  double nip_time_s = 0.3;          // how long a seedling stays in the roller nip
+};
+
+struct DriveModelConfig {
+  double disc_time_constant_s = 0.05;
+  double disc_inertia_kgm2 = 0.6;
+  double disc_damping_Nms = 3.0;
+  double disc_omega_max_radps = 1.5;
+  double actuator_time_constant_s = 0.05;
+  double clamp_k_N = 14.85;  // F = k (x - x0)^n, x in mm
+  double clamp_x0_mm = 2.0;
+  double clamp_n = 1.3;
+  double seedling_thickness_gain = 0.5;  // extra lip compression per mm of seedling over reference
+  double force_noise_N = 1.0;
+};
+
+struct Effects {
+  double disc_coulomb_Nm = 0.0;        // friction in the disc drive train
+  double disc_backlash_rad = 0.0;      // gear play between motor and disc
+  double command_delay_s = 0.0;        // transport delay of the disc speed command
+  double slip_per_kN = 0.0;            // wheel slip growing with opener draft (% per kN)
+  double clamp_relaxation_frac = 0.0;  // viscoelastic relaxation of the disc lips
+  double clamp_relaxation_tau_s = 2.0;
+  double depth_sag_mm_per_kN = 0.0;    // opener compliance under soil draft
+  double vibration_hz = 0.0;           // engine vibration
+  double vibration_force_N = 0.0;
+  double vibration_tilt_deg = 0.0;
+  double force_offset_N = 0.0;         // load-cell offset
+  double force_drift_N_per_min = 0.0;
+};
+
+struct FaultEvents {
+  double estop_at_s = -1.0;
+  double estop_release_at_s = -1.0;
+  std::string silent_node;  // a node role that stops answering
+  double silent_at_s = -1.0;
+};
+
+struct PlantConfig {
+  RouteConfig route;
+  TerrainConfig terrain;
+  SoilConfig soil;
+  SeedlingConfig seedlings;
+  MechanismConfig mechanism;
+  DriveModelConfig drive;
+  Effects effects;
+  double disc_radius_m = 0.300;
+  double start_delay_s = 3.0;  // machine starts moving this long after the controller is running
+};
+
+}  // namespace planter::sim

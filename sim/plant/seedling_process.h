@@ -1,0 +1,57 @@
+#pragma once
+// Seedlings from feed to furrow: each is picked up by the disc at the roller nip (where it is
+// compressed and may be damaged), carried through the carry angle and released; its tilt in
+// the furrow comes from the release kinematics, the soil backflow, the clamp hold and noise.
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "sim/plant/plant_config.h"
+
+namespace planter::sim {
+
+struct Seedling {
+  double diameter_mm = 0;
+  double length_mm = 0;
+  double strength_N = 0;
+  double pickup_angle_rad = 0;
+  double pickup_time_s = 0;
+  double peak_force_N = 0;  // largest radial compression while in the nip
+  bool damaged = false;
+  bool planted = false;
+  double release_time_s = 0;
+  double x_m = 0;  // position along the row where it was planted
+  double tilt_deg = 0;
+  double sigma_at_release = 0;
+  double depth_at_release_mm = 0;
+};
+
+struct ReleaseConditions {
+  double t_s, x_m, v_mps, omega_radps, depth_mm, clamp_force_N, terrain_mm;
+};
+
+class SeedlingProcess {
+ public:
+  SeedlingProcess(const PlantConfig& config, std::uint64_t seed);
+
+  // Called every step with the disc's angle; picks up and releases seedlings.
+  void step(double disc_angle_rad, double clamp_force_N, const ReleaseConditions& now, double vibration_tilt_deg);
+  // Extra lip compression (mm) from the seedling currently in the nip, for the clamp model.
+  [[nodiscard]] double nip_thickness_mm(double t_s) const;
+  // Local compression multiplier for the contact area (flexible protrusions spread the load).
+  [[nodiscard]] double contact_area_factor() const;
+
+  [[nodiscard]] const std::vector<Seedling>& seedlings() const { return seedlings_; }
+
+ private:
+  double tilt_deg(const ReleaseConditions& c, double sigma);
+
+  PlantConfig cfg_;
+  std::mt19937_64 rng_;
+  std::vector<Seedling> seedlings_;
+  double next_pickup_angle_rad_ = 0.0;
+  std::size_t next_release_ = 0;
+  bool started_ = false;
+};
+
+}  // namespace planter::sim

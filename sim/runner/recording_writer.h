@@ -1,0 +1,39 @@
+#pragma once
+// Writes the PRODUCT.md recording format: `#` metadata lines, a header, one row per tick.
+// Columns prefixed `true_` are the simulator's ground truth (absent from field logs).
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sim/runner/lockstep_runner.h"
+
+namespace planter::sim {
+
+class RecordingWriter {
+ public:
+  // Throws std::runtime_error when the file cannot be written.
+  RecordingWriter(const std::string& path, const std::vector<std::pair<std::string, std::string>>& metadata);
+  ~RecordingWriter();
+  RecordingWriter(const RecordingWriter&) = delete;
+  RecordingWriter& operator=(const RecordingWriter&) = delete;
+  void write(const TickRecord& row);
+  // Flushes and closes; throws if anything failed to reach the disk.
+  void close();
+
+ private:
+  std::FILE* file_;
+  std::string path_;
+};
+
+// Decimated series for the report's plots.
+struct ReportSeries {
+  std::vector<double> t, v_ground, v_wheel, sigma_true, sigma_ctrl, omega, omega_cmd;
+  std::vector<double> clamp_force, clamp_force_cmd, depth, depth_cmd;
+  void add(const TickRecord& row);
+};
+
+void write_report_html(const std::string& path, const Scenario& scenario, const Summary& summary,
+                       const ReportSeries& series, const SeedlingProcess& seedlings);
+
+}  // namespace planter::sim

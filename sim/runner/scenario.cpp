@@ -1,0 +1,142 @@
+#include "sim/runner/scenario.h"
+
+#include <filesystem>
+
+#include "config/toml_section.h"
+
+namespace planter::sim {
+
+using config::ConfigError;
+using config::TomlSection;
+
+Scenario load_scenario(const std::string& path) {
+  config::TomlDocument doc(path);
+  TomlSection root = doc.root();
+  Scenario s;
+  s.file = path;
+  auto sc = root.table("scenario");
+  if (!sc) throw ConfigError(path, 1, "scenario", "table is missing (name, board, seed)");
+  s.name = sc->string("name", std::filesystem::path(path).stem().string());
+  const std::string board = sc->string("board", "");
+  if (board.empty()) sc->fail("board", "is required: path of a board file, relative to the scenario");
+  const auto board_path = std::filesystem::path(path).parent_path() / board;
+  if (!std::filesystem::exists(board_path)) sc->fail("board", "file " + board_path.string() + " does not exist");
+  s.seed = static_cast<std::uint64_t>(sc->integer("seed", 1, 0, INT64_MAX));
+  s.tail_s = sc->number("tail_s", 3.0, 0.0, 600.0, "s");
+  s.max_duration_s = sc->number("max_duration_s", 3600.0, 1.0, 86400.0, "s");
+  s.plant.start_delay_s = sc->number("start_delay_s", 3.0, 0.0, 600.0, "s");
+  sc->reject_unknown_keys();
+  s.board = config::load_board(board_path.string());
+  s.plant.disc_radius_m = s.board.controller.sigma.disc_radius_m;
+
+  PlantConfig& p = s.plant;
+  if (auto r = root.table("route")) {
+    p.route.distance_m = r->number("distance_m", 30.0, 0.1, 10000.0, "m");
+    p.route.speed_mps = r->number("speed_mps", 0.06, 0.005, 1.0, "m/s");
+    p.route.accel_mps2 = r->number("accel_mps2", 0.03, 0.001, 5.0, "m/s^2");
+    p.route.speed_variation_pct = r->number("speed_variation_pct", 0.0, 0.0, 50.0, "%");
+    p.route.speed_variation_period_s = r->number("speed_variation_period_s", 20.0, 0.5, 1000.0, "s");
+    for (auto& stop : r->array_of_tables("stops")) {
+      StopEvent e;
+      e.at_m = stop.number("at_m", 0.0, 0.0, p.route.distance_m, "m");
+      e.duration_s = stop.number("duration_s", 5.0, 0.0, 3600.0, "s");
+      stop.reject_unknown_keys();
+      p.route.stops.push_back(e);
+    }
+    if (p.route.stops.size() > 32) r->fail("stops", "at most 32 stops");
+    r->reject_unknown_keys();
+  }
+  if (auto t = root.table("terrain")) {
+    p.terrain.roughness_mm = t->number("roughness_mm", 0.0, 0.0, 100.0, "mm");
+    p.terrain.wavelength_m = t->number("wavelength_m", 0.5, 0.01, 100.0, "m");
+    t->reject_unknown_keys();
+  }
+  if (auto t = root.table("soil")) {
+    p.soil.wheel_radius_m = t->number("wheel_radius_m", 0.15, 0.02, 1.0, "m");
+    p.soil.slip_mean_pct = t->number("slip_mean_pct", 0.0, -20.0, 50.0, "%");
+    p.soil.slip_variation_pct = t->number("slip_variation_pct", 0.0, 0.0, 20.0, "%");
+    p.soil.draft_coeff = t->number("draft_coeff", 4.8e5, 0.0, 1e8);
+    t->reject_unknown_keys();
+  }
+  if (auto t = root.table("seedlings")) {
+    SeedlingConfig& c = p.seedlings;
+    c.length_min_mm = t->number("length_min_mm", c.length_min_mm, 50.0, 500.0, "mm");
+    c.length_max_mm = t->number("length_max_mm", c.length_max_mm, c.length_min_mm, 500.0, "mm");
+    c.diameter_min_mm = t->number("diameter_min_mm", c.diameter_min_mm, 2.0, 30.0, "mm");
+    c.diameter_max_mm = t->number("diameter_max_mm", c.diameter_max_mm, c.diameter_min_mm, 30.0, "mm");
+    c.feed_pitch_mm = t->number("feed_pitch_mm", c.feed_pitch_mm, 5.0, 500.0, "mm");
+    c.feed_miss_pct = t->number("feed_miss_pct", c.feed_miss_pct, 0.0, 100.0, "%");
+    c.strength_mean_N = t->number("strength_mean_N", c.strength_mean_N, 10.0, 1000.0, "N");
+    c.strength_sd_N = t->number("strength_sd_N", c.strength_sd_N, 0.0, 500.0, "N");
+    c.tilt_noise_deg = t->number("tilt_noise_deg", c.tilt_noise_deg, 0.0, 45.0, "deg");
+    t->reject_unknown_keys();
+  }
+  if (auto t = root.table("mechanism")) {
+    MechanismConfig& m = p.mechanism;
+    m.contact_area_mm2 = t->number("contact_area_mm2", m.contact_area_mm2, 50.0, 600.0, "mm^2");
+    m.release_angle_deg = t->number("release_angle_deg", m.release_angle_deg, 0.0, 60.0, "deg");
+    m.carry_angle_deg = t->number("carry_angle_deg", m.carry_angle_deg, 30.0, 300.0, "deg");
+    m.kinematic_gain = t->number("kinematic_gain", m.kinematic_gain, 0.0, 1.0);
+    m.optimum_sigma = t->number("optimum_sigma", m.optimum_sigma, 1.0, 3.0);
+    t->reject_unknown_keys();
+  }
+  if (auto t = root.table("plant")) {
+    DriveModelConfig& d = p.drive;
+    d.disc_time_constant_s = t->number("disc_time_constant_s", d.disc_time_constant_s, 0.001, 5.0, "s");
+    d.disc_inertia_kgm2 = t->number("disc_inertia_kgm2", d.disc_inertia_kgm2, 1e-4, 100.0, "kg*m^2");
+    d.disc_damping_Nms = t->number("disc_damping_Nms", d.disc_damping_Nms, 0.0, 1000.0, "N*m*s");
+    d.actuator_time_constant_s = t->number("actuator_time_constant_s", d.actuator_time_constant_s, 0.001, 5.0, "s");
+    d.clamp_k_N = t->number("clamp_k_N", d.clamp_k_N, 0.1, 1e4);
+    d.clamp_x0_mm = t->number("clamp_x0_mm", d.clamp_x0_mm, 0.0, 50.0, "mm");
+    d.clamp_n = t->number("clamp_n", d.clamp_n, 1.0, 3.0);
+    d.force_noise_N = t->number("force_noise_N", d.force_noise_N, 0.0, 50.0, "N");
+    t->reject_unknown_keys();
+  }
+  if (auto t = root.table("effects")) {
+    Effects& e = p.effects;
+    e.disc_coulomb_Nm = t->number("disc_coulomb_Nm", 0.0, 0.0, 100.0, "N*m");
+    e.disc_backlash_rad = t->number("disc_backlash_rad", 0.0, 0.0, 0.5, "rad");
+    e.command_delay_s = t->number("command_delay_s", 0.0, 0.0, 1.0, "s");
+    e.slip_per_kN = t->number("slip_per_kN", 0.0, 0.0, 50.0, "%/kN");
+    e.clamp_relaxation_frac = t->number("clamp_relaxation_frac", 0.0, 0.0, 0.9);
+    e.clamp_relaxation_tau_s = t->number("clamp_relaxation_tau_s", 2.0, 0.01, 1000.0, "s");
+    e.depth_sag_mm_per_kN = t->number("depth_sag_mm_per_kN", 0.0, 0.0, 100.0, "mm/kN");
+    e.vibration_hz = t->number("vibration_hz", 0.0, 0.0, 200.0, "Hz");
+    e.vibration_force_N = t->number("vibration_force_N", 0.0, 0.0, 100.0, "N");
+    e.vibration_tilt_deg = t->number("vibration_tilt_deg", 0.0, 0.0, 30.0, "deg");
+    e.force_offset_N = t->number("force_offset_N", 0.0, -100.0, 100.0, "N");
+    e.force_drift_N_per_min = t->number("force_drift_N_per_min", 0.0, -10.0, 10.0, "N/min");
+    t->reject_unknown_keys();
+  }
+  if (auto t = root.table("controller")) {
+    // Operating-point overrides of the board's [control] table.
+    auto& c = s.board.controller;
+    c.sigma.sigma = t->number("sigma", c.sigma.sigma, 0.5, 3.0);
+    c.clamp.setpoint_N = t->number("clamp_force_N", c.clamp.setpoint_N, 0.0, 200.0, "N");
+    if (c.clamp.setpoint_N >= c.clamp.ceiling_N) t->fail("clamp_force_N", "must be below the board's clamp_ceiling_N");
+    c.depth.target_mm = t->number("depth_mm", c.depth.target_mm, 40.0, 160.0, "mm");
+    t->reject_unknown_keys();
+  }
+  if (auto t = root.table("faults")) {
+    s.faults.estop_at_s = t->number("estop_at_s", -1.0, -1.0, 1e6, "s");
+    s.faults.estop_release_at_s = t->number("estop_release_at_s", -1.0, -1.0, 1e6, "s");
+    s.faults.silent_node = t->string("silent_node", "");
+    if (!s.faults.silent_node.empty()) {
+      bool known = false;
+      for (std::size_t i = 0; i < kNodeCount; ++i) known = known || s.faults.silent_node == node_role_name(static_cast<NodeRole>(i));
+      if (!known) t->fail("silent_node", "must be one of disc_drive, roller_actuator, depth_actuator, force_sensor");
+    }
+    s.faults.silent_at_s = t->number("silent_at_s", -1.0, -1.0, 1e6, "s");
+    t->reject_unknown_keys();
+  }
+  root.reject_unknown_keys();
+  return s;
+}
+
+void set_operating_point(Scenario& s, double sigma, double depth_mm, double contact_area_mm2) {
+  s.board.controller.sigma.sigma = sigma;
+  s.board.controller.depth.target_mm = depth_mm;
+  s.plant.mechanism.contact_area_mm2 = contact_area_mm2;
+}
+
+}  // namespace planter::sim

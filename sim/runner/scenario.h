@@ -1,0 +1,28 @@
+#pragma once
+// A scenario file (scenarios/*.toml): which board, the field, the seedlings, the effects
+// switched on, and the faults injected. Validated on load.
+#include <cstdint>
+#include <string>
+
+#include "config/board_config.h"
+#include "sim/plant/plant_config.h"
+
+namespace planter::sim {
+
+struct Scenario {
+  std::string file;
+  std::string name;
+  std::uint64_t seed = 1;
+  double tail_s = 3.0;  // keep running this long after the machine reached the end
+  double max_duration_s = 3600.0;
+  config::BoardConfig board;
+  PlantConfig plant;
+  FaultEvents faults;
+};
+
+// Throws config::ConfigError.
+Scenario load_scenario(const std::string& path);
+// Applies [controller]-style overrides (used by the sweep) with the same checks.
+void set_operating_point(Scenario& s, double sigma, double depth_mm, double contact_area_mm2);
+
+}  // namespace planter::sim

@@ -1,0 +1,112 @@
+#include "sim/runner/summary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+namespace planter::sim {
+
+// Samples count towards sigma while the machine moves at least this fast: below it, sigma
+// = R*omega/v divides by almost nothing (stops and the first centimetres of a start).
+constexpr double kSigmaMinSpeedMps = 0.02;
+
+void SummaryBuilder::add(const Telemetry& c, const PlantTruth& t, bool running, double running_for_s) {
+  if (!running) return;
+  if (t.v_mps >= kSigmaMinSpeedMps) {
+    sigma_true_sum_ += t.sigma;
+    sigma_true_err2_ += std::pow((t.sigma - sigma_) / sigma_, 2);
+    ++sigma_n_;
+  }
+  if (c.v_wheel_mps >= kSigmaMinSpeedMps) {
+    sigma_ctrl_err2_ += std::pow((c.sigma - sigma_) / sigma_, 2);
+    ++sigma_ctrl_n_;
+  }
+  force_max_ = std::max(force_max_, t.clamp_force_N);
+  if (running_for_s > settle_s_) {
+    force_sum_ += t.clamp_force_N;
+    ++force_n_;
+    depth_sum_ += t.depth_mm;
+    depth_err2_ += std::pow(t.depth_mm - depth_target_, 2);
+    ++depth_n_;
+  }
+}
+
+Summary SummaryBuilder::finish(const SeedlingProcess& process, double plot_length_m, int plots) const {
+  Summary s;
+  s.sigma_target = sigma_;
+  s.depth_target_mm = depth_target_;
+  s.clamp_ceiling_N = ceiling_;
+  s.sigma_true_mean = sigma_n_ ? sigma_true_sum_ / static_cast<double>(sigma_n_) : 0.0;
+  s.sigma_true_rms_error_pct = sigma_n_ ? 100.0 * std::sqrt(sigma_true_err2_ / static_cast<double>(sigma_n_)) : 0.0;
+  s.sigma_ctrl_rms_error_pct = sigma_ctrl_n_ ? 100.0 * std::sqrt(sigma_ctrl_err2_ / static_cast<double>(sigma_ctrl_n_)) : 0.0;
+  s.clamp_force_mean_N = force_n_ ? force_sum_ / static_cast<double>(force_n_) : 0.0;
+  s.clamp_force_max_N = force_max_;
+  s.depth_mean_mm = depth_n_ ? depth_sum_ / static_cast<double>(depth_n_) : 0.0;
+  s.depth_rms_error_mm = depth_n_ ? std::sqrt(depth_err2_ / static_cast<double>(depth_n_)) : 0.0;
+
+  std::vector<double> xs;
+  double upright_sum = 0, peak_sum = 0;
+  for (const Seedling& sd : process.seedlings()) {
+    if (!sd.planted) continue;
+    xs.push_back(sd.x_m);
+    upright_sum += std::max(0.0, 1.0 - sd.tilt_deg / 90.0);
+    peak_sum += sd.peak_force_N;
+    if (sd.damaged) ++s.seedlings_damaged;
+  }
+  s.seedlings_planted = static_cast<int>(xs.size());
+  if (!xs.empty()) {
+    s.uprightness_pct = 100.0 * upright_sum / static_cast<double>(xs.size());
+    s.damage_pct = 100.0 * s.seedlings_damaged / static_cast<double>(xs.size());
+    s.seedling_peak_force_mean_N = peak_sum / static_cast<double>(xs.size());
+  }
+  std::sort(xs.begin(), xs.end());
+  std::vector<double> gaps;
+  for (std::size_t i = 1; i < xs.size(); ++i) gaps.push_back((xs[i] - xs[i - 1]) * 1000.0);
+  if (!gaps.empty()) {
+    double sum = 0, sum2 = 0;
+    for (double g : gaps) sum += g;
+    s.spacing_mean_mm = sum / static_cast<double>(gaps.size());
+    for (double g : gaps) sum2 += (g - s.spacing_mean_mm) * (g - s.spacing_mean_mm);
+    s.spacing_cv_pct = 100.0 * std::sqrt(sum2 / static_cast<double>(gaps.size())) / s.spacing_mean_mm;
+  }
+  s.plot_counts.assign(static_cast<std::size_t>(plots), 0);
+  for (double x : xs) {
+    const auto plot = static_cast<int>(x / plot_length_m);
+    if (plot >= 0 && plot < plots) ++s.plot_counts[static_cast<std::size_t>(plot)];
+  }
+  return s;
+}
+
+std::string Summary::to_json() const {
+  nlohmann::ordered_json j;
+  j["scenario"] = scenario;
+  j["sigma_target"] = sigma_target;
+  j["sigma_true_mean"] = sigma_true_mean;
+  j["sigma_true_rms_error_pct"] = sigma_true_rms_error_pct;
+  j["sigma_ctrl_rms_error_pct"] = sigma_ctrl_rms_error_pct;
+  j["uprightness_pct"] = uprightness_pct;
+  j["damage_pct"] = damage_pct;
+  j["spacing_mean_mm"] = spacing_mean_mm;
+  j["spacing_cv_pct"] = spacing_cv_pct;
+  j["clamp_force_mean_N"] = clamp_force_mean_N;
+  j["clamp_force_max_N"] = clamp_force_max_N;
+  j["clamp_ceiling_N"] = clamp_ceiling_N;
+  j["seedling_peak_force_mean_N"] = seedling_peak_force_mean_N;
+  j["depth_mean_mm"] = depth_mean_mm;
+  j["depth_rms_error_mm"] = depth_rms_error_mm;
+  j["depth_target_mm"] = depth_target_mm;
+  j["seedlings_planted"] = seedlings_planted;
+  j["seedlings_damaged"] = seedlings_damaged;
+  j["plot_counts"] = plot_counts;
+  j["distance_m"] = distance_m;
+  j["sim_seconds"] = sim_seconds;
+  j["wall_seconds"] = wall_seconds;
+  j["realtime_factor"] = realtime_factor;
+  j["can_bus_load_pct"] = can_bus_load_pct;
+  j["can_frames"] = can_frames;
+  j["faults"] = faults;
+  j["final_state"] = final_state;
+  return j.dump(2);
+}
+
+}  // namespace planter::sim

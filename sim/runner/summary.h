@@ -1,0 +1,54 @@
+#pragma once
+// The figures of one run, accumulated tick by tick, and summary.json.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "firmware/controller/telemetry.h"
+#include "sim/plant/plant.h"
+
+namespace planter::sim {
+
+struct Summary {
+  std::string scenario;
+  double sigma_target = 1.5;
+  double sigma_true_mean = 0, sigma_true_rms_error_pct = 0, sigma_ctrl_rms_error_pct = 0;
+  double uprightness_pct = 0, damage_pct = 0;
+  double spacing_mean_mm = 0, spacing_cv_pct = 0;
+  double clamp_force_mean_N = 0, clamp_force_max_N = 0, clamp_ceiling_N = 0;
+  double seedling_peak_force_mean_N = 0;
+  double depth_mean_mm = 0, depth_rms_error_mm = 0, depth_target_mm = 0;
+  int seedlings_planted = 0, seedlings_damaged = 0;
+  std::vector<int> plot_counts;
+  double distance_m = 0;
+  double sim_seconds = 0, wall_seconds = 0, realtime_factor = 0;
+  double can_bus_load_pct = 0;
+  std::uint64_t can_frames = 0;
+  std::uint32_t faults = 0;
+  std::string final_state;
+
+  [[nodiscard]] std::string to_json() const;
+};
+
+class SummaryBuilder {
+ public:
+  void configure(double sigma, double depth_target_mm, double ceiling_N, double settle_s) {
+    sigma_ = sigma;
+    depth_target_ = depth_target_mm;
+    ceiling_ = ceiling_N;
+    settle_s_ = settle_s;
+  }
+  void add(const Telemetry& c, const PlantTruth& truth, bool running, double running_for_s);
+  Summary finish(const SeedlingProcess& seedlings, double plot_length_m, int plots) const;
+
+ private:
+  double sigma_ = 1.5, depth_target_ = 102.0, ceiling_ = 120.0, settle_s_ = 8.0;
+  double sigma_true_sum_ = 0, sigma_true_err2_ = 0, sigma_ctrl_err2_ = 0;
+  std::uint64_t sigma_n_ = 0, sigma_ctrl_n_ = 0;
+  double force_sum_ = 0, force_max_ = 0;
+  std::uint64_t force_n_ = 0;
+  double depth_sum_ = 0, depth_err2_ = 0;
+  std::uint64_t depth_n_ = 0;
+};
+
+}  // namespace planter::sim

@@ -1,0 +1,207 @@
+// Closed-loop tests: the firmware controller on the lockstep simulator, over the virtual CAN bus.
+#include <gtest/gtest.h>
+
+#include "firmware/canopen/cia402.h"
+#include "sim/runner/lockstep_runner.h"
+
+using namespace planter;
+using namespace planter::sim;
+
+namespace {
+Scenario field() { return load_scenario(std::string(PLANTER_SOURCE_DIR) + "/scenarios/zhangqiu-field.toml"); }
+
+Scenario short_run(double distance_m = 1.0) {
+  Scenario s = field();
+  s.plant.route.distance_m = distance_m;
+  s.plant.route.stops.clear();
+  return s;
+}
+
+void run_until(LockstepRunner& r, double t_s) {
+  while (r.time_s() < t_s) r.step();
+}
+}  // namespace
+
+// The whole field trial: sigma, clamp ceiling, depth, spacing; one run shared by the checks.
+class FieldTrial : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    LockstepRunner runner(field());
+    const double ceiling = runner.scenario().board.controller.clamp.ceiling_N;
+    double running_since = -1;
+    runner.set_observer([&](const TickRecord& row) {
+      const double t = static_cast<double>(row.controller.time_ns) * 1e-9;
+      max_force_ = std::max(max_force_, row.truth.clamp_force_N);
+      if (row.controller.state == SupervisorState::kRunning && running_since < 0) running_since = t;
+      if (running_since >= 0 && t > running_since + 8.0) {
+        max_depth_error_ = std::max(max_depth_error_, std::abs(row.truth.depth_mm - 102.0));
+      }
+    });
+    summary_ = new Summary(runner.run());
+    ceiling_ = ceiling;
+  }
+  static void TearDownTestSuite() { delete summary_; }
+  static inline Summary* summary_ = nullptr;
+  static inline double max_force_ = 0, max_depth_error_ = 0, ceiling_ = 0;
+};
+
+TEST_F(FieldTrial, TrueSigmaWithinTwoPercentRms) {
+  EXPECT_LT(summary_->sigma_true_rms_error_pct, 2.0);
+  EXPECT_NEAR(summary_->sigma_true_mean, 1.5, 0.02);
+}
+
+TEST_F(FieldTrial, ClampForceNeverAboveCeiling) {
+  EXPECT_LT(max_force_, ceiling_);
+  EXPECT_NEAR(summary_->clamp_force_mean_N, 90.0, 3.0);
+}
+
+TEST_F(FieldTrial, DepthWithinFiveMillimetresAfterSettling) { EXPECT_LT(max_depth_error_, 5.0); }
+
+TEST_F(FieldTrial, SpacingAndOutcomesNearThePaper) {
+  EXPECT_GE(summary_->spacing_mean_mm, 20.0);
+  EXPECT_LE(summary_->spacing_mean_mm, 30.0);
+  EXPECT_GT(summary_->uprightness_pct, 90.0);
+  EXPECT_LT(summary_->uprightness_pct, 99.0);
+  EXPECT_LT(summary_->damage_pct, 6.0);
+  EXPECT_GT(summary_->seedlings_planted, 900);
+  EXPECT_EQ(summary_->faults, 0u);
+  EXPECT_EQ(summary_->final_state, "running");
+}
+
+// Losing any node's heartbeat faults the controller and quick-stops every drive within
+// three heartbeat periods.
+class HeartbeatLoss : public ::testing::TestWithParam<NodeRole> {};
+
+TEST_P(HeartbeatLoss, FaultAndSafeOutputsWithinThreePeriods) {
+  Scenario s = short_run();
+  LockstepRunner r(s);
+  run_until(r, 10.0);
+  ASSERT_EQ(r.controller().state(), SupervisorState::kRunning);
+  const double lost_at = r.time_s();
+  r.device_endpoint(GetParam()).set_unplugged(true);
+  const double period_s = s.board.controller.can.heartbeat_producer_ms * 1e-3;
+  while (r.controller().state() != SupervisorState::kFault && r.time_s() < lost_at + 1.0) r.step();
+  ASSERT_EQ(r.controller().state(), SupervisorState::kFault);
+  EXPECT_LE(r.time_s() - lost_at, 3 * period_s);
+  EXPECT_NE(r.controller().faults() & (fault::kHeartbeatLost | fault::kPdoStale), 0u);
+  r.step();  // the safe outputs go out on the tick after the decision at the latest
+  for (NodeRole role : {NodeRole::kDiscDrive, NodeRole::kRollerActuator, NodeRole::kDepthActuator}) {
+    if (role == GetParam()) continue;  // an unplugged node cannot hear anything
+    EXPECT_EQ(r.drive(role).state(), canopen::cia402::State::kQuickStopActive) << node_role_name(role);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryNode, HeartbeatLoss,
+                         ::testing::Values(NodeRole::kDiscDrive, NodeRole::kRollerActuator, NodeRole::kDepthActuator,
+                                           NodeRole::kForceSensor),
+                         [](const auto& p) { return std::string(node_role_name(p.param)); });
+
+// Only the heartbeat is lost (PDOs still flow): the heartbeat consumer alone must catch it.
+TEST(HeartbeatConsumer, DetectsSilenceWithinThreePeriods) {
+  Scenario s = short_run();
+  LockstepRunner r(s);
+  run_until(r, 10.0);
+  ASSERT_EQ(r.controller().state(), SupervisorState::kRunning);
+  // Stop the force sensor's heartbeat by writing 0x1017 = 0 behind the master's back.
+  auto& endpoint = r.device_endpoint(NodeRole::kDepthActuator);
+  (void)endpoint;
+  r.drive(NodeRole::kDepthActuator).od().set(0x1017, 0, 0);
+  const double at = r.time_s();
+  while (r.controller().state() == SupervisorState::kRunning && r.time_s() < at + 1.0) r.step();
+  EXPECT_EQ(r.controller().state(), SupervisorState::kFault);
+  EXPECT_NE(r.controller().faults() & fault::kHeartbeatLost, 0u);
+  EXPECT_LE(r.time_s() - at, 0.3 + 1e-9);
+}
+
+TEST(EStop, QuickStopOnTheNextTick) {
+  Scenario s = short_run();
+  LockstepRunner r(s);
+  run_until(r, 10.0);
+  ASSERT_EQ(r.controller().state(), SupervisorState::kRunning);
+  ASSERT_TRUE(r.drive(NodeRole::kDiscDrive).enabled());
+  r.estop().set(true);
+  r.step();  // the tick that reads the line sends quick stop; the drives apply it at once
+  EXPECT_EQ(r.controller().state(), SupervisorState::kEStop);
+  for (NodeRole role : {NodeRole::kDiscDrive, NodeRole::kRollerActuator, NodeRole::kDepthActuator}) {
+    EXPECT_EQ(r.drive(role).state(), canopen::cia402::State::kQuickStopActive) << node_role_name(role);
+  }
+  // Released and reset: the controller boots the nodes again and returns to ready.
+  r.estop().set(false);
+  r.controller().request_fault_reset();
+  run_until(r, r.time_s() + 3.0);
+  EXPECT_EQ(r.controller().state(), SupervisorState::kReady);
+}
+
+TEST(Boot, IdentityMismatchFailsWithCiA302Letter) {
+  const Scenario s = short_run();
+  hal::sim::VirtualCanBus bus;
+  auto& master = bus.add_endpoint();
+  auto& device_end = bus.add_endpoint();
+  NodeConfig expected = s.board.controller.node(NodeRole::kForceSensor);
+  DeviceIdentity id;
+  id.node_id = expected.node_id;
+  id.device_type = 404;
+  id.vendor_id = expected.vendor_id + 1;  // another vendor's sensor on the bus
+  Cia404ForceSensor sensor(id, device_end);
+  NodeLink link(expected, s.board.controller.can);
+  link.start_boot(0, master);
+  hal::CanFrame f;
+  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning; t += 10'000'000) {
+    sensor.process(t);
+    while (master.receive(f)) link.on_frame(f, t, master);
+    link.step_boot(t, master);
+  }
+  EXPECT_EQ(link.boot_state(), NodeLink::BootState::kFailed);
+  EXPECT_EQ(link.boot_error(), 'D');
+  // The same node with the right identity is configured: its TPDO1 is valid afterwards.
+  Cia404ForceSensor good({expected.node_id, 404, expected.vendor_id, expected.product_code, 1, 1, "ok"}, device_end);
+  link.start_boot(0, master);
+  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning; t += 10'000'000) {
+    good.process(t);
+    while (master.receive(f)) link.on_frame(f, t, master);
+    link.step_boot(t, master);
+  }
+  EXPECT_EQ(link.boot_state(), NodeLink::BootState::kConfigured);
+  EXPECT_EQ(good.od().get(0x1800, 1), 0x185u);
+  EXPECT_EQ(good.od().get(0x1A00, 1), 0x71300110u);
+  EXPECT_EQ(good.od().get(0x1017, 0), 100u);
+}
+
+TEST(Boot, SilentNodeFailsWithB) {
+  const Scenario s = short_run();
+  hal::sim::VirtualCanBus bus;
+  auto& master = bus.add_endpoint();
+  NodeLink link(s.board.controller.node(NodeRole::kDiscDrive), s.board.controller.can);
+  link.start_boot(0, master);
+  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning; t += 10'000'000) {
+    link.step_boot(t, master);
+  }
+  EXPECT_EQ(link.boot_error(), 'B');
+}
+
+TEST(Bus, GarbageFramesAreCountedAndIgnored) {
+  Scenario s = short_run();
+  LockstepRunner r(s);
+  run_until(r, 8.0);
+  ASSERT_EQ(r.controller().state(), SupervisorState::kRunning);
+  auto& intruder = r.bus().add_endpoint();
+  hal::CanFrame junk{};
+  junk.id = 0x123;
+  junk.dlc = 3;
+  intruder.send(junk);
+  junk.id = 0x182;  // the disc's TPDO1 COB-ID with a wrong length
+  junk.dlc = 2;
+  intruder.send(junk);
+  run_until(r, 9.0);
+  EXPECT_EQ(r.controller().state(), SupervisorState::kRunning);
+  EXPECT_GE(r.controller().telemetry().unknown_frames, 1u);
+  EXPECT_GE(r.controller().node(NodeRole::kDiscDrive).bad_pdo_count(), 1u);
+}
+
+TEST(Determinism, SameSeedSameResult) {
+  LockstepRunner a(short_run(0.6)), b(short_run(0.6));
+  const Summary sa = a.run(), sb = b.run();
+  EXPECT_EQ(sa.seedlings_planted, sb.seedlings_planted);
+  EXPECT_DOUBLE_EQ(sa.sigma_true_rms_error_pct, sb.sigma_true_rms_error_pct);
+  EXPECT_DOUBLE_EQ(sa.uprightness_pct, sb.uprightness_pct);
+}

@@ -15,9 +15,10 @@ canopen::PdoMapping parse_pdo(TomlSection& node, const std::string& key) {
     // "IIII:SS:BB" hex index, hex sub-index, decimal bits.
     unsigned index = 0, sub = 0, bits = 0;
     char tail = 0;
-    if (std::sscanf(text.c_str(), "%x:%x:%u%c", &index, &sub, &bits, &tail) != 3 || index > 0xFFFF ||
-        sub > 0xFF || (bits != 8 && bits != 16 && bits != 32)) {
-      node.fail(key, "entry \"" + text + "\" must be \"index:sub:bits\" (hex index and sub, bits 8, 16 or 32)");
+    if (std::sscanf(text.c_str(), "%x:%x:%u%c", &index, &sub, &bits, &tail) != 3 ||
+        index > 0xFFFF || sub > 0xFF || (bits != 8 && bits != 16 && bits != 32)) {
+      node.fail(key, "entry \"" + text +
+                         "\" must be \"index:sub:bits\" (hex index and sub, bits 8, 16 or 32)");
     }
     m.entries[m.count++] = {static_cast<std::uint16_t>(index), static_cast<std::uint8_t>(sub),
                             static_cast<std::uint8_t>(bits)};
@@ -29,14 +30,17 @@ canopen::PdoMapping parse_pdo(TomlSection& node, const std::string& key) {
 void parse_node(TomlSection& nodes, NodeRole role, NodeConfig& out, std::set<int>& ids) {
   auto t = nodes.table(node_role_name(role));
   if (!t) {
-    throw ConfigError(nodes.file(), nodes.line(), nodes.dotted(node_role_name(role)), "node is missing (a table with id, profile and PDO maps)");
+    throw ConfigError(nodes.file(), nodes.line(), nodes.dotted(node_role_name(role)),
+                      "node is missing (a table with id, profile and PDO maps)");
   }
   out.role = role;
   out.node_id = static_cast<std::uint8_t>(t->required_integer("id", 1, 127));
-  if (!ids.insert(out.node_id).second) t->fail("id", "node ID " + std::to_string(out.node_id) + " is used by another node");
+  if (!ids.insert(out.node_id).second)
+    t->fail("id", "node ID " + std::to_string(out.node_id) + " is used by another node");
   const bool sensor = role == NodeRole::kForceSensor;
   out.profile = static_cast<std::uint16_t>(t->integer("profile", sensor ? 404 : 402, 0, 0xFFFF));
-  if (out.profile != (sensor ? 404 : 402)) t->fail("profile", sensor ? "must be 404 (measuring device)" : "must be 402 (drive)");
+  if (out.profile != (sensor ? 404 : 402))
+    t->fail("profile", sensor ? "must be 404 (measuring device)" : "must be 402 (drive)");
   out.vendor_id = static_cast<std::uint32_t>(t->integer("vendor_id", 0, 0, 0xFFFFFFFF));
   out.product_code = static_cast<std::uint32_t>(t->integer("product_code", 0, 0, 0xFFFFFFFF));
   out.counts_per_unit = t->number("counts_per_unit", 1.0, 1e-6, 1e9);
@@ -69,7 +73,8 @@ BoardConfig load_board(const std::string& path) {
     b.can_interface = can->string("interface", "sim");
     c.can.bitrate_bps = static_cast<std::uint32_t>(can->integer("bitrate", 500000, 10000, 1000000));
     c.can.sync_period_ns = can->integer("sync_period_ms", 10, 1, 1000) * 1'000'000;
-    c.can.heartbeat_producer_ms = static_cast<std::uint16_t>(can->integer("heartbeat_producer_ms", 100, 10, 10000));
+    c.can.heartbeat_producer_ms =
+        static_cast<std::uint16_t>(can->integer("heartbeat_producer_ms", 100, 10, 10000));
     c.can.heartbeat_consumer_factor = can->number("heartbeat_consumer_factor", 1.5, 1.1, 3.0);
     c.can.sdo_timeout_ns = can->integer("sdo_timeout_ms", 100, 5, 10000) * 1'000'000;
     can->reject_unknown_keys();
@@ -82,11 +87,14 @@ BoardConfig load_board(const std::string& path) {
     b.gpio.status = static_cast<int>(gpio->integer("status_line", 3, 0, 511));
     c.estop_active_low = gpio->boolean("estop_active_low", true);
     const std::set<int> lines{b.gpio.encoder_a, b.gpio.encoder_b, b.gpio.estop, b.gpio.status};
-    if (lines.size() != 4) gpio->fail("encoder_a_line", "encoder A, encoder B, e-stop and status must be four different lines");
+    if (lines.size() != 4)
+      gpio->fail("encoder_a_line",
+                 "encoder A, encoder B, e-stop and status must be four different lines");
     gpio->reject_unknown_keys();
   }
   if (auto enc = root.table("encoder")) {
-    c.encoder.counts_per_rev = static_cast<std::uint32_t>(enc->integer("counts_per_rev", 4096, 4, 1 << 24));
+    c.encoder.counts_per_rev =
+        static_cast<std::uint32_t>(enc->integer("counts_per_rev", 4096, 4, 1 << 24));
     c.encoder.wheel_radius_m = enc->number("wheel_radius_m", 0.15, 0.02, 1.0, "m");
     c.encoder.glitch_filter_ns = enc->integer("glitch_filter_us", 20, 0, 100000) * 1000;
     c.encoder.speed_window_ns = enc->integer("speed_window_ms", 200, 10, 5000) * 1'000'000;
@@ -103,32 +111,43 @@ BoardConfig load_board(const std::string& path) {
     c.clamp.setpoint_N = ctl->number("clamp_force_N", 90.0, 0.0, 200.0, "N");
     c.clamp.ceiling_N = ctl->number("clamp_ceiling_N", 120.0, 10.0, 1000.0, "N");
     if (c.clamp.ceiling_N >= kSeedlingDamageThresholdN) {
-      ctl->fail("clamp_ceiling_N", std::to_string(c.clamp.ceiling_N) + " N is not below the seedling damage threshold; allowed [10, 127.2) N");
+      ctl->fail("clamp_ceiling_N",
+                std::to_string(c.clamp.ceiling_N) +
+                    " N is not below the seedling damage threshold; allowed [10, 127.2) N");
     }
-    if (c.clamp.setpoint_N >= c.clamp.ceiling_N) ctl->fail("clamp_force_N", "must be below clamp_ceiling_N");
+    if (c.clamp.setpoint_N >= c.clamp.ceiling_N)
+      ctl->fail("clamp_force_N", "must be below clamp_ceiling_N");
     c.clamp.kp_mm_per_N = ctl->number("clamp_kp_mm_per_N", c.clamp.kp_mm_per_N, 0.0, 1.0);
     c.clamp.ki_mm_per_Ns = ctl->number("clamp_ki_mm_per_Ns", c.clamp.ki_mm_per_Ns, 0.0, 10.0);
     c.clamp.model_k_N = ctl->number("clamp_model_k_N", c.clamp.model_k_N, 0.01, 1e4);
     c.clamp.model_x0_mm = ctl->number("clamp_model_x0_mm", c.clamp.model_x0_mm, 0.0, 50.0, "mm");
     c.clamp.model_n = ctl->number("clamp_model_n", c.clamp.model_n, 1.0, 3.0);
-    c.clamp.position_max_mm = ctl->number("clamp_position_max_mm", c.clamp.position_max_mm, 1.0, 100.0, "mm");
+    c.clamp.position_max_mm =
+        ctl->number("clamp_position_max_mm", c.clamp.position_max_mm, 1.0, 100.0, "mm");
     c.depth.target_mm = ctl->number("depth_mm", 102.0, 40.0, 160.0, "mm");
     c.depth.rate_mm_per_s = ctl->number("depth_rate_mm_per_s", 20.0, 1.0, 500.0, "mm/s");
     c.depth.ki_per_s = ctl->number("depth_ki_per_s", 0.5, 0.0, 20.0, "1/s");
     ctl->reject_unknown_keys();
   }
   if (auto sup = root.table("supervisor")) {
-    c.supervisor.overrun_threshold_ns = sup->integer("overrun_threshold_us", 15000, 100, 1000000) * 1000;
-    c.supervisor.overruns_to_fault = static_cast<std::uint32_t>(sup->integer("overruns_to_fault", 3, 1, 1000));
-    c.supervisor.force_plausible_max_N = sup->number("force_plausible_max_N", 400.0, 10.0, 10000.0, "N");
+    c.supervisor.overrun_threshold_ns =
+        sup->integer("overrun_threshold_us", 15000, 100, 1000000) * 1000;
+    c.supervisor.overruns_to_fault =
+        static_cast<std::uint32_t>(sup->integer("overruns_to_fault", 3, 1, 1000));
+    c.supervisor.force_plausible_max_N =
+        sup->number("force_plausible_max_N", 400.0, 10.0, 10000.0, "N");
     c.supervisor.pdo_stale_ns = sup->integer("pdo_stale_ms", 100, 10, 10000) * 1'000'000;
     c.supervisor.boot_timeout_ns = sup->integer("boot_timeout_ms", 5000, 100, 60000) * 1'000'000;
     sup->reject_unknown_keys();
   }
   auto nodes = root.table("nodes");
-  if (!nodes) throw ConfigError(path, 1, "nodes", "table is missing (disc_drive, roller_actuator, depth_actuator, force_sensor)");
+  if (!nodes)
+    throw ConfigError(
+        path, 1, "nodes",
+        "table is missing (disc_drive, roller_actuator, depth_actuator, force_sensor)");
   std::set<int> ids;
-  for (std::size_t i = 0; i < kNodeCount; ++i) parse_node(*nodes, static_cast<NodeRole>(i), c.nodes[i], ids);
+  for (std::size_t i = 0; i < kNodeCount; ++i)
+    parse_node(*nodes, static_cast<NodeRole>(i), c.nodes[i], ids);
   nodes->reject_unknown_keys();
   root.reject_unknown_keys();
   return b;

@@ -1,9 +1,10 @@
 #include "config/toml_section.h"
 
+#include <toml++/toml.h>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
-#include <toml++/toml.h>
 
 namespace planter::config {
 namespace {
@@ -19,7 +20,9 @@ TomlSection::TomlSection(const toml::table& table, std::string path, std::string
 TomlSection::~TomlSection() = default;
 TomlSection::TomlSection(TomlSection&&) noexcept = default;
 
-std::string TomlSection::dotted(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+std::string TomlSection::dotted(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
 
 int TomlSection::line() const { return static_cast<int>(table_->source().begin.line); }
 
@@ -39,7 +42,8 @@ const toml::node* TomlSection::get(const std::string& key) {
 
 bool TomlSection::has(const std::string& key) const { return table_->contains(key); }
 
-double TomlSection::number(const std::string& key, double fallback, double min, double max, const char* unit) {
+double TomlSection::number(const std::string& key, double fallback, double min, double max,
+                           const char* unit) {
   const toml::node* n = get(key);
   if (n == nullptr) return fallback;
   double v = 0;
@@ -51,30 +55,41 @@ double TomlSection::number(const std::string& key, double fallback, double min, 
     fail(key, "must be a number");
   }
   if (!std::isfinite(v) || v < min || v > max) {
-    fail(key, format_number(v) + " is out of range; allowed [" + format_number(min) + ", " + format_number(max) +
-                  "]" + (unit[0] != 0 ? std::string(" ") + unit : std::string()));
+    fail(key, format_number(v) + " is out of range; allowed [" + format_number(min) + ", " +
+                  format_number(max) + "]" +
+                  (unit[0] != 0 ? std::string(" ") + unit : std::string()));
   }
   return v;
 }
 
-double TomlSection::required_number(const std::string& key, double min, double max, const char* unit) {
-  if (!has(key)) throw ConfigError(file_, line(), dotted(key), "is required (a number in [" + format_number(min) + ", " + format_number(max) + "])");
+double TomlSection::required_number(const std::string& key, double min, double max,
+                                    const char* unit) {
+  if (!has(key))
+    throw ConfigError(
+        file_, line(), dotted(key),
+        "is required (a number in [" + format_number(min) + ", " + format_number(max) + "])");
   return number(key, 0.0, min, max, unit);
 }
 
-std::int64_t TomlSection::integer(const std::string& key, std::int64_t fallback, std::int64_t min, std::int64_t max) {
+std::int64_t TomlSection::integer(const std::string& key, std::int64_t fallback, std::int64_t min,
+                                  std::int64_t max) {
   const toml::node* n = get(key);
   if (n == nullptr) return fallback;
   auto i = n->value_exact<std::int64_t>();
   if (!i) fail(key, "must be an integer");
   if (*i < min || *i > max) {
-    fail(key, std::to_string(*i) + " is out of range; allowed [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+    fail(key, std::to_string(*i) + " is out of range; allowed [" + std::to_string(min) + ", " +
+                  std::to_string(max) + "]");
   }
   return *i;
 }
 
-std::int64_t TomlSection::required_integer(const std::string& key, std::int64_t min, std::int64_t max) {
-  if (!has(key)) throw ConfigError(file_, line(), dotted(key), "is required (an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "])");
+std::int64_t TomlSection::required_integer(const std::string& key, std::int64_t min,
+                                           std::int64_t max) {
+  if (!has(key))
+    throw ConfigError(
+        file_, line(), dotted(key),
+        "is required (an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "])");
   return integer(key, 0, min, max);
 }
 
@@ -154,7 +169,8 @@ TomlDocument::TomlDocument(const std::string& file) : file_(file) {
   try {
     table_ = std::make_unique<toml::table>(toml::parse(buffer.str(), file));
   } catch (const toml::parse_error& e) {
-    throw ConfigError(file, static_cast<int>(e.source().begin.line), "", std::string(e.description()));
+    throw ConfigError(file, static_cast<int>(e.source().begin.line), "",
+                      std::string(e.description()));
   }
 }
 

@@ -25,9 +25,11 @@ class TomlSection {
   ~TomlSection();
   TomlSection(TomlSection&&) noexcept;
 
-  double number(const std::string& key, double fallback, double min, double max, const char* unit = "");
+  double number(const std::string& key, double fallback, double min, double max,
+                const char* unit = "");
   double required_number(const std::string& key, double min, double max, const char* unit = "");
-  std::int64_t integer(const std::string& key, std::int64_t fallback, std::int64_t min, std::int64_t max);
+  std::int64_t integer(const std::string& key, std::int64_t fallback, std::int64_t min,
+                       std::int64_t max);
   std::int64_t required_integer(const std::string& key, std::int64_t min, std::int64_t max);
   bool boolean(const std::string& key, bool fallback);
   std::string string(const std::string& key, const std::string& fallback);

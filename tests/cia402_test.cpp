@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "firmware/canopen/cia402.h"
+
+#include <gtest/gtest.h>
 
 using namespace planter::canopen::cia402;
 
@@ -11,8 +11,8 @@ TEST(Cia402, StatuswordDecoding) {
   EXPECT_EQ(decode_state(0x0637), State::kOperationEnabled);
   EXPECT_EQ(decode_state(0x0617), State::kQuickStopActive);
   EXPECT_EQ(decode_state(0x0218), State::kFault);
-  for (State s : {State::kSwitchOnDisabled, State::kReadyToSwitchOn, State::kSwitchedOn, State::kOperationEnabled,
-                  State::kQuickStopActive, State::kFault}) {
+  for (State s : {State::kSwitchOnDisabled, State::kReadyToSwitchOn, State::kSwitchedOn,
+                  State::kOperationEnabled, State::kQuickStopActive, State::kFault}) {
     EXPECT_EQ(decode_state(encode_state(s)), s) << state_name(s);
   }
 }
@@ -35,8 +35,10 @@ TEST(Cia402, MasterEnablesDrive) {
 
 TEST(Cia402, QuickStopAndFaultReset) {
   bool phase = false;
-  EXPECT_EQ(next_controlword(State::kOperationEnabled, State::kQuickStopActive, phase), controlword::kQuickStop);
-  EXPECT_EQ(apply_controlword(State::kOperationEnabled, controlword::kQuickStop, 0x0F), State::kQuickStopActive);
+  EXPECT_EQ(next_controlword(State::kOperationEnabled, State::kQuickStopActive, phase),
+            controlword::kQuickStop);
+  EXPECT_EQ(apply_controlword(State::kOperationEnabled, controlword::kQuickStop, 0x0F),
+            State::kQuickStopActive);
   // Fault reset needs a rising edge of bit 7: the master alternates.
   State drive = State::kFault;
   std::uint16_t previous = controlword::kFaultReset;  // a held bit does not reset

@@ -8,7 +8,9 @@ using namespace planter;
 using namespace planter::sim;
 
 namespace {
-Scenario field() { return load_scenario(std::string(PLANTER_SOURCE_DIR) + "/scenarios/zhangqiu-field.toml"); }
+Scenario field() {
+  return load_scenario(std::string(PLANTER_SOURCE_DIR) + "/scenarios/zhangqiu-field.toml");
+}
 
 Scenario short_run(double distance_m = 1.0) {
   Scenario s = field();
@@ -85,15 +87,17 @@ TEST_P(HeartbeatLoss, FaultAndSafeOutputsWithinThreePeriods) {
   EXPECT_LE(r.time_s() - lost_at, 3 * period_s);
   EXPECT_NE(r.controller().faults() & (fault::kHeartbeatLost | fault::kPdoStale), 0u);
   r.step();  // the safe outputs go out on the tick after the decision at the latest
-  for (NodeRole role : {NodeRole::kDiscDrive, NodeRole::kRollerActuator, NodeRole::kDepthActuator}) {
+  for (NodeRole role :
+       {NodeRole::kDiscDrive, NodeRole::kRollerActuator, NodeRole::kDepthActuator}) {
     if (role == GetParam()) continue;  // an unplugged node cannot hear anything
-    EXPECT_EQ(r.drive(role).state(), canopen::cia402::State::kQuickStopActive) << node_role_name(role);
+    EXPECT_EQ(r.drive(role).state(), canopen::cia402::State::kQuickStopActive)
+        << node_role_name(role);
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryNode, HeartbeatLoss,
-                         ::testing::Values(NodeRole::kDiscDrive, NodeRole::kRollerActuator, NodeRole::kDepthActuator,
-                                           NodeRole::kForceSensor),
+                         ::testing::Values(NodeRole::kDiscDrive, NodeRole::kRollerActuator,
+                                           NodeRole::kDepthActuator, NodeRole::kForceSensor),
                          [](const auto& p) { return std::string(node_role_name(p.param)); });
 
 // Only the heartbeat is lost (PDOs still flow): the heartbeat consumer alone must catch it.
@@ -122,8 +126,10 @@ TEST(EStop, QuickStopOnTheNextTick) {
   r.estop().set(true);
   r.step();  // the tick that reads the line sends quick stop; the drives apply it at once
   EXPECT_EQ(r.controller().state(), SupervisorState::kEStop);
-  for (NodeRole role : {NodeRole::kDiscDrive, NodeRole::kRollerActuator, NodeRole::kDepthActuator}) {
-    EXPECT_EQ(r.drive(role).state(), canopen::cia402::State::kQuickStopActive) << node_role_name(role);
+  for (NodeRole role :
+       {NodeRole::kDiscDrive, NodeRole::kRollerActuator, NodeRole::kDepthActuator}) {
+    EXPECT_EQ(r.drive(role).state(), canopen::cia402::State::kQuickStopActive)
+        << node_role_name(role);
   }
   // Released and reset: the controller boots the nodes again and returns to ready.
   r.estop().set(false);
@@ -146,7 +152,8 @@ TEST(Boot, IdentityMismatchFailsWithCiA302Letter) {
   NodeLink link(expected, s.board.controller.can);
   link.start_boot(0, master);
   hal::CanFrame f;
-  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning; t += 10'000'000) {
+  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning;
+       t += 10'000'000) {
     sensor.process(t);
     while (master.receive(f)) link.on_frame(f, t, master);
     link.step_boot(t, master);
@@ -154,9 +161,11 @@ TEST(Boot, IdentityMismatchFailsWithCiA302Letter) {
   EXPECT_EQ(link.boot_state(), NodeLink::BootState::kFailed);
   EXPECT_EQ(link.boot_error(), 'D');
   // The same node with the right identity is configured: its TPDO1 is valid afterwards.
-  Cia404ForceSensor good({expected.node_id, 404, expected.vendor_id, expected.product_code, 1, 1, "ok"}, device_end);
+  Cia404ForceSensor good(
+      {expected.node_id, 404, expected.vendor_id, expected.product_code, 1, 1, "ok"}, device_end);
   link.start_boot(0, master);
-  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning; t += 10'000'000) {
+  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning;
+       t += 10'000'000) {
     good.process(t);
     while (master.receive(f)) link.on_frame(f, t, master);
     link.step_boot(t, master);
@@ -173,7 +182,8 @@ TEST(Boot, SilentNodeFailsWithB) {
   auto& master = bus.add_endpoint();
   NodeLink link(s.board.controller.node(NodeRole::kDiscDrive), s.board.controller.can);
   link.start_boot(0, master);
-  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning; t += 10'000'000) {
+  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning;
+       t += 10'000'000) {
     link.step_boot(t, master);
   }
   EXPECT_EQ(link.boot_error(), 'B');

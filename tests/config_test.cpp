@@ -19,8 +19,12 @@ std::string board_with(const std::string& pattern, const std::string& replacemen
   std::stringstream ss;
   ss << in.rdbuf();
   std::string text = ss.str();
-  text = pattern.empty() ? text + replacement : std::regex_replace(text, std::regex(pattern), replacement);
-  const auto path = std::filesystem::temp_directory_path() / ("planter-board-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" + std::to_string(std::hash<std::string>{}(pattern + replacement)) + ".toml");
+  text = pattern.empty() ? text + replacement
+                         : std::regex_replace(text, std::regex(pattern), replacement);
+  const auto path =
+      std::filesystem::temp_directory_path() /
+      ("planter-board-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
+       std::to_string(std::hash<std::string>{}(pattern + replacement)) + ".toml");
   std::ofstream(path) << text;
   return path.string();
 }
@@ -47,7 +51,8 @@ TEST(BoardConfig, LoadsTheHostSimBoard) {
 TEST(BoardConfig, UnknownKeyNamesFileLineAndKey) {
   const auto path = board_with("", "\n[disc]\n");  // duplicate table: a parse error with a line
   EXPECT_NE(error_of(path).find(path + ":"), std::string::npos);
-  const auto typo = board_with("clamp_force_N = 90.0", "clamp_force_N = 90.0\nclamp_forse_N = 80.0");
+  const auto typo =
+      board_with("clamp_force_N = 90.0", "clamp_force_N = 90.0\nclamp_forse_N = 80.0");
   const std::string e = error_of(typo);
   EXPECT_NE(e.find("'control.clamp_forse_N': unknown key"), std::string::npos) << e;
   // The typo sits on the line after clamp_force_N in the real file.
@@ -62,7 +67,8 @@ TEST(BoardConfig, UnknownKeyNamesFileLineAndKey) {
 }
 
 TEST(BoardConfig, WrongTypeAndRange) {
-  EXPECT_NE(error_of(board_with("depth_mm = 102.0", "depth_mm = \"deep\"")).find("'control.depth_mm': must be a number"),
+  EXPECT_NE(error_of(board_with("depth_mm = 102.0", "depth_mm = \"deep\""))
+                .find("'control.depth_mm': must be a number"),
             std::string::npos);
   const std::string e = error_of(board_with("depth_mm = 102.0", "depth_mm = 300.0"));
   EXPECT_NE(e.find("300 is out of range; allowed [40, 160] mm"), std::string::npos) << e;
@@ -75,7 +81,8 @@ TEST(BoardConfig, CeilingAboveDamageThresholdIsRefused) {
 }
 
 TEST(BoardConfig, DuplicateNodeIdAndBadPdoEntry) {
-  EXPECT_NE(error_of(board_with("id = 3", "id = 2")).find("is used by another node"), std::string::npos);
+  EXPECT_NE(error_of(board_with("id = 3", "id = 2")).find("is used by another node"),
+            std::string::npos);
   const std::string e = error_of(board_with("\"7130:01:16\"", "\"7130:01:12\""));
   EXPECT_NE(e.find("nodes.force_sensor.tpdo1"), std::string::npos) << e;
 }
@@ -85,7 +92,8 @@ TEST(BoardConfig, MissingFile) {
 }
 
 TEST(ScenarioConfig, FieldScenarioLoads) {
-  const auto s = sim::load_scenario(std::string(PLANTER_SOURCE_DIR) + "/scenarios/zhangqiu-field.toml");
+  const auto s =
+      sim::load_scenario(std::string(PLANTER_SOURCE_DIR) + "/scenarios/zhangqiu-field.toml");
   EXPECT_EQ(s.name, "zhangqiu-field");
   EXPECT_DOUBLE_EQ(s.plant.route.distance_m, 30.0);
   ASSERT_EQ(s.plant.route.stops.size(), 1u);

@@ -33,7 +33,9 @@ TEST(ClampForceLoop, NeverCommandsPastTheCeiling) {
   EXPECT_LE(cmd, cfg.position_max_mm);
   // Anti-windup: once the reading is right the loop comes off the limit within a few steps.
   const double x90 = loop.model_position_mm(90.0);
-  for (int i = 0; i < 300; ++i) cmd = loop.update(cfg.model_k_N * std::pow(std::max(0.0, cmd - cfg.model_x0_mm), cfg.model_n), 0.01, true);
+  for (int i = 0; i < 300; ++i)
+    cmd = loop.update(cfg.model_k_N * std::pow(std::max(0.0, cmd - cfg.model_x0_mm), cfg.model_n),
+                      0.01, true);
   EXPECT_NEAR(cmd, x90, 0.2);
 }
 

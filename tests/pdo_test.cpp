@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "firmware/canopen/pdo.h"
+
+#include <gtest/gtest.h>
 
 using namespace planter::canopen;
 

@@ -1,7 +1,8 @@
+#include "firmware/sensing/quadrature_decoder.h"
+
 #include <gtest/gtest.h>
 
 #include "firmware/sensing/ground_speed_estimator.h"
-#include "firmware/sensing/quadrature_decoder.h"
 
 using namespace planter;
 

@@ -124,7 +124,9 @@ TEST(SdoClientServer, RoundTrips) {
   EXPECT_EQ(std::string(buf.begin(), buf.begin() + client.bytes_read()), "sim disc drive");
   client.reset();
   const std::string name = "roller clamp actuator";
-  ASSERT_TRUE(client.start_write(0x1008, 0, std::span(reinterpret_cast<const std::uint8_t*>(name.data()), name.size()), 0, master));
+  ASSERT_TRUE(client.start_write(
+      0x1008, 0, std::span(reinterpret_cast<const std::uint8_t*>(name.data()), name.size()), 0,
+      master));
   pump();
   ASSERT_EQ(client.status(), SdoStatus::kDone);
   EXPECT_EQ(od.find(0x1008, 0)->text, name);

@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "firmware/supervisor/supervisor.h"
+
+#include <gtest/gtest.h>
 
 using namespace planter;
 

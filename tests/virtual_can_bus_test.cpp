@@ -1,6 +1,7 @@
+#include "hal/sim/virtual_can_bus.h"
+
 #include <gtest/gtest.h>
 
-#include "hal/sim/virtual_can_bus.h"
 #include "tests/frame_script.h"
 
 using namespace planter;

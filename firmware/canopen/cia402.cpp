@@ -8,38 +8,59 @@ State decode_state(std::uint16_t sw) {
   if ((sw & 0x4F) == 0x0F) return State::kFaultReactionActive;
   if ((sw & 0x4F) == 0x08) return State::kFault;
   switch (sw & 0x6F) {
-    case 0x21: return State::kReadyToSwitchOn;
-    case 0x23: return State::kSwitchedOn;
-    case 0x27: return State::kOperationEnabled;
-    case 0x07: return State::kQuickStopActive;
-    default: return State::kNotReadyToSwitchOn;
+    case 0x21:
+      return State::kReadyToSwitchOn;
+    case 0x23:
+      return State::kSwitchedOn;
+    case 0x27:
+      return State::kOperationEnabled;
+    case 0x07:
+      return State::kQuickStopActive;
+    default:
+      return State::kNotReadyToSwitchOn;
   }
 }
 
 std::uint16_t encode_state(State s) {
   switch (s) {
-    case State::kNotReadyToSwitchOn: return 0x0000;
-    case State::kSwitchOnDisabled: return 0x0040;
-    case State::kReadyToSwitchOn: return 0x0021;
-    case State::kSwitchedOn: return 0x0023;
-    case State::kOperationEnabled: return 0x0027;
-    case State::kQuickStopActive: return 0x0007;
-    case State::kFaultReactionActive: return 0x000F;
-    case State::kFault: return 0x0008;
+    case State::kNotReadyToSwitchOn:
+      return 0x0000;
+    case State::kSwitchOnDisabled:
+      return 0x0040;
+    case State::kReadyToSwitchOn:
+      return 0x0021;
+    case State::kSwitchedOn:
+      return 0x0023;
+    case State::kOperationEnabled:
+      return 0x0027;
+    case State::kQuickStopActive:
+      return 0x0007;
+    case State::kFaultReactionActive:
+      return 0x000F;
+    case State::kFault:
+      return 0x0008;
   }
   return 0;
 }
 
 const char* state_name(State s) {
   switch (s) {
-    case State::kNotReadyToSwitchOn: return "not ready to switch on";
-    case State::kSwitchOnDisabled: return "switch on disabled";
-    case State::kReadyToSwitchOn: return "ready to switch on";
-    case State::kSwitchedOn: return "switched on";
-    case State::kOperationEnabled: return "operation enabled";
-    case State::kQuickStopActive: return "quick stop active";
-    case State::kFaultReactionActive: return "fault reaction active";
-    case State::kFault: return "fault";
+    case State::kNotReadyToSwitchOn:
+      return "not ready to switch on";
+    case State::kSwitchOnDisabled:
+      return "switch on disabled";
+    case State::kReadyToSwitchOn:
+      return "ready to switch on";
+    case State::kSwitchedOn:
+      return "switched on";
+    case State::kOperationEnabled:
+      return "operation enabled";
+    case State::kQuickStopActive:
+      return "quick stop active";
+    case State::kFaultReactionActive:
+      return "fault reaction active";
+    case State::kFault:
+      return "fault";
   }
   return "?";
 }
@@ -53,8 +74,9 @@ std::uint16_t next_controlword(State current, State wanted, bool& fault_reset_ph
   fault_reset_phase = false;
   if (wanted == State::kQuickStopActive) {
     // Quick stop from operation enabled; anywhere else, removing voltage is at least as safe.
-    return current == State::kOperationEnabled || current == State::kQuickStopActive ? kQuickStop
-                                                                                     : kDisableVoltage;
+    return current == State::kOperationEnabled || current == State::kQuickStopActive
+               ? kQuickStop
+               : kDisableVoltage;
   }
   if (wanted == State::kSwitchOnDisabled) return kDisableVoltage;
   switch (current) {

@@ -60,6 +60,7 @@ const char* state_name(State state);
 std::uint16_t next_controlword(State current, State wanted, bool& fault_reset_phase);
 
 // Drive side: the new state after a controlword (CiA 402 transitions 2-16).
-State apply_controlword(State current, std::uint16_t controlword, std::uint16_t previous_controlword);
+State apply_controlword(State current, std::uint16_t controlword,
+                        std::uint16_t previous_controlword);
 
 }  // namespace planter::canopen::cia402

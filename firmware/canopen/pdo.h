@@ -11,7 +11,8 @@ struct PdoEntry {
   std::uint8_t bits = 0;
   // The 32-bit mapping value as written to 0x1600/0x1A00: index<<16 | sub<<8 | bits.
   [[nodiscard]] std::uint32_t mapping_value() const {
-    return (static_cast<std::uint32_t>(index) << 16) | (static_cast<std::uint32_t>(sub) << 8) | bits;
+    return (static_cast<std::uint32_t>(index) << 16) | (static_cast<std::uint32_t>(sub) << 8) |
+           bits;
   }
   static PdoEntry from_mapping_value(std::uint32_t v) {
     return {static_cast<std::uint16_t>(v >> 16), static_cast<std::uint8_t>(v >> 8),

@@ -7,9 +7,16 @@
 namespace planter::canopen {
 namespace {
 
-std::array<std::uint8_t, 8> mux_payload(std::uint8_t command, std::uint16_t index, std::uint8_t sub) {
-  return {command, static_cast<std::uint8_t>(index & 0xFF), static_cast<std::uint8_t>(index >> 8),
-          sub, 0, 0, 0, 0};
+std::array<std::uint8_t, 8> mux_payload(std::uint8_t command, std::uint16_t index,
+                                        std::uint8_t sub) {
+  return {command,
+          static_cast<std::uint8_t>(index & 0xFF),
+          static_cast<std::uint8_t>(index >> 8),
+          sub,
+          0,
+          0,
+          0,
+          0};
 }
 
 std::uint32_t read_u32(const std::uint8_t* p) {
@@ -53,7 +60,8 @@ bool SdoClient::start_write(std::uint16_t index, std::uint8_t sub,
   deadline_ns_ = now_ns + timeout_ns_;
   if (write_size_ <= 4) {
     // Expedited: e = 1, s = 1, n = number of unused bytes.
-    auto payload = mux_payload(static_cast<std::uint8_t>(0x23 | ((4 - write_size_) << 2)), index, sub);
+    auto payload =
+        mux_payload(static_cast<std::uint8_t>(0x23 | ((4 - write_size_) << 2)), index, sub);
     std::copy(data.begin(), data.end(), payload.begin() + 4);
     phase_ = Phase::kDownloadInit;
     send_request(payload, bus);
@@ -71,7 +79,8 @@ bool SdoClient::start_write_u32(std::uint16_t index, std::uint8_t sub, std::uint
                                 std::size_t size, std::int64_t now_ns, hal::CanBus& bus) {
   std::array<std::uint8_t, 4> bytes{};
   for (std::size_t i = 0; i < 4; ++i) bytes[i] = static_cast<std::uint8_t>(value >> (8 * i));
-  return start_write(index, sub, std::span<const std::uint8_t>(bytes.data(), std::min<std::size_t>(size, 4)),
+  return start_write(index, sub,
+                     std::span<const std::uint8_t>(bytes.data(), std::min<std::size_t>(size, 4)),
                      now_ns, bus);
 }
 
@@ -148,7 +157,8 @@ bool SdoClient::on_frame(const hal::CanFrame& frame, std::int64_t now_ns, hal::C
         return true;
       }
       toggle_ = !toggle_;
-      send_request({static_cast<std::uint8_t>(0x60 | (toggle_ ? 0x10 : 0)), 0, 0, 0, 0, 0, 0, 0}, bus);
+      send_request({static_cast<std::uint8_t>(0x60 | (toggle_ ? 0x10 : 0)), 0, 0, 0, 0, 0, 0, 0},
+                   bus);
       return true;
     }
     case Phase::kDownloadInit: {
@@ -191,7 +201,8 @@ void SdoClient::send_next_download_segment(hal::CanBus& bus) {
   const std::size_t n = std::min<std::size_t>(7, write_size_ - write_offset_);
   const bool last = write_offset_ + n >= write_size_;
   payload[0] = static_cast<std::uint8_t>((toggle_ ? 0x10 : 0) | ((7 - n) << 1) | (last ? 1 : 0));
-  std::copy_n(write_data_.begin() + static_cast<std::ptrdiff_t>(write_offset_), n, payload.begin() + 1);
+  std::copy_n(write_data_.begin() + static_cast<std::ptrdiff_t>(write_offset_), n,
+              payload.begin() + 1);
   write_offset_ += n;
   send_request(payload, bus);
 }

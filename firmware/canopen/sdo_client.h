@@ -24,8 +24,8 @@ class SdoClient {
   // Starts writing `data` (copied) to index:sub. False if busy or data too long.
   bool start_write(std::uint16_t index, std::uint8_t sub, std::span<const std::uint8_t> data,
                    std::int64_t now_ns, hal::CanBus& bus);
-  bool start_write_u32(std::uint16_t index, std::uint8_t sub, std::uint32_t value,
-                       std::size_t size, std::int64_t now_ns, hal::CanBus& bus);
+  bool start_write_u32(std::uint16_t index, std::uint8_t sub, std::uint32_t value, std::size_t size,
+                       std::int64_t now_ns, hal::CanBus& bus);
 
   // Offers a received frame; returns true when it was this client's response.
   bool on_frame(const hal::CanFrame& frame, std::int64_t now_ns, hal::CanBus& bus);
@@ -44,7 +44,13 @@ class SdoClient {
   [[nodiscard]] std::uint8_t sub_index() const { return sub_; }
 
  private:
-  enum class Phase : std::uint8_t { kNone, kUploadInit, kUploadSegment, kDownloadInit, kDownloadSegment };
+  enum class Phase : std::uint8_t {
+    kNone,
+    kUploadInit,
+    kUploadSegment,
+    kDownloadInit,
+    kDownloadSegment
+  };
 
   void send_request(const std::array<std::uint8_t, 8>& payload, hal::CanBus& bus);
   void send_abort(std::uint32_t code, hal::CanBus& bus);

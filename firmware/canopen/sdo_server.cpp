@@ -26,7 +26,8 @@ bool SdoServer::on_frame(const hal::CanFrame& frame, hal::CanBus& bus) {
     segment_entry_ = nullptr;
     ObjectEntry* e = od_.find(index, sub);
     if (e == nullptr) {
-      abort(index, sub, od_.has_index(index) ? abort_code::kNoSubIndex : abort_code::kNoObject, bus);
+      abort(index, sub, od_.has_index(index) ? abort_code::kNoSubIndex : abort_code::kNoObject,
+            bus);
       return true;
     }
     if (e->access == Access::kWriteOnly) {
@@ -45,7 +46,8 @@ bool SdoServer::on_frame(const hal::CanFrame& frame, hal::CanBus& bus) {
     if (e->size == 0) {
       std::copy_n(e->text.begin(), total_, buffer_.begin());
     } else {
-      for (std::size_t i = 0; i < total_; ++i) buffer_[i] = static_cast<std::uint8_t>(e->value >> (8 * i));
+      for (std::size_t i = 0; i < total_; ++i)
+        buffer_[i] = static_cast<std::uint8_t>(e->value >> (8 * i));
     }
     segment_entry_ = e;
     segment_upload_ = true;
@@ -81,7 +83,8 @@ bool SdoServer::on_frame(const hal::CanFrame& frame, hal::CanBus& bus) {
     segment_entry_ = nullptr;
     ObjectEntry* e = od_.find(index, sub);
     if (e == nullptr) {
-      abort(index, sub, od_.has_index(index) ? abort_code::kNoSubIndex : abort_code::kNoObject, bus);
+      abort(index, sub, od_.has_index(index) ? abort_code::kNoSubIndex : abort_code::kNoObject,
+            bus);
       return true;
     }
     if (e->access == Access::kReadOnly || e->access == Access::kConst) {
@@ -98,7 +101,9 @@ bool SdoServer::on_frame(const hal::CanFrame& frame, hal::CanBus& bus) {
       reply({0x60, d[1], d[2], sub, 0, 0, 0, 0}, bus);
       return true;
     }
-    total_ = (cmd & 0x01) != 0 ? static_cast<std::size_t>(d[4] | (d[5] << 8) | (d[6] << 16) | (d[7] << 24)) : 0;
+    total_ = (cmd & 0x01) != 0
+                 ? static_cast<std::size_t>(d[4] | (d[5] << 8) | (d[6] << 16) | (d[7] << 24))
+                 : 0;
     if (total_ == 0 || total_ > buffer_.size()) {
       abort(index, sub, abort_code::kLength, bus);
       return true;
@@ -169,8 +174,14 @@ void SdoServer::reply(const std::array<std::uint8_t, 8>& payload, hal::CanBus& b
 }
 
 void SdoServer::abort(std::uint16_t index, std::uint8_t sub, std::uint32_t code, hal::CanBus& bus) {
-  std::array<std::uint8_t, 8> r{0x80, static_cast<std::uint8_t>(index & 0xFF),
-                                static_cast<std::uint8_t>(index >> 8), sub, 0, 0, 0, 0};
+  std::array<std::uint8_t, 8> r{0x80,
+                                static_cast<std::uint8_t>(index & 0xFF),
+                                static_cast<std::uint8_t>(index >> 8),
+                                sub,
+                                0,
+                                0,
+                                0,
+                                0};
   for (int i = 0; i < 4; ++i) r[4 + i] = static_cast<std::uint8_t>(code >> (8 * i));
   reply(r, bus);
 }

@@ -16,7 +16,8 @@ double SigmaLoop::update(double distance_m, double ground_speed_mps, double disc
   const double angle_ref = angle0_rad_ + k * (distance_m - distance0_m_);
   angle_error_rad_ = angle_ref - disc_angle_rad;
   const double feed_forward = k * std::max(0.0, ground_speed_mps);
-  return std::clamp(feed_forward + cfg_.angle_gain_per_s * angle_error_rad_, 0.0, cfg_.omega_max_radps);
+  return std::clamp(feed_forward + cfg_.angle_gain_per_s * angle_error_rad_, 0.0,
+                    cfg_.omega_max_radps);
 }
 
 double SigmaLoop::sigma_seen(double omega_radps, double ground_speed_mps) const {

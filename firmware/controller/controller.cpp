@@ -113,13 +113,16 @@ void Controller::read_process_values() {
   telemetry_.disc_torque_Nm =
       static_cast<double>(disc.value(disc_torque_slot_)) * 1e-3 * disc.config().rated_torque;
   const NodeLink& roller = link(NodeRole::kRollerActuator);
-  telemetry_.clamp_pos_mm = static_cast<double>(roller.value(roller_position_slot_)) / roller.config().counts_per_unit;
+  telemetry_.clamp_pos_mm =
+      static_cast<double>(roller.value(roller_position_slot_)) / roller.config().counts_per_unit;
   const NodeLink& depth = link(NodeRole::kDepthActuator);
-  telemetry_.depth_mm = static_cast<double>(depth.value(depth_position_slot_)) / depth.config().counts_per_unit;
+  telemetry_.depth_mm =
+      static_cast<double>(depth.value(depth_position_slot_)) / depth.config().counts_per_unit;
   telemetry_.depth_force_N =
       static_cast<double>(depth.value(depth_torque_slot_)) * 1e-3 * depth.config().rated_torque;
   const NodeLink& force = link(NodeRole::kForceSensor);
-  telemetry_.clamp_force_N = static_cast<double>(force.value(force_slot_)) / force.config().counts_per_unit;
+  telemetry_.clamp_force_N =
+      static_cast<double>(force.value(force_slot_)) / force.config().counts_per_unit;
   telemetry_.sigma = sigma_loop_.sigma_seen(telemetry_.omega_radps, telemetry_.v_wheel_mps);
 }
 
@@ -135,7 +138,8 @@ std::uint32_t Controller::check_faults(std::int64_t now_ns, std::int64_t dt_ns) 
   if (supervisor_.state() == SupervisorState::kCommissioning) {
     bool failed = commissioning_started_ &&
                   now_ns - commissioning_start_ns_ > cfg_.supervisor.boot_timeout_ns;
-    for (const NodeLink& l : links_) failed = failed || l.boot_state() == NodeLink::BootState::kFailed;
+    for (const NodeLink& l : links_)
+      failed = failed || l.boot_state() == NodeLink::BootState::kFailed;
     if (failed) faults |= fault::kBootFailed;
     return faults;
   }
@@ -149,7 +153,8 @@ std::uint32_t Controller::check_faults(std::int64_t now_ns, std::int64_t dt_ns) 
     if (l.config().profile == 402 && l.drive_state() == State::kFault) faults |= fault::kDriveFault;
   }
   const SupervisorConfig& s = cfg_.supervisor;
-  if (telemetry_.clamp_force_N < s.force_plausible_min_N || telemetry_.clamp_force_N > s.force_plausible_max_N ||
+  if (telemetry_.clamp_force_N < s.force_plausible_min_N ||
+      telemetry_.clamp_force_N > s.force_plausible_max_N ||
       std::abs(telemetry_.v_wheel_mps) > s.ground_speed_plausible_max_mps) {
     faults |= fault::kSensorImplausible;
   }
@@ -201,14 +206,16 @@ void Controller::run_commissioning(std::int64_t now_ns) {
 void Controller::write_outputs(double dt_s) {
   const SupervisorState state = supervisor_.state();
   const bool operating = state == SupervisorState::kReady || state == SupervisorState::kRunning ||
-                         state == SupervisorState::kStopping || state == SupervisorState::kCommissioning;
+                         state == SupervisorState::kStopping ||
+                         state == SupervisorState::kCommissioning;
   const State wanted = operating ? State::kOperationEnabled : State::kQuickStopActive;
 
   double omega_cmd = 0.0;
   double clamp_pos_cmd = cfg_.clamp.release_position_mm;
   double depth_cmd = cfg_.depth.raised_mm;
   if (state == SupervisorState::kRunning) {
-    omega_cmd = sigma_loop_.update(telemetry_.distance_m, telemetry_.v_wheel_mps, telemetry_.disc_angle_rad);
+    omega_cmd = sigma_loop_.update(telemetry_.distance_m, telemetry_.v_wheel_mps,
+                                   telemetry_.disc_angle_rad);
     clamp_pos_cmd = clamp_loop_.update(telemetry_.clamp_force_N, dt_s, true);
     depth_cmd = depth_loop_.update(telemetry_.depth_mm, dt_s, true);
   } else if (state == SupervisorState::kStopping) {
@@ -223,9 +230,10 @@ void Controller::write_outputs(double dt_s) {
   }
   telemetry_.omega_cmd_radps = omega_cmd;
   telemetry_.clamp_pos_cmd_mm = clamp_pos_cmd;
-  telemetry_.clamp_force_cmd_N = state == SupervisorState::kRunning || state == SupervisorState::kStopping
-                                     ? clamp_loop_.setpoint_N()
-                                     : 0.0;
+  telemetry_.clamp_force_cmd_N =
+      state == SupervisorState::kRunning || state == SupervisorState::kStopping
+          ? clamp_loop_.setpoint_N()
+          : 0.0;
   telemetry_.depth_cmd_mm = depth_cmd;
 
   if (!nodes_started_) return;  // PDOs are not configured before the nodes are started

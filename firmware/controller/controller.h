@@ -31,7 +31,9 @@ class Controller {
 
   [[nodiscard]] const Telemetry& telemetry() const { return telemetry_; }
   [[nodiscard]] SupervisorState state() const { return supervisor_.state(); }
-  [[nodiscard]] const NodeLink& node(NodeRole role) const { return links_[static_cast<std::size_t>(role)]; }
+  [[nodiscard]] const NodeLink& node(NodeRole role) const {
+    return links_[static_cast<std::size_t>(role)];
+  }
   [[nodiscard]] std::uint32_t faults() const { return supervisor_.latched_faults(); }
 
  private:

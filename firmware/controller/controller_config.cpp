@@ -4,10 +4,14 @@ namespace planter {
 
 const char* node_role_name(NodeRole role) {
   switch (role) {
-    case NodeRole::kDiscDrive: return "disc_drive";
-    case NodeRole::kRollerActuator: return "roller_actuator";
-    case NodeRole::kDepthActuator: return "depth_actuator";
-    case NodeRole::kForceSensor: return "force_sensor";
+    case NodeRole::kDiscDrive:
+      return "disc_drive";
+    case NodeRole::kRollerActuator:
+      return "roller_actuator";
+    case NodeRole::kDepthActuator:
+      return "depth_actuator";
+    case NodeRole::kForceSensor:
+      return "force_sensor";
   }
   return "?";
 }

@@ -8,7 +8,12 @@
 
 namespace planter {
 
-enum class NodeRole : std::uint8_t { kDiscDrive = 0, kRollerActuator, kDepthActuator, kForceSensor };
+enum class NodeRole : std::uint8_t {
+  kDiscDrive = 0,
+  kRollerActuator,
+  kDepthActuator,
+  kForceSensor
+};
 constexpr std::size_t kNodeCount = 4;
 const char* node_role_name(NodeRole role);
 
@@ -75,7 +80,7 @@ struct DepthLoopConfig {
 
 struct SupervisorConfig {
   std::int64_t overrun_threshold_ns = 15'000'000;  // a tick later than this is an overrun
-  std::uint32_t overruns_to_fault = 3;            // consecutive overruns before a fault
+  std::uint32_t overruns_to_fault = 3;             // consecutive overruns before a fault
   double force_plausible_min_N = -20.0;
   double force_plausible_max_N = 400.0;
   double ground_speed_plausible_max_mps = 1.0;
@@ -94,7 +99,9 @@ struct ControllerConfig {
   SupervisorConfig supervisor;
   bool estop_active_low = true;
 
-  [[nodiscard]] const NodeConfig& node(NodeRole r) const { return nodes[static_cast<std::size_t>(r)]; }
+  [[nodiscard]] const NodeConfig& node(NodeRole r) const {
+    return nodes[static_cast<std::size_t>(r)];
+  }
 };
 
 }  // namespace planter

@@ -10,7 +10,8 @@ NodeLink::NodeLink(const NodeConfig& config, const CanConfig& can)
     : cfg_(config),
       heartbeat_ms_(can.heartbeat_producer_ms),
       sdo_(config.node_id, can.sdo_timeout_ns),
-      heartbeat_(static_cast<std::int64_t>(can.heartbeat_producer_ms * can.heartbeat_consumer_factor * 1e6)) {
+      heartbeat_(static_cast<std::int64_t>(can.heartbeat_producer_ms *
+                                           can.heartbeat_consumer_factor * 1e6)) {
   for (std::size_t k = 0; k < 4; ++k) {
     tpdo_slots_[k].fill(-1);
     rpdo_slots_[k].fill(-1);
@@ -44,7 +45,9 @@ int NodeLink::slot(std::uint16_t index, std::uint8_t sub) const {
   return -1;
 }
 
-std::int64_t NodeLink::value(int s) const { return s >= 0 ? objects_[static_cast<std::size_t>(s)].value : 0; }
+std::int64_t NodeLink::value(int s) const {
+  return s >= 0 ? objects_[static_cast<std::size_t>(s)].value : 0;
+}
 
 void NodeLink::set_value(int s, std::int64_t v) {
   if (s >= 0) objects_[static_cast<std::size_t>(s)].value = v;
@@ -66,9 +69,10 @@ void NodeLink::build_script() {
                                                   : canopen::cia402::kModeProfilePosition),
               0, 'J'});
     if (!velocity && cfg_.profile_velocity_units_per_s > 0) {
-      add_step({true, canopen::cia402::kProfileVelocity, 0, 4,
-                static_cast<std::uint32_t>(cfg_.profile_velocity_units_per_s * cfg_.counts_per_unit), 0,
-                'J'});
+      add_step(
+          {true, canopen::cia402::kProfileVelocity, 0, 4,
+           static_cast<std::uint32_t>(cfg_.profile_velocity_units_per_s * cfg_.counts_per_unit), 0,
+           'J'});
     }
   }
   // PDO configuration in the order CiA 301 requires: invalidate, clear, map, count, validate.
@@ -78,7 +82,8 @@ void NodeLink::build_script() {
     if (m.count == 0) return;  // left invalid
     add_step({true, map, 0, 1, 0, 0, 'J'});
     for (std::uint8_t i = 0; i < m.count; ++i) {
-      add_step({true, map, static_cast<std::uint8_t>(i + 1), 4, m.entries[i].mapping_value(), 0, 'J'});
+      add_step(
+          {true, map, static_cast<std::uint8_t>(i + 1), 4, m.entries[i].mapping_value(), 0, 'J'});
     }
     add_step({true, map, 0, 1, m.count, 0, 'J'});
     add_step({true, comm, 2, 1, transmission, 0, 'J'});
@@ -182,7 +187,8 @@ void NodeLink::send_rpdos(hal::CanBus& bus) {
     const auto& m = cfg_.rpdo[k];
     if (m.count == 0) continue;
     std::uint64_t raw[canopen::PdoMapping::kMaxEntries]{};
-    for (std::uint8_t i = 0; i < m.count; ++i) raw[i] = static_cast<std::uint64_t>(value(rpdo_slots_[k][i]));
+    for (std::uint8_t i = 0; i < m.count; ++i)
+      raw[i] = static_cast<std::uint64_t>(value(rpdo_slots_[k][i]));
     hal::CanFrame f{};
     f.id = canopen::kRpdoBase[k] + cfg_.node_id;
     f.dlc = canopen::pdo_pack(m, raw, f.data.data());

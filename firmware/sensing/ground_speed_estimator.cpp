@@ -5,7 +5,8 @@
 
 namespace planter {
 
-void GroundSpeedEstimator::update(std::int64_t count, std::int64_t last_edge_ns, std::int64_t now_ns) {
+void GroundSpeedEstimator::update(std::int64_t count, std::int64_t last_edge_ns,
+                                  std::int64_t now_ns) {
   count_ = count;
   // Keep one sample per distinct edge time so the window spans real edges.
   const Sample newest{count, last_edge_ns};

@@ -4,13 +4,20 @@ namespace planter {
 
 const char* supervisor_state_name(SupervisorState s) {
   switch (s) {
-    case SupervisorState::kBoot: return "boot";
-    case SupervisorState::kCommissioning: return "commissioning";
-    case SupervisorState::kReady: return "ready";
-    case SupervisorState::kRunning: return "running";
-    case SupervisorState::kStopping: return "stopping";
-    case SupervisorState::kFault: return "fault";
-    case SupervisorState::kEStop: return "estop";
+    case SupervisorState::kBoot:
+      return "boot";
+    case SupervisorState::kCommissioning:
+      return "commissioning";
+    case SupervisorState::kReady:
+      return "ready";
+    case SupervisorState::kRunning:
+      return "running";
+    case SupervisorState::kStopping:
+      return "stopping";
+    case SupervisorState::kFault:
+      return "fault";
+    case SupervisorState::kEStop:
+      return "estop";
   }
   return "?";
 }

@@ -30,8 +30,8 @@ constexpr std::uint32_t kUnexpectedBootUp = 1u << 8;
 
 struct SupervisorInputs {
   bool estop = false;
-  bool nodes_ready = false;   // every node booted, configured, operational, drives enabled
-  std::uint32_t faults = 0;   // fault:: bits seen this tick
+  bool nodes_ready = false;  // every node booted, configured, operational, drives enabled
+  std::uint32_t faults = 0;  // fault:: bits seen this tick
   bool disc_stopped = false;
   bool run_requested = false;
   bool stop_requested = false;

@@ -17,22 +17,24 @@ namespace {
 
 void print_summary(const Summary& s) {
   std::printf("scenario            %s\n", s.scenario.c_str());
-  std::printf("distance            %.2f m in %.1f s simulated (%.2f s wall, %.0fx real time)\n", s.distance_m,
-              s.sim_seconds, s.wall_seconds, s.realtime_factor);
+  std::printf("distance            %.2f m in %.1f s simulated (%.2f s wall, %.0fx real time)\n",
+              s.distance_m, s.sim_seconds, s.wall_seconds, s.realtime_factor);
   std::printf("seedlings planted   %d  (per 3 m plot:", s.seedlings_planted);
   for (int c : s.plot_counts) std::printf(" %d", c);
   std::printf(")\n");
-  std::printf("uprightness         %.2f %%   (paper: 94.8 predicted, 93.86 field)\n", s.uprightness_pct);
+  std::printf("uprightness         %.2f %%   (paper: 94.8 predicted, 93.86 field)\n",
+              s.uprightness_pct);
   std::printf("damage rate         %.2f %%   (paper: 3 predicted, 2.76 field)\n", s.damage_pct);
-  std::printf("plant spacing       %.1f mm mean, CV %.1f %%   (agronomy: 20-30 mm)\n", s.spacing_mean_mm, s.spacing_cv_pct);
-  std::printf("sigma (true)        mean %.4f, RMS error %.2f %%   (controller's view: %.2f %%)\n", s.sigma_true_mean,
-              s.sigma_true_rms_error_pct, s.sigma_ctrl_rms_error_pct);
-  std::printf("clamp force         mean %.1f N, max %.1f N, ceiling %.1f N\n", s.clamp_force_mean_N, s.clamp_force_max_N,
-              s.clamp_ceiling_N);
-  std::printf("furrow depth        mean %.1f mm, RMS error %.2f mm (target %.1f)\n", s.depth_mean_mm, s.depth_rms_error_mm,
-              s.depth_target_mm);
-  std::printf("CAN bus             %llu frames, load %.1f %%\n", static_cast<unsigned long long>(s.can_frames),
-              s.can_bus_load_pct);
+  std::printf("plant spacing       %.1f mm mean, CV %.1f %%   (agronomy: 20-30 mm)\n",
+              s.spacing_mean_mm, s.spacing_cv_pct);
+  std::printf("sigma (true)        mean %.4f, RMS error %.2f %%   (controller's view: %.2f %%)\n",
+              s.sigma_true_mean, s.sigma_true_rms_error_pct, s.sigma_ctrl_rms_error_pct);
+  std::printf("clamp force         mean %.1f N, max %.1f N, ceiling %.1f N\n", s.clamp_force_mean_N,
+              s.clamp_force_max_N, s.clamp_ceiling_N);
+  std::printf("furrow depth        mean %.1f mm, RMS error %.2f mm (target %.1f)\n",
+              s.depth_mean_mm, s.depth_rms_error_mm, s.depth_target_mm);
+  std::printf("CAN bus             %llu frames, load %.1f %%\n",
+              static_cast<unsigned long long>(s.can_frames), s.can_bus_load_pct);
   std::printf("final state         %s (faults 0x%x)\n", s.final_state.c_str(), s.faults);
 }
 
@@ -41,8 +43,11 @@ int run_scenario(const std::string& scenario_path, const std::string& out_dir, b
   fs::create_directories(out_dir);
   LockstepRunner runner(scenario);
   RecordingWriter recording((fs::path(out_dir) / "recording.csv").string(),
-                            {{"source", "planter-sim"}, {"scenario", scenario.name}, {"board", scenario.board.name},
-                             {"seed", std::to_string(scenario.seed)}, {"units", "1"}});
+                            {{"source", "planter-sim"},
+                             {"scenario", scenario.name},
+                             {"board", scenario.board.name},
+                             {"seed", std::to_string(scenario.seed)},
+                             {"units", "1"}});
   ReportSeries series;
   std::uint64_t tick = 0;
   runner.set_observer([&](const TickRecord& row) {
@@ -53,13 +58,16 @@ int run_scenario(const std::string& scenario_path, const std::string& out_dir, b
   recording.close();
   std::ofstream((fs::path(out_dir) / "summary.json").string()) << summary.to_json() << "\n";
   std::ofstream seedlings((fs::path(out_dir) / "seedlings.csv").string());
-  seedlings << "x_m,release_t,diameter_mm,length_mm,strength_N,peak_force_N,damaged,tilt_deg,sigma_at_release\n";
+  seedlings << "x_m,release_t,diameter_mm,length_mm,strength_N,peak_force_N,damaged,tilt_deg,sigma_"
+               "at_release\n";
   for (const Seedling& s : runner.plant().seedlings().seedlings()) {
     if (!s.planted) continue;
-    seedlings << s.x_m << ',' << s.release_time_s << ',' << s.diameter_mm << ',' << s.length_mm << ',' << s.strength_N
-              << ',' << s.peak_force_N << ',' << (s.damaged ? 1 : 0) << ',' << s.tilt_deg << ',' << s.sigma_at_release << '\n';
+    seedlings << s.x_m << ',' << s.release_time_s << ',' << s.diameter_mm << ',' << s.length_mm
+              << ',' << s.strength_N << ',' << s.peak_force_N << ',' << (s.damaged ? 1 : 0) << ','
+              << s.tilt_deg << ',' << s.sigma_at_release << '\n';
   }
-  write_report_html((fs::path(out_dir) / "report.html").string(), scenario, summary, series, runner.plant().seedlings());
+  write_report_html((fs::path(out_dir) / "report.html").string(), scenario, summary, series,
+                    runner.plant().seedlings());
   if (!quiet) print_summary(summary);
   std::printf("wrote %s/{recording.csv,seedlings.csv,summary.json,report.html}\n", out_dir.c_str());
   return 0;
@@ -71,27 +79,31 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, doub
   const Scenario base = load_scenario(scenario_path);
   fs::create_directories(out_dir);
   const double area[3] = {105, 255, 405}, omega[3] = {0.15, 0.25, 0.35}, depth[3] = {40, 100, 160};
-  const int design[15][3] = {{-1, -1, 0}, {1, -1, 0}, {-1, 1, 0}, {1, 1, 0}, {-1, 0, -1}, {1, 0, -1}, {-1, 0, 1}, {1, 0, 1},
-                             {0, -1, -1}, {0, 1, -1}, {0, -1, 1}, {0, 1, 1}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  const int design[15][3] = {{-1, -1, 0}, {1, -1, 0}, {-1, 1, 0}, {1, 1, 0},   {-1, 0, -1},
+                             {1, 0, -1},  {-1, 0, 1}, {1, 0, 1},  {0, -1, -1}, {0, 1, -1},
+                             {0, -1, 1},  {0, 1, 1},  {0, 0, 0},  {0, 0, 0},   {0, 0, 0}};
   std::ofstream csv((fs::path(out_dir) / "sweep.csv").string());
-  csv << "run,contact_area_mm2,disc_speed_radps,depth_mm,sigma,uprightness_pct,damage_pct,seedling_peak_force_mean_N,"
+  csv << "run,contact_area_mm2,disc_speed_radps,depth_mm,sigma,uprightness_pct,damage_pct,seedling_"
+         "peak_force_mean_N,"
          "clamp_force_max_N,spacing_mean_mm\n";
-  std::printf("%3s %10s %10s %8s %7s %12s %9s %14s\n", "run", "area_mm2", "omega", "depth", "sigma", "upright_%",
-              "damage_%", "peak_force_N");
+  std::printf("%3s %10s %10s %8s %7s %12s %9s %14s\n", "run", "area_mm2", "omega", "depth", "sigma",
+              "upright_%", "damage_%", "peak_force_N");
   for (int i = 0; i < 15; ++i) {
     Scenario s = base;
     s.plant.route.distance_m = distance_m;
     s.plant.route.stops.clear();
     s.seed = base.seed + static_cast<std::uint64_t>(i);
-    const double a = area[design[i][0] + 1], w = omega[design[i][1] + 1], d = depth[design[i][2] + 1];
+    const double a = area[design[i][0] + 1], w = omega[design[i][1] + 1],
+                 d = depth[design[i][2] + 1];
     const double sigma = w * s.board.controller.sigma.disc_radius_m / s.plant.route.speed_mps;
     set_operating_point(s, sigma, d, a);
     LockstepRunner runner(s);
     const Summary r = runner.run();
-    std::printf("%3d %10.0f %10.3f %8.0f %7.3f %12.2f %9.2f %14.1f\n", i + 1, a, w, d, sigma, r.uprightness_pct,
-                r.damage_pct, r.seedling_peak_force_mean_N);
-    csv << i + 1 << ',' << a << ',' << w << ',' << d << ',' << sigma << ',' << r.uprightness_pct << ',' << r.damage_pct
-        << ',' << r.seedling_peak_force_mean_N << ',' << r.clamp_force_max_N << ',' << r.spacing_mean_mm << '\n';
+    std::printf("%3d %10.0f %10.3f %8.0f %7.3f %12.2f %9.2f %14.1f\n", i + 1, a, w, d, sigma,
+                r.uprightness_pct, r.damage_pct, r.seedling_peak_force_mean_N);
+    csv << i + 1 << ',' << a << ',' << w << ',' << d << ',' << sigma << ',' << r.uprightness_pct
+        << ',' << r.damage_pct << ',' << r.seedling_peak_force_mean_N << ',' << r.clamp_force_max_N
+        << ',' << r.spacing_mean_mm << '\n';
   }
   std::printf("wrote %s/sweep.csv\n", out_dir.c_str());
   return 0;
@@ -109,10 +121,13 @@ int main(int argc, char** argv) {
   run->add_option("scenario", scenario, "scenario file (TOML)")->required();
   run->add_option("--out", out, "output directory")->capture_default_str();
   run->add_flag("--quiet", quiet, "do not print the summary");
-  auto* sweep = app.add_subcommand("sweep", "the paper's Box-Behnken design (area x disc speed x depth)");
+  auto* sweep =
+      app.add_subcommand("sweep", "the paper's Box-Behnken design (area x disc speed x depth)");
   sweep->add_option("scenario", scenario, "base scenario file (TOML)")->required();
   sweep->add_option("--out", out, "output directory")->capture_default_str();
-  sweep->add_option("--distance", sweep_distance, "metres per run")->capture_default_str()->check(CLI::Range(0.5, 100.0));
+  sweep->add_option("--distance", sweep_distance, "metres per run")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 100.0));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

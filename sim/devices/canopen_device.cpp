@@ -21,14 +21,16 @@ CanopenDevice::CanopenDevice(const DeviceIdentity& id, hal::CanBus& bus)
   od_.add(0x1018, 3, 4, Access::kConst, id.revision);
   od_.add(0x1018, 4, 4, Access::kConst, id.serial);
   for (std::uint16_t k = 0; k < 4; ++k) {
-    for (std::uint16_t comm : {static_cast<std::uint16_t>(0x1400 + k), static_cast<std::uint16_t>(0x1800 + k)}) {
+    for (std::uint16_t comm :
+         {static_cast<std::uint16_t>(0x1400 + k), static_cast<std::uint16_t>(0x1800 + k)}) {
       od_.add(comm, 0, 1, Access::kConst, 5);
       od_.add(comm, 1, 4, Access::kReadWrite, 0);
       od_.add(comm, 2, 1, Access::kReadWrite, 255);
       od_.add(comm, 3, 2, Access::kReadWrite, 0);
       od_.add(comm, 5, 2, Access::kReadWrite, 0);
     }
-    for (std::uint16_t map : {static_cast<std::uint16_t>(0x1600 + k), static_cast<std::uint16_t>(0x1A00 + k)}) {
+    for (std::uint16_t map :
+         {static_cast<std::uint16_t>(0x1600 + k), static_cast<std::uint16_t>(0x1A00 + k)}) {
       od_.add(map, 0, 1, Access::kReadWrite, 0);
       for (std::uint8_t s = 1; s <= 8; ++s) od_.add(map, s, 4, Access::kReadWrite, 0);
     }
@@ -39,8 +41,10 @@ CanopenDevice::CanopenDevice(const DeviceIdentity& id, hal::CanBus& bus)
 void CanopenDevice::reset_communication(std::int64_t now_ns) {
   // Default connection set, every PDO invalid until the master configures it.
   for (std::uint16_t k = 0; k < 4; ++k) {
-    od_.set(static_cast<std::uint16_t>(0x1400 + k), 1, 0x80000000u | (canopen::kRpdoBase[k] + identity_.node_id));
-    od_.set(static_cast<std::uint16_t>(0x1800 + k), 1, 0x80000000u | (canopen::kTpdoBase[k] + identity_.node_id));
+    od_.set(static_cast<std::uint16_t>(0x1400 + k), 1,
+            0x80000000u | (canopen::kRpdoBase[k] + identity_.node_id));
+    od_.set(static_cast<std::uint16_t>(0x1800 + k), 1,
+            0x80000000u | (canopen::kTpdoBase[k] + identity_.node_id));
     od_.set(static_cast<std::uint16_t>(0x1600 + k), 0, 0);
     od_.set(static_cast<std::uint16_t>(0x1A00 + k), 0, 0);
   }
@@ -87,7 +91,8 @@ canopen::PdoMapping CanopenDevice::mapping(std::uint16_t map_index) const {
   canopen::PdoMapping m;
   m.count = static_cast<std::uint8_t>(std::min<std::uint64_t>(od_.get(map_index, 0), 8));
   for (std::uint8_t i = 0; i < m.count; ++i) {
-    m.entries[i] = canopen::PdoEntry::from_mapping_value(static_cast<std::uint32_t>(od_.get(map_index, i + 1)));
+    m.entries[i] = canopen::PdoEntry::from_mapping_value(
+        static_cast<std::uint32_t>(od_.get(map_index, i + 1)));
   }
   return m;
 }
@@ -98,14 +103,22 @@ void CanopenDevice::handle(const hal::CanFrame& f, std::int64_t now_ns) {
   if (cob == canopen::kNmtCobId) {
     if (f.dlc < 2 || (f.data[1] != 0 && f.data[1] != identity_.node_id)) return;
     switch (static_cast<canopen::NmtCommand>(f.data[0])) {
-      case canopen::NmtCommand::kStart: nmt_ = canopen::NmtState::kOperational; break;
-      case canopen::NmtCommand::kStop: nmt_ = canopen::NmtState::kStopped; break;
-      case canopen::NmtCommand::kPreOperational: nmt_ = canopen::NmtState::kPreOperational; break;
+      case canopen::NmtCommand::kStart:
+        nmt_ = canopen::NmtState::kOperational;
+        break;
+      case canopen::NmtCommand::kStop:
+        nmt_ = canopen::NmtState::kStopped;
+        break;
+      case canopen::NmtCommand::kPreOperational:
+        nmt_ = canopen::NmtState::kPreOperational;
+        break;
       case canopen::NmtCommand::kResetNode:
         on_reset();
         power_on(now_ns);
         break;
-      case canopen::NmtCommand::kResetCommunication: power_on(now_ns); break;
+      case canopen::NmtCommand::kResetCommunication:
+        power_on(now_ns);
+        break;
     }
     return;
   }
@@ -121,7 +134,8 @@ void CanopenDevice::handle(const hal::CanFrame& f, std::int64_t now_ns) {
     const canopen::PdoMapping m = mapping(static_cast<std::uint16_t>(0x1600 + k));
     std::uint64_t raw[canopen::PdoMapping::kMaxEntries]{};
     if (!canopen::pdo_unpack(m, f.data.data(), f.dlc, raw)) return;  // short: ignored
-    for (std::uint8_t i = 0; i < m.count; ++i) od_.set(m.entries[i].index, m.entries[i].sub, raw[i]);
+    for (std::uint8_t i = 0; i < m.count; ++i)
+      od_.set(m.entries[i].index, m.entries[i].sub, raw[i]);
     on_rpdo();
     return;
   }
@@ -136,7 +150,8 @@ void CanopenDevice::on_sync() {
     if (type == 0 || type > 240 || sync_count_ % type != 0) continue;
     const canopen::PdoMapping m = mapping(static_cast<std::uint16_t>(0x1A00 + k));
     std::uint64_t raw[canopen::PdoMapping::kMaxEntries]{};
-    for (std::uint8_t i = 0; i < m.count; ++i) raw[i] = od_.get(m.entries[i].index, m.entries[i].sub);
+    for (std::uint8_t i = 0; i < m.count; ++i)
+      raw[i] = od_.get(m.entries[i].index, m.entries[i].sub);
     hal::CanFrame f{};
     f.id = static_cast<std::uint32_t>(cob_entry & 0x7FF);
     f.dlc = canopen::pdo_pack(m, raw, f.data.data());

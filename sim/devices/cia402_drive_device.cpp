@@ -62,7 +62,8 @@ void Cia402DriveDevice::publish_status() {
   od().set(c402::kStatusword, 0, sw);
 }
 
-void Cia402DriveDevice::set_actual(std::int64_t position, std::int64_t velocity, std::int16_t torque) {
+void Cia402DriveDevice::set_actual(std::int64_t position, std::int64_t velocity,
+                                   std::int16_t torque) {
   auto& o = od();
   o.set(c402::kPositionActual, 0, static_cast<std::uint64_t>(position));
   o.set(c402::kVelocityActual, 0, static_cast<std::uint64_t>(velocity));
@@ -83,7 +84,7 @@ Cia404ForceSensor::Cia404ForceSensor(const DeviceIdentity& identity, hal::CanBus
     : CanopenDevice(identity, bus) {
   auto& o = od();
   o.add(0x7130, 0, 1, Access::kConst, 1);
-  o.add(0x7130, 1, 2, Access::kReadOnly, 0);  // process value, 0.1 N
+  o.add(0x7130, 1, 2, Access::kReadOnly, 0);            // process value, 0.1 N
   o.add(0x6131, 1, 4, Access::kReadWrite, 0x00210000);  // unit: newton (CiA 303-2)
   o.add(0x6132, 1, 1, Access::kReadWrite, 1);           // one decimal
   o.add(0x6138, 1, 4, Access::kWriteOnly, 0);           // tare zero

@@ -12,7 +12,9 @@ class Cia402DriveDevice final : public CanopenDevice {
 
   [[nodiscard]] canopen::cia402::State state() const { return state_; }
   [[nodiscard]] bool enabled() const { return state_ == canopen::cia402::State::kOperationEnabled; }
-  [[nodiscard]] bool quick_stopping() const { return state_ == canopen::cia402::State::kQuickStopActive; }
+  [[nodiscard]] bool quick_stopping() const {
+    return state_ == canopen::cia402::State::kQuickStopActive;
+  }
   [[nodiscard]] std::int8_t mode() const;
   [[nodiscard]] std::int64_t target_velocity() const;
   [[nodiscard]] std::int64_t position_setpoint() const { return position_setpoint_; }

@@ -22,17 +22,21 @@ class DiscDriveModel {
       while (delayed_.size() > n + 1) delayed_.pop_front();
       omega_target = delayed_.front();
     }
-    const double target = enabled ? std::clamp(omega_target, -d_.disc_omega_max_radps, d_.disc_omega_max_radps) : 0.0;
+    const double target =
+        enabled ? std::clamp(omega_target, -d_.disc_omega_max_radps, d_.disc_omega_max_radps) : 0.0;
     const double tau = quick_stop ? 0.02 : d_.disc_time_constant_s;
     // Loop gain chosen so the nominal response is the first-order lag T_d.
     const double gain = d_.disc_inertia_kgm2 / tau;
-    double torque = enabled || quick_stop ? gain * (target - omega_) + d_.disc_damping_Nms * target : 0.0;
-    const double friction = e_.disc_coulomb_Nm * (std::abs(omega_) > 1e-4 ? std::copysign(1.0, omega_) : 0.0);
+    double torque =
+        enabled || quick_stop ? gain * (target - omega_) + d_.disc_damping_Nms * target : 0.0;
+    const double friction =
+        e_.disc_coulomb_Nm * (std::abs(omega_) > 1e-4 ? std::copysign(1.0, omega_) : 0.0);
     double accel = (torque - d_.disc_damping_Nms * omega_ - friction) / d_.disc_inertia_kgm2;
     if (std::abs(omega_) <= 1e-4 && std::abs(torque) <= e_.disc_coulomb_Nm) accel = 0.0;  // stuck
     const double previous = omega_;
     omega_ += accel * dt_s;
-    if (previous != 0.0 && omega_ * previous < 0.0 && std::abs(torque) <= e_.disc_coulomb_Nm) omega_ = 0.0;
+    if (previous != 0.0 && omega_ * previous < 0.0 && std::abs(torque) <= e_.disc_coulomb_Nm)
+      omega_ = 0.0;
     torque_Nm_ = torque;
     motor_angle_rad_ += omega_ * dt_s;
     // Backlash: the disc follows the motor only when the play is taken up.
@@ -42,7 +46,7 @@ class DiscDriveModel {
     disc_omega_ = (disc_angle_rad_ - previous_disc_angle_) / dt_s;
     previous_disc_angle_ = disc_angle_rad_;
   }
-  [[nodiscard]] double omega() const { return omega_; }          // motor side, as the drive measures
+  [[nodiscard]] double omega() const { return omega_; }  // motor side, as the drive measures
   [[nodiscard]] double disc_omega() const { return disc_omega_; }  // the disc itself
   [[nodiscard]] double motor_angle() const { return motor_angle_rad_; }
   [[nodiscard]] double disc_angle() const { return disc_angle_rad_; }

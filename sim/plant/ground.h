@@ -9,14 +9,16 @@ namespace planter::sim {
 
 class Ground {
  public:
-  Ground(const RouteConfig& route, const TerrainConfig& terrain) : route_(route), terrain_(terrain) {}
+  Ground(const RouteConfig& route, const TerrainConfig& terrain)
+      : route_(route), terrain_(terrain) {}
 
   void step(double t_s, double dt_s) {
     double wanted = 0.0;
     if (moving_ && x_m_ < route_.distance_m) {
       constexpr double kTwoPi = 6.283185307179586;
-      wanted = route_.speed_mps *
-               (1.0 + 0.01 * route_.speed_variation_pct * std::sin(kTwoPi * t_s / route_.speed_variation_period_s));
+      wanted =
+          route_.speed_mps * (1.0 + 0.01 * route_.speed_variation_pct *
+                                        std::sin(kTwoPi * t_s / route_.speed_variation_period_s));
       // Brake to reach the end and each stop point at rest.
       const double to_end = route_.distance_m - x_m_;
       wanted = std::min(wanted, std::sqrt(2.0 * route_.accel_mps2 * std::max(0.0, to_end)));
@@ -50,7 +52,8 @@ class Ground {
   [[nodiscard]] double terrain_mm() const {
     constexpr double kTwoPi = 6.283185307179586;
     const double k = kTwoPi / terrain_.wavelength_m;
-    return terrain_.roughness_mm * (0.7 * std::sin(k * x_m_) + 0.3 * std::sin(2.71 * k * x_m_ + 1.3));
+    return terrain_.roughness_mm *
+           (0.7 * std::sin(k * x_m_) + 0.3 * std::sin(2.71 * k * x_m_ + 1.3));
   }
 
  private:

@@ -19,7 +19,8 @@ Plant::Plant(const PlantConfig& config, const ControllerConfig& board, std::uint
       seedlings_(config, seed ^ 0x5eed11u),
       noise_rng_(seed) {}
 
-void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev, hal::sim::SimEdgeSource& edges) {
+void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
+                 hal::sim::SimEdgeSource& edges) {
   const double dt = static_cast<double>(dt_ns) * 1e-9;
   const double t = static_cast<double>(t_ns) * 1e-9;
   const Effects& fx = cfg_.effects;
@@ -27,7 +28,8 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev, hal::
   // Ground and soil wheel.
   const double x_before = ground_.x_m();
   ground_.step(t, dt);
-  const double draft = cfg_.soil.draft_coeff * ground_.v_mps() * std::pow(std::max(0.0, depth_.position_mm()) * 1e-3, 2.0);
+  const double draft = cfg_.soil.draft_coeff * ground_.v_mps() *
+                       std::pow(std::max(0.0, depth_.position_mm()) * 1e-3, 2.0);
   const double slip_pct = cfg_.soil.slip_mean_pct +
                           cfg_.soil.slip_variation_pct * std::sin(kTwoPi * ground_.x_m() / 3.7) +
                           fx.slip_per_kN * draft * 1e-3;
@@ -38,32 +40,40 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev, hal::
   const double disc_cpu = disc_node.counts_per_unit;
   disc_.step(static_cast<double>(dev.disc.target_velocity()) / disc_cpu, dev.disc.enabled(),
              dev.disc.quick_stopping(), dt);
-  const double torque_pm = std::clamp(disc_.torque_Nm() / disc_node.rated_torque * 1000.0, -32768.0, 32767.0);
-  dev.disc.set_actual(std::llround(disc_.motor_angle() * disc_cpu), std::llround(disc_.omega() * disc_cpu),
+  const double torque_pm =
+      std::clamp(disc_.torque_Nm() / disc_node.rated_torque * 1000.0, -32768.0, 32767.0);
+  dev.disc.set_actual(std::llround(disc_.motor_angle() * disc_cpu),
+                      std::llround(disc_.omega() * disc_cpu),
                       static_cast<std::int16_t>(std::lround(torque_pm)));
 
   // Roller clamp actuator (profile position) and the disc lips it compresses.
   const NodeConfig& roller_node = board_.node(NodeRole::kRollerActuator);
   roller_.step(static_cast<double>(dev.roller.position_setpoint()) / roller_node.counts_per_unit,
-               static_cast<double>(dev.roller.profile_velocity()) / roller_node.counts_per_unit, dev.roller.enabled(), dt);
+               static_cast<double>(dev.roller.profile_velocity()) / roller_node.counts_per_unit,
+               dev.roller.enabled(), dt);
   dev.roller.set_actual(std::llround(roller_.position_mm() * roller_node.counts_per_unit), 0, 0);
-  const double compression = roller_.position_mm() + seedlings_.nip_thickness_mm(t) - cfg_.drive.clamp_x0_mm;
-  const double elastic = cfg_.drive.clamp_k_N * std::pow(std::max(0.0, compression), cfg_.drive.clamp_n);
+  const double compression =
+      roller_.position_mm() + seedlings_.nip_thickness_mm(t) - cfg_.drive.clamp_x0_mm;
+  const double elastic =
+      cfg_.drive.clamp_k_N * std::pow(std::max(0.0, compression), cfg_.drive.clamp_n);
   // Viscoelastic relaxation: a Maxwell branch takes a share of the load over tau.
   if (fx.clamp_relaxation_frac > 0.0) {
-    relaxation_N_ += (fx.clamp_relaxation_frac * elastic - relaxation_N_) * dt / fx.clamp_relaxation_tau_s;
+    relaxation_N_ +=
+        (fx.clamp_relaxation_frac * elastic - relaxation_N_) * dt / fx.clamp_relaxation_tau_s;
   }
   const double clamp_force = std::max(0.0, elastic - relaxation_N_);
   std::normal_distribution<double> noise(0.0, 1.0);
   const double vibration = fx.vibration_hz > 0.0 ? std::sin(kTwoPi * fx.vibration_hz * t) : 0.0;
-  const double measured = clamp_force + cfg_.drive.force_noise_N * noise(noise_rng_) + fx.force_offset_N +
-                          fx.force_drift_N_per_min * t / 60.0 + fx.vibration_force_N * vibration;
+  const double measured = clamp_force + cfg_.drive.force_noise_N * noise(noise_rng_) +
+                          fx.force_offset_N + fx.force_drift_N_per_min * t / 60.0 +
+                          fx.vibration_force_N * vibration;
   dev.force.set_force_N(measured);
 
   // Furrow opener depth actuator (profile position) against soil draft.
   const NodeConfig& depth_node = board_.node(NodeRole::kDepthActuator);
   depth_.step(static_cast<double>(dev.depth.position_setpoint()) / depth_node.counts_per_unit,
-              static_cast<double>(dev.depth.profile_velocity()) / depth_node.counts_per_unit, dev.depth.enabled(), dt);
+              static_cast<double>(dev.depth.profile_velocity()) / depth_node.counts_per_unit,
+              dev.depth.enabled(), dt);
   // The depth-limiting wheel follows the surface, but only partly over micro-terrain.
   const double depth_true =
       depth_.position_mm() - fx.depth_sag_mm_per_kN * draft * 1e-3 + 0.3 * ground_.terrain_mm();
@@ -72,15 +82,16 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev, hal::
                        static_cast<std::int16_t>(std::lround(draft_pm)));
 
   // Seedlings.
-  const ReleaseConditions now{t, ground_.x_m(), ground_.v_mps(), disc_.disc_omega(), depth_true, clamp_force,
-                              ground_.terrain_mm()};
+  const ReleaseConditions now{t,          ground_.x_m(), ground_.v_mps(),     disc_.disc_omega(),
+                              depth_true, clamp_force,   ground_.terrain_mm()};
   seedlings_.step(disc_.disc_angle(), clamp_force, now, fx.vibration_tilt_deg);
 
   truth_.x_m = ground_.x_m();
   truth_.v_mps = ground_.v_mps();
   truth_.slip = slip_pct * 0.01;
   truth_.disc_omega_radps = disc_.disc_omega();
-  truth_.sigma = ground_.v_mps() > 1e-4 ? cfg_.disc_radius_m * disc_.disc_omega() / ground_.v_mps() : 0.0;
+  truth_.sigma =
+      ground_.v_mps() > 1e-4 ? cfg_.disc_radius_m * disc_.disc_omega() / ground_.v_mps() : 0.0;
   truth_.clamp_force_N = clamp_force;
   truth_.roller_mm = roller_.position_mm();
   truth_.depth_mm = depth_true;

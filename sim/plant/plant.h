@@ -36,7 +36,8 @@ class Plant {
   Plant(const PlantConfig& config, const ControllerConfig& board, std::uint64_t seed);
 
   void start_moving() { ground_.start(); }
-  void step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& devices, hal::sim::SimEdgeSource& edges);
+  void step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& devices,
+            hal::sim::SimEdgeSource& edges);
 
   [[nodiscard]] const PlantTruth& truth() const { return truth_; }
   [[nodiscard]] const Ground& ground() const { return ground_; }

@@ -49,8 +49,9 @@ struct MechanismConfig {
   double release_angle_deg = 15.0;  // before the lowest point
   double carry_angle_deg = 150.0;   // pickup to release
   double kinematic_gain = 0.2;      // share of the release-velocity angle that tilts the seedling
-  double optimum_sigma = 1.45;      // sigma at which soil backflow cancels the release velocity at 102 mm
-  double nip_time_s = 0.3;          // how long a seedling stays in the roller nip
+  double optimum_sigma =
+      1.45;                 // sigma at which soil backflow cancels the release velocity at 102 mm
+  double nip_time_s = 0.3;  // how long a seedling stays in the roller nip
 };
 
 struct DriveModelConfig {
@@ -73,11 +74,11 @@ struct Effects {
   double slip_per_kN = 0.0;            // wheel slip growing with opener draft (% per kN)
   double clamp_relaxation_frac = 0.0;  // viscoelastic relaxation of the disc lips
   double clamp_relaxation_tau_s = 2.0;
-  double depth_sag_mm_per_kN = 0.0;    // opener compliance under soil draft
-  double vibration_hz = 0.0;           // engine vibration
+  double depth_sag_mm_per_kN = 0.0;  // opener compliance under soil draft
+  double vibration_hz = 0.0;         // engine vibration
   double vibration_force_N = 0.0;
   double vibration_tilt_deg = 0.0;
-  double force_offset_N = 0.0;         // load-cell offset
+  double force_offset_N = 0.0;  // load-cell offset
   double force_drift_N_per_min = 0.0;
 };
 

@@ -8,7 +8,8 @@ namespace {
 constexpr double kDegPerRad = 57.29577951308232;
 }
 
-SeedlingProcess::SeedlingProcess(const PlantConfig& config, std::uint64_t seed) : cfg_(config), rng_(seed) {
+SeedlingProcess::SeedlingProcess(const PlantConfig& config, std::uint64_t seed)
+    : cfg_(config), rng_(seed) {
   seedlings_.reserve(2048);
 }
 
@@ -23,11 +24,12 @@ double SeedlingProcess::nip_thickness_mm(double t_s) const {
   if (seedlings_.empty()) return 0.0;
   const Seedling& s = seedlings_.back();
   if (t_s - s.pickup_time_s > cfg_.mechanism.nip_time_s) return 0.0;
-  return std::max(0.0, (s.diameter_mm - cfg_.seedlings.reference_diameter_mm) * cfg_.drive.seedling_thickness_gain);
+  return std::max(0.0, (s.diameter_mm - cfg_.seedlings.reference_diameter_mm) *
+                           cfg_.drive.seedling_thickness_gain);
 }
 
-void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N, const ReleaseConditions& now,
-                           double vibration_tilt_deg) {
+void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N,
+                           const ReleaseConditions& now, double vibration_tilt_deg) {
   const SeedlingConfig& sc = cfg_.seedlings;
   const MechanismConfig& mc = cfg_.mechanism;
   if (!started_) {
@@ -60,7 +62,8 @@ void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N, const Re
   while (next_release_ < seedlings_.size() &&
          disc_angle_rad >= seedlings_[next_release_].pickup_angle_rad + carry_rad) {
     Seedling& s = seedlings_[next_release_++];
-    const double sigma = now.v_mps > 0.005 ? cfg_.disc_radius_m * now.omega_radps / now.v_mps : mc.optimum_sigma;
+    const double sigma =
+        now.v_mps > 0.005 ? cfg_.disc_radius_m * now.omega_radps / now.v_mps : mc.optimum_sigma;
     s.planted = true;
     s.release_time_s = now.t_s;
     s.x_m = now.x_m;
@@ -78,10 +81,12 @@ double SeedlingProcess::tilt_deg(const ReleaseConditions& c, double sigma) {
   const double a = mc.release_angle_deg / kDegPerRad;
   // Horizontal velocity of the clamp point relative to the soil at release, over v:
   // 1 - sigma cos(a); the soil backflow pushes the root forward in proportion to depth.
-  const double backflow = (mc.optimum_sigma * std::cos(a) - 1.0) * std::max(0.0, c.depth_mm) / 102.0;
+  const double backflow =
+      (mc.optimum_sigma * std::cos(a) - 1.0) * std::max(0.0, c.depth_mm) / 102.0;
   const double relative = 1.0 - sigma * std::cos(a) + backflow;
   const double vertical = std::max(0.05, sigma * std::sin(a));
-  const double kinematic = mc.kinematic_gain * std::atan(std::abs(relative) / vertical) * kDegPerRad;
+  const double kinematic =
+      mc.kinematic_gain * std::atan(std::abs(relative) / vertical) * kDegPerRad;
   // A weak hold lets the seedling deflect at the clamp point.
   const double hold = std::max(0.0, c.clamp_force_N) * std::sqrt(mc.contact_area_mm2 / 255.0);
   const double clamp = 12.0 * std::exp(-hold / 45.0);

@@ -35,7 +35,8 @@ class SeedlingProcess {
   SeedlingProcess(const PlantConfig& config, std::uint64_t seed);
 
   // Called every step with the disc's angle; picks up and releases seedlings.
-  void step(double disc_angle_rad, double clamp_force_N, const ReleaseConditions& now, double vibration_tilt_deg);
+  void step(double disc_angle_rad, double clamp_force_N, const ReleaseConditions& now,
+            double vibration_tilt_deg);
   // Extra lip compression (mm) from the seedling currently in the nip, for the clamp model.
   [[nodiscard]] double nip_thickness_mm(double t_s) const;
   // Local compression multiplier for the contact area (flexible protrusions spread the load).

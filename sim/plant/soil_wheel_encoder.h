@@ -10,7 +10,8 @@ namespace planter::sim {
 
 class SoilWheelEncoder {
  public:
-  SoilWheelEncoder(double radius_m, std::uint32_t counts_per_rev) : radius_m_(radius_m), cpr_(counts_per_rev) {}
+  SoilWheelEncoder(double radius_m, std::uint32_t counts_per_rev)
+      : radius_m_(radius_m), cpr_(counts_per_rev) {}
 
   // The wheel rolls `ground_distance_m * (1 - slip)` during [t0, t0 + dt].
   void roll(double ground_distance_m, double slip, std::int64_t t0_ns, std::int64_t dt_ns,
@@ -30,7 +31,8 @@ class SoilWheelEncoder {
       // Gray index 0=(A0,B0) 1=(A0,B1) 2=(A1,B1) 3=(A1,B0): forward 0->1 B rises, 1->2 A rises...
       const int from = static_cast<int>(((count_ % 4) + 4) % 4);
       const int to = static_cast<int>(((next % 4) + 4) % 4);
-      const int changed = ((from ^ to) == 1 || (from ^ to) == 3) ? ((from + to == 1 || from + to == 5) ? 1 : 0) : 0;
+      const int changed =
+          ((from ^ to) == 1 || (from ^ to) == 3) ? ((from + to == 1 || from + to == 5) ? 1 : 0) : 0;
       const bool a = to >= 2;
       const bool b = to == 1 || to == 2;
       edges.push({static_cast<std::uint8_t>(changed), changed == 0 ? a : b, t});

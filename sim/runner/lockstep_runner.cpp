@@ -24,16 +24,18 @@ LockstepRunner::LockstepRunner(const Scenario& scenario)
   const ControllerConfig& cfg = scenario_.board.controller;
   controller_endpoint_ = &bus_.add_endpoint(512);
   for (auto& e : device_endpoints_) e = &bus_.add_endpoint(256);
-  hal_ = std::make_unique<hal::ControllerHal>(hal::ControllerHal{*controller_endpoint_, encoder_, estop_, lamp_});
+  hal_ = std::make_unique<hal::ControllerHal>(
+      hal::ControllerHal{*controller_endpoint_, encoder_, estop_, lamp_});
   controller_ = std::make_unique<Controller>(cfg, *hal_);
-  disc_ = std::make_unique<Cia402DriveDevice>(identity_of(cfg.node(NodeRole::kDiscDrive), "sim disc drive"),
-                                              *device_endpoints_[0]);
-  roller_ = std::make_unique<Cia402DriveDevice>(identity_of(cfg.node(NodeRole::kRollerActuator), "sim roller actuator"),
-                                                *device_endpoints_[1]);
-  depth_ = std::make_unique<Cia402DriveDevice>(identity_of(cfg.node(NodeRole::kDepthActuator), "sim depth actuator"),
-                                               *device_endpoints_[2]);
-  force_ = std::make_unique<Cia404ForceSensor>(identity_of(cfg.node(NodeRole::kForceSensor), "sim load cell"),
-                                               *device_endpoints_[3]);
+  disc_ = std::make_unique<Cia402DriveDevice>(
+      identity_of(cfg.node(NodeRole::kDiscDrive), "sim disc drive"), *device_endpoints_[0]);
+  roller_ = std::make_unique<Cia402DriveDevice>(
+      identity_of(cfg.node(NodeRole::kRollerActuator), "sim roller actuator"),
+      *device_endpoints_[1]);
+  depth_ = std::make_unique<Cia402DriveDevice>(
+      identity_of(cfg.node(NodeRole::kDepthActuator), "sim depth actuator"), *device_endpoints_[2]);
+  force_ = std::make_unique<Cia404ForceSensor>(
+      identity_of(cfg.node(NodeRole::kForceSensor), "sim load cell"), *device_endpoints_[3]);
   plant_ = std::make_unique<Plant>(scenario_.plant, cfg, scenario_.seed);
   devices_ = std::make_unique<PlantDevices>(PlantDevices{*disc_, *roller_, *depth_, *force_});
   summary_.configure(cfg.sigma.sigma, cfg.depth.target_mm, cfg.clamp.ceiling_N, 8.0);
@@ -51,19 +53,24 @@ hal::sim::VirtualCanEndpoint& LockstepRunner::device_endpoint(NodeRole role) {
 
 Cia402DriveDevice& LockstepRunner::drive(NodeRole role) {
   switch (role) {
-    case NodeRole::kRollerActuator: return *roller_;
-    case NodeRole::kDepthActuator: return *depth_;
-    default: return *disc_;
+    case NodeRole::kRollerActuator:
+      return *roller_;
+    case NodeRole::kDepthActuator:
+      return *depth_;
+    default:
+      return *disc_;
   }
 }
 
 void LockstepRunner::apply_events() {
   const double t = time_s();
   const FaultEvents& f = scenario_.faults;
-  if (f.estop_at_s >= 0.0) estop_.set(t >= f.estop_at_s && (f.estop_release_at_s < 0.0 || t < f.estop_release_at_s));
+  if (f.estop_at_s >= 0.0)
+    estop_.set(t >= f.estop_at_s && (f.estop_release_at_s < 0.0 || t < f.estop_release_at_s));
   if (!f.silent_node.empty() && f.silent_at_s >= 0.0 && t >= f.silent_at_s) {
     for (std::size_t i = 0; i < kNodeCount; ++i) {
-      if (f.silent_node == node_role_name(static_cast<NodeRole>(i))) device_endpoints_[i]->set_unplugged(true);
+      if (f.silent_node == node_role_name(static_cast<NodeRole>(i)))
+        device_endpoints_[i]->set_unplugged(true);
     }
   }
   // The operator presses "run" once the controller is ready, and drives off a little later.
@@ -71,8 +78,10 @@ void LockstepRunner::apply_events() {
     controller_->request_run();
     run_requested_ = true;
   }
-  if (controller_->state() == SupervisorState::kRunning && running_since_s_ < 0.0) running_since_s_ = t;
-  if (!moving_ && running_since_s_ >= 0.0 && t >= running_since_s_ + scenario_.plant.start_delay_s) {
+  if (controller_->state() == SupervisorState::kRunning && running_since_s_ < 0.0)
+    running_since_s_ = t;
+  if (!moving_ && running_since_s_ >= 0.0 &&
+      t >= running_since_s_ + scenario_.plant.start_delay_s) {
     plant_->start_moving();
     moving_ = true;
   }
@@ -91,7 +100,8 @@ void LockstepRunner::step() {
   }
   clock_.advance_ns(period_ns_);
   const bool running = controller_->state() == SupervisorState::kRunning;
-  summary_.add(controller_->telemetry(), plant_->truth(), running, running ? time_s() - running_since_s_ : 0.0);
+  summary_.add(controller_->telemetry(), plant_->truth(), running,
+               running ? time_s() - running_since_s_ : 0.0);
   if (observer_) observer_(TickRecord{controller_->telemetry(), plant_->truth()});
 }
 
@@ -102,7 +112,8 @@ Summary LockstepRunner::run() {
     if (moving_ && finished_at_s_ < 0.0 && plant_->ground().finished()) finished_at_s_ = time_s();
     if (finished_at_s_ >= 0.0 && time_s() >= finished_at_s_ + scenario_.tail_s) break;
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   const double plot_m = 3.0;
   Summary s = summary_.finish(plant_->seedlings(), plot_m,
                               static_cast<int>(scenario_.plant.route.distance_m / plot_m + 1e-9));

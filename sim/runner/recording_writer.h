@@ -13,7 +13,8 @@ namespace planter::sim {
 class RecordingWriter {
  public:
   // Throws std::runtime_error when the file cannot be written.
-  RecordingWriter(const std::string& path, const std::vector<std::pair<std::string, std::string>>& metadata);
+  RecordingWriter(const std::string& path,
+                  const std::vector<std::pair<std::string, std::string>>& metadata);
   ~RecordingWriter();
   RecordingWriter(const RecordingWriter&) = delete;
   RecordingWriter& operator=(const RecordingWriter&) = delete;

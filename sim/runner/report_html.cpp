@@ -16,37 +16,46 @@ struct Line {
   const char* label;
 };
 
-std::string svg_plot(const std::string& title, const std::string& unit, const std::vector<double>& x,
-                     const std::vector<Line>& lines, double y_min, double y_max) {
+std::string svg_plot(const std::string& title, const std::string& unit,
+                     const std::vector<double>& x, const std::vector<Line>& lines, double y_min,
+                     double y_max) {
   const double w = 860, h = 220, left = 60, right = 10, top = 24, bottom = 30;
   const double x0 = x.empty() ? 0 : x.front(), x1 = x.empty() ? 1 : std::max(x.back(), x0 + 1e-9);
   auto px = [&](double v) { return left + (v - x0) / (x1 - x0) * (w - left - right); };
-  auto py = [&](double v) { return top + (1.0 - (std::clamp(v, y_min, y_max) - y_min) / (y_max - y_min)) * (h - top - bottom); };
+  auto py = [&](double v) {
+    return top +
+           (1.0 - (std::clamp(v, y_min, y_max) - y_min) / (y_max - y_min)) * (h - top - bottom);
+  };
   std::ostringstream s;
   s.precision(5);
   s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << w << "' height='" << h << "'>"
     << "<rect width='100%' height='100%' fill='white'/>"
-    << "<text x='" << left << "' y='16' font-size='13' font-family='sans-serif'>" << title << " [" << unit << "]</text>";
+    << "<text x='" << left << "' y='16' font-size='13' font-family='sans-serif'>" << title << " ["
+    << unit << "]</text>";
   for (int i = 0; i <= 4; ++i) {
     const double v = y_min + (y_max - y_min) * i / 4.0;
     s << "<line x1='" << left << "' x2='" << w - right << "' y1='" << py(v) << "' y2='" << py(v)
-      << "' stroke='#ddd'/><text x='4' y='" << py(v) + 4 << "' font-size='10' font-family='sans-serif'>" << v << "</text>";
+      << "' stroke='#ddd'/><text x='4' y='" << py(v) + 4
+      << "' font-size='10' font-family='sans-serif'>" << v << "</text>";
   }
-  s << "<text x='" << w - 120 << "' y='" << h - 6 << "' font-size='10' font-family='sans-serif'>time [s], 0-" << x1 << "</text>";
+  s << "<text x='" << w - 120 << "' y='" << h - 6
+    << "' font-size='10' font-family='sans-serif'>time [s], 0-" << x1 << "</text>";
   double lx = left + 200;
   for (const Line& line : lines) {
     s << "<polyline fill='none' stroke-width='1.2' stroke='" << line.colour << "' points='";
     const std::size_t stride = std::max<std::size_t>(1, x.size() / 1500);
-    for (std::size_t i = 0; i < x.size() && i < line.y->size(); i += stride) s << px(x[i]) << ',' << py((*line.y)[i]) << ' ';
-    s << "'/><text x='" << lx << "' y='16' font-size='11' fill='" << line.colour << "' font-family='sans-serif'>"
-      << line.label << "</text>";
+    for (std::size_t i = 0; i < x.size() && i < line.y->size(); i += stride)
+      s << px(x[i]) << ',' << py((*line.y)[i]) << ' ';
+    s << "'/><text x='" << lx << "' y='16' font-size='11' fill='" << line.colour
+      << "' font-family='sans-serif'>" << line.label << "</text>";
     lx += 130;
   }
   s << "</svg>";
   return s.str();
 }
 
-std::string histogram(const std::string& title, const std::vector<double>& values, double lo, double hi, int bins) {
+std::string histogram(const std::string& title, const std::vector<double>& values, double lo,
+                      double hi, int bins) {
   std::vector<int> counts(static_cast<std::size_t>(bins), 0);
   for (double v : values) {
     const int b = std::clamp(static_cast<int>((v - lo) / (hi - lo) * bins), 0, bins - 1);
@@ -55,21 +64,24 @@ std::string histogram(const std::string& title, const std::vector<double>& value
   const int top = std::max(1, *std::max_element(counts.begin(), counts.end()));
   std::ostringstream s;
   const double w = 420, h = 200, bw = (w - 40) / bins;
-  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << w << "' height='" << h << "'><rect width='100%' height='100%' fill='white'/>"
+  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << w << "' height='" << h
+    << "'><rect width='100%' height='100%' fill='white'/>"
     << "<text x='40' y='14' font-size='12' font-family='sans-serif'>" << title << "</text>";
   for (int b = 0; b < bins; ++b) {
     const double bh = (h - 50) * counts[static_cast<std::size_t>(b)] / top;
-    s << "<rect x='" << 40 + b * bw << "' y='" << h - 30 - bh << "' width='" << bw - 1 << "' height='" << bh << "' fill='#4a7'/>";
+    s << "<rect x='" << 40 + b * bw << "' y='" << h - 30 - bh << "' width='" << bw - 1
+      << "' height='" << bh << "' fill='#4a7'/>";
   }
-  s << "<text x='40' y='" << h - 14 << "' font-size='10' font-family='sans-serif'>" << lo << "</text><text x='" << w - 30
-    << "' y='" << h - 14 << "' font-size='10' font-family='sans-serif'>" << hi << "</text></svg>";
+  s << "<text x='40' y='" << h - 14 << "' font-size='10' font-family='sans-serif'>" << lo
+    << "</text><text x='" << w - 30 << "' y='" << h - 14
+    << "' font-size='10' font-family='sans-serif'>" << hi << "</text></svg>";
   return s.str();
 }
 
 }  // namespace
 
-void write_report_html(const std::string& path, const Scenario& sc, const Summary& s, const ReportSeries& r,
-                       const SeedlingProcess& seedlings) {
+void write_report_html(const std::string& path, const Scenario& sc, const Summary& s,
+                       const ReportSeries& r, const SeedlingProcess& seedlings) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot open for writing");
   std::vector<double> tilts, spacing, peaks;
@@ -89,13 +101,17 @@ void write_report_html(const std::string& path, const Scenario& sc, const Summar
   const double ceiling = s.clamp_ceiling_N;
   std::vector<double> ceiling_line(r.t.size(), ceiling);
   std::vector<double> sigma_line(r.t.size(), s.sigma_target);
-  out << "<!doctype html><html><head><meta charset='utf-8'><title>planter-sim: " << s.scenario << "</title>"
+  out << "<!doctype html><html><head><meta charset='utf-8'><title>planter-sim: " << s.scenario
+      << "</title>"
       << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td{padding:2px 10px}"
-      << "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style></head><body>"
-      << "<h1>Simulated run: " << s.scenario << "</h1><p>Scenario <code>" << sc.file << "</code>, board <code>"
-      << sc.board.name << "</code>, seed " << sc.seed << ".</p><h2>Figures</h2><table>";
+      << "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style></"
+         "head><body>"
+      << "<h1>Simulated run: " << s.scenario << "</h1><p>Scenario <code>" << sc.file
+      << "</code>, board <code>" << sc.board.name << "</code>, seed " << sc.seed
+      << ".</p><h2>Figures</h2><table>";
   auto row = [&](const char* name, double v, const char* unit, const char* paper) {
-    out << "<tr><td>" << name << "</td><td><b>" << v << "</b> " << unit << "</td><td>" << paper << "</td></tr>";
+    out << "<tr><td>" << name << "</td><td><b>" << v << "</b> " << unit << "</td><td>" << paper
+        << "</td></tr>";
   };
   row("uprightness", s.uprightness_pct, "%", "paper: 94.8 % predicted, 93.86 % field");
   row("damage rate", s.damage_pct, "%", "paper: 3 % predicted, 2.76 % field");
@@ -115,31 +131,52 @@ void write_report_html(const std::string& path, const Scenario& sc, const Summar
   out << "</table><p>Seedlings per 3 m plot: ";
   for (int c : s.plot_counts) out << c << ' ';
   out << "</p><h2>Plots</h2>"
-      << svg_plot("Ground speed", "m/s", r.t, {{&r.v_ground, "#000", "true"}, {&r.v_wheel, "#d60", "soil wheel"}}, 0, 0.1)
+      << svg_plot("Ground speed", "m/s", r.t,
+                  {{&r.v_ground, "#000", "true"}, {&r.v_wheel, "#d60", "soil wheel"}}, 0, 0.1)
       << svg_plot("Sigma = R*omega/v (v > 0.02 m/s)", "-", r.t,
-                  {{&r.sigma_true, "#06c", "true"}, {&r.sigma_ctrl, "#d60", "controller"}, {&sigma_line, "#999", "target"}}, 1.2, 1.8)
-      << svg_plot("Disc speed", "rad/s", r.t, {{&r.omega, "#06c", "measured"}, {&r.omega_cmd, "#d60", "command"}}, 0, 0.5)
+                  {{&r.sigma_true, "#06c", "true"},
+                   {&r.sigma_ctrl, "#d60", "controller"},
+                   {&sigma_line, "#999", "target"}},
+                  1.2, 1.8)
+      << svg_plot("Disc speed", "rad/s", r.t,
+                  {{&r.omega, "#06c", "measured"}, {&r.omega_cmd, "#d60", "command"}}, 0, 0.5)
       << svg_plot("Clamp force", "N", r.t,
-                  {{&r.clamp_force, "#06c", "true"}, {&r.clamp_force_cmd, "#d60", "set-point"}, {&ceiling_line, "#c00", "ceiling"}},
+                  {{&r.clamp_force, "#06c", "true"},
+                   {&r.clamp_force_cmd, "#d60", "set-point"},
+                   {&ceiling_line, "#c00", "ceiling"}},
                   0, 140)
-      << svg_plot("Furrow depth", "mm", r.t, {{&r.depth, "#06c", "true"}, {&r.depth_cmd, "#d60", "command"}}, 0, 170)
+      << svg_plot("Furrow depth", "mm", r.t,
+                  {{&r.depth, "#06c", "true"}, {&r.depth_cmd, "#d60", "command"}}, 0, 170)
       << "<h2>Seedling outcomes</h2>" << histogram("tilt from vertical [deg]", tilts, 0, 30, 30)
-      << histogram("spacing [mm]", spacing, 0, 80, 40) << histogram("peak radial force in the nip [N]", peaks, 60, 140, 40)
+      << histogram("spacing [mm]", spacing, 0, 80, 40)
+      << histogram("peak radial force in the nip [N]", peaks, 60, 140, 40)
       << "<h2>Model assumptions</h2><ul>"
-      << "<li>Seedling strength: normal, mean " << sc.plant.seedlings.strength_mean_N << " N (the paper's stated average "
-      << "peak) and SD " << sc.plant.seedlings.strength_sd_N << " N (the spread of its six measured peaks, 127.2-191.6 N, "
-      << "whose own mean is 161.9 N). A seedling is damaged when the radial force in the roller nip exceeds its strength.</li>"
-      << "<li>Radial force on a seedling = clamp force x a contact-area factor (minimum at 255 mm^2, rising 15 % per 150 "
-      << "mm^2 either side, after the paper's Fig. 17b); thicker seedlings compress the lips further.</li>"
-      << "<li>Tilt = kinematic part (gain x the angle of the clamp point's velocity relative to the soil at release, "
-      << "with the soil backflow proportional to depth; zero at sigma " << sc.plant.mechanism.optimum_sigma
-      << " and 102 mm) + weak-hold deflection (12 deg x exp(-hold/45 N)) + noise (seedling size, micro-terrain, "
+      << "<li>Seedling strength: normal, mean " << sc.plant.seedlings.strength_mean_N
+      << " N (the paper's stated average "
+      << "peak) and SD " << sc.plant.seedlings.strength_sd_N
+      << " N (the spread of its six measured peaks, 127.2-191.6 N, "
+      << "whose own mean is 161.9 N). A seedling is damaged when the radial force in the roller "
+         "nip exceeds its strength.</li>"
+      << "<li>Radial force on a seedling = clamp force x a contact-area factor (minimum at 255 "
+         "mm^2, rising 15 % per 150 "
+      << "mm^2 either side, after the paper's Fig. 17b); thicker seedlings compress the lips "
+         "further.</li>"
+      << "<li>Tilt = kinematic part (gain x the angle of the clamp point's velocity relative to "
+         "the soil at release, "
+      << "with the soil backflow proportional to depth; zero at sigma "
+      << sc.plant.mechanism.optimum_sigma
+      << " and 102 mm) + weak-hold deflection (12 deg x exp(-hold/45 N)) + noise (seedling size, "
+         "micro-terrain, "
       << "vibration). Uprightness = mean of (1 - |tilt|/90 deg).</li>"
-      << "<li>The soil wheel slips " << sc.plant.soil.slip_mean_pct << " +- " << sc.plant.soil.slip_variation_pct
-      << " %; the board's wheel radius is the calibrated effective rolling radius (true radius / (1 - mean slip)).</li>"
+      << "<li>The soil wheel slips " << sc.plant.soil.slip_mean_pct << " +- "
+      << sc.plant.soil.slip_variation_pct
+      << " %; the board's wheel radius is the calibrated effective rolling radius (true radius / "
+         "(1 - mean slip)).</li>"
       << "<li>Clamp: F = k (x - x0)^n with n = " << sc.plant.drive.clamp_n
-      << " (reduced-order, until the DEM fit replaces it); load cell noise " << sc.plant.drive.force_noise_N << " N.</li>"
-      << "<li>Sigma statistics use samples with true (or measured) ground speed above 0.02 m/s.</li></ul></body></html>";
+      << " (reduced-order, until the DEM fit replaces it); load cell noise "
+      << sc.plant.drive.force_noise_N << " N.</li>"
+      << "<li>Sigma statistics use samples with true (or measured) ground speed above 0.02 "
+         "m/s.</li></ul></body></html>";
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 

@@ -18,9 +18,11 @@ Scenario load_scenario(const std::string& path) {
   if (!sc) throw ConfigError(path, 1, "scenario", "table is missing (name, board, seed)");
   s.name = sc->string("name", std::filesystem::path(path).stem().string());
   const std::string board = sc->string("board", "");
-  if (board.empty()) sc->fail("board", "is required: path of a board file, relative to the scenario");
+  if (board.empty())
+    sc->fail("board", "is required: path of a board file, relative to the scenario");
   const auto board_path = std::filesystem::path(path).parent_path() / board;
-  if (!std::filesystem::exists(board_path)) sc->fail("board", "file " + board_path.string() + " does not exist");
+  if (!std::filesystem::exists(board_path))
+    sc->fail("board", "file " + board_path.string() + " does not exist");
   s.seed = static_cast<std::uint64_t>(sc->integer("seed", 1, 0, INT64_MAX));
   s.tail_s = sc->number("tail_s", 3.0, 0.0, 600.0, "s");
   s.max_duration_s = sc->number("max_duration_s", 3600.0, 1.0, 86400.0, "s");
@@ -35,7 +37,8 @@ Scenario load_scenario(const std::string& path) {
     p.route.speed_mps = r->number("speed_mps", 0.06, 0.005, 1.0, "m/s");
     p.route.accel_mps2 = r->number("accel_mps2", 0.03, 0.001, 5.0, "m/s^2");
     p.route.speed_variation_pct = r->number("speed_variation_pct", 0.0, 0.0, 50.0, "%");
-    p.route.speed_variation_period_s = r->number("speed_variation_period_s", 20.0, 0.5, 1000.0, "s");
+    p.route.speed_variation_period_s =
+        r->number("speed_variation_period_s", 20.0, 0.5, 1000.0, "s");
     for (auto& stop : r->array_of_tables("stops")) {
       StopEvent e;
       e.at_m = stop.number("at_m", 0.0, 0.0, p.route.distance_m, "m");
@@ -63,7 +66,8 @@ Scenario load_scenario(const std::string& path) {
     c.length_min_mm = t->number("length_min_mm", c.length_min_mm, 50.0, 500.0, "mm");
     c.length_max_mm = t->number("length_max_mm", c.length_max_mm, c.length_min_mm, 500.0, "mm");
     c.diameter_min_mm = t->number("diameter_min_mm", c.diameter_min_mm, 2.0, 30.0, "mm");
-    c.diameter_max_mm = t->number("diameter_max_mm", c.diameter_max_mm, c.diameter_min_mm, 30.0, "mm");
+    c.diameter_max_mm =
+        t->number("diameter_max_mm", c.diameter_max_mm, c.diameter_min_mm, 30.0, "mm");
     c.feed_pitch_mm = t->number("feed_pitch_mm", c.feed_pitch_mm, 5.0, 500.0, "mm");
     c.feed_miss_pct = t->number("feed_miss_pct", c.feed_miss_pct, 0.0, 100.0, "%");
     c.strength_mean_N = t->number("strength_mean_N", c.strength_mean_N, 10.0, 1000.0, "N");
@@ -82,10 +86,13 @@ Scenario load_scenario(const std::string& path) {
   }
   if (auto t = root.table("plant")) {
     DriveModelConfig& d = p.drive;
-    d.disc_time_constant_s = t->number("disc_time_constant_s", d.disc_time_constant_s, 0.001, 5.0, "s");
-    d.disc_inertia_kgm2 = t->number("disc_inertia_kgm2", d.disc_inertia_kgm2, 1e-4, 100.0, "kg*m^2");
+    d.disc_time_constant_s =
+        t->number("disc_time_constant_s", d.disc_time_constant_s, 0.001, 5.0, "s");
+    d.disc_inertia_kgm2 =
+        t->number("disc_inertia_kgm2", d.disc_inertia_kgm2, 1e-4, 100.0, "kg*m^2");
     d.disc_damping_Nms = t->number("disc_damping_Nms", d.disc_damping_Nms, 0.0, 1000.0, "N*m*s");
-    d.actuator_time_constant_s = t->number("actuator_time_constant_s", d.actuator_time_constant_s, 0.001, 5.0, "s");
+    d.actuator_time_constant_s =
+        t->number("actuator_time_constant_s", d.actuator_time_constant_s, 0.001, 5.0, "s");
     d.clamp_k_N = t->number("clamp_k_N", d.clamp_k_N, 0.1, 1e4);
     d.clamp_x0_mm = t->number("clamp_x0_mm", d.clamp_x0_mm, 0.0, 50.0, "mm");
     d.clamp_n = t->number("clamp_n", d.clamp_n, 1.0, 3.0);
@@ -113,7 +120,8 @@ Scenario load_scenario(const std::string& path) {
     auto& c = s.board.controller;
     c.sigma.sigma = t->number("sigma", c.sigma.sigma, 0.5, 3.0);
     c.clamp.setpoint_N = t->number("clamp_force_N", c.clamp.setpoint_N, 0.0, 200.0, "N");
-    if (c.clamp.setpoint_N >= c.clamp.ceiling_N) t->fail("clamp_force_N", "must be below the board's clamp_ceiling_N");
+    if (c.clamp.setpoint_N >= c.clamp.ceiling_N)
+      t->fail("clamp_force_N", "must be below the board's clamp_ceiling_N");
     c.depth.target_mm = t->number("depth_mm", c.depth.target_mm, 40.0, 160.0, "mm");
     t->reject_unknown_keys();
   }
@@ -123,8 +131,11 @@ Scenario load_scenario(const std::string& path) {
     s.faults.silent_node = t->string("silent_node", "");
     if (!s.faults.silent_node.empty()) {
       bool known = false;
-      for (std::size_t i = 0; i < kNodeCount; ++i) known = known || s.faults.silent_node == node_role_name(static_cast<NodeRole>(i));
-      if (!known) t->fail("silent_node", "must be one of disc_drive, roller_actuator, depth_actuator, force_sensor");
+      for (std::size_t i = 0; i < kNodeCount; ++i)
+        known = known || s.faults.silent_node == node_role_name(static_cast<NodeRole>(i));
+      if (!known)
+        t->fail("silent_node",
+                "must be one of disc_drive, roller_actuator, depth_actuator, force_sensor");
     }
     s.faults.silent_at_s = t->number("silent_at_s", -1.0, -1.0, 1e6, "s");
     t->reject_unknown_keys();

@@ -10,7 +10,8 @@ namespace planter::sim {
 // = R*omega/v divides by almost nothing (stops and the first centimetres of a start).
 constexpr double kSigmaMinSpeedMps = 0.02;
 
-void SummaryBuilder::add(const Telemetry& c, const PlantTruth& t, bool running, double running_for_s) {
+void SummaryBuilder::add(const Telemetry& c, const PlantTruth& t, bool running,
+                         double running_for_s) {
   if (!running) return;
   if (t.v_mps >= kSigmaMinSpeedMps) {
     sigma_true_sum_ += t.sigma;
@@ -31,14 +32,18 @@ void SummaryBuilder::add(const Telemetry& c, const PlantTruth& t, bool running, 
   }
 }
 
-Summary SummaryBuilder::finish(const SeedlingProcess& process, double plot_length_m, int plots) const {
+Summary SummaryBuilder::finish(const SeedlingProcess& process, double plot_length_m,
+                               int plots) const {
   Summary s;
   s.sigma_target = sigma_;
   s.depth_target_mm = depth_target_;
   s.clamp_ceiling_N = ceiling_;
   s.sigma_true_mean = sigma_n_ ? sigma_true_sum_ / static_cast<double>(sigma_n_) : 0.0;
-  s.sigma_true_rms_error_pct = sigma_n_ ? 100.0 * std::sqrt(sigma_true_err2_ / static_cast<double>(sigma_n_)) : 0.0;
-  s.sigma_ctrl_rms_error_pct = sigma_ctrl_n_ ? 100.0 * std::sqrt(sigma_ctrl_err2_ / static_cast<double>(sigma_ctrl_n_)) : 0.0;
+  s.sigma_true_rms_error_pct =
+      sigma_n_ ? 100.0 * std::sqrt(sigma_true_err2_ / static_cast<double>(sigma_n_)) : 0.0;
+  s.sigma_ctrl_rms_error_pct =
+      sigma_ctrl_n_ ? 100.0 * std::sqrt(sigma_ctrl_err2_ / static_cast<double>(sigma_ctrl_n_))
+                    : 0.0;
   s.clamp_force_mean_N = force_n_ ? force_sum_ / static_cast<double>(force_n_) : 0.0;
   s.clamp_force_max_N = force_max_;
   s.depth_mean_mm = depth_n_ ? depth_sum_ / static_cast<double>(depth_n_) : 0.0;
@@ -67,7 +72,8 @@ Summary SummaryBuilder::finish(const SeedlingProcess& process, double plot_lengt
     for (double g : gaps) sum += g;
     s.spacing_mean_mm = sum / static_cast<double>(gaps.size());
     for (double g : gaps) sum2 += (g - s.spacing_mean_mm) * (g - s.spacing_mean_mm);
-    s.spacing_cv_pct = 100.0 * std::sqrt(sum2 / static_cast<double>(gaps.size())) / s.spacing_mean_mm;
+    s.spacing_cv_pct =
+        100.0 * std::sqrt(sum2 / static_cast<double>(gaps.size())) / s.spacing_mean_mm;
   }
   s.plot_counts.assign(static_cast<std::size_t>(plots), 0);
   for (double x : xs) {

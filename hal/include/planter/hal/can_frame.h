@@ -22,7 +22,7 @@ struct CanFrame {
 
 // Bits on the wire of a standard data frame, worst-case bit stuffing included; used for bus load.
 constexpr int can_frame_bits(int dlc) {
-  const int unstuffed = 34 + 8 * dlc;  // SOF..CRC: the part that is stuffed
+  const int unstuffed = 34 + 8 * dlc;           // SOF..CRC: the part that is stuffed
   return unstuffed + (unstuffed - 1) / 4 + 13;  // + stuff bits + CRC delim, ACK, EOF, IFS
 }
 

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Every test: set up, format check, the unit and closed-loop tests under address and
+# undefined-behaviour sanitizers, the release build's tests, and the benchmarks.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+echo "== setup and release build"
+scripts/setup.sh "$root/build"
+echo "== clang-format"
+scripts/check-format.sh
+echo "== sanitizer build (address, undefined)"
+scripts/setup.sh "$root/build-asan" -DCMAKE_BUILD_TYPE=Debug -DPLANTER_SANITIZE=ON -DPLANTER_BUILD_BENCH=OFF
+echo "== tests under sanitizers"
+(cd "$root/build-asan" && ASAN_OPTIONS=detect_leaks=0 ctest -j "$(nproc)" --output-on-failure)
+echo "== benchmarks"
+"$root/build/bench/planter_bench_rtf" "$root/scenarios/zhangqiu-field.toml"
+"$root/build/bench/planter_bench_alloc" "$root/scenarios/zhangqiu-field.toml"
+echo "== tests (release build)"
+(cd "$root/build" && ctest -j "$(nproc)" --output-on-failure)

@@ -22,6 +22,18 @@ Scenario short_run(double distance_m = 1.0) {
 void run_until(LockstepRunner& r, double t_s) {
   while (r.time_s() < t_s) r.step();
 }
+
+// Runs a node's boot script against `device` (or none: a silent node) for up to 1 s.
+void boot(NodeLink& link, hal::CanBus& master, CanopenDevice* device) {
+  link.start_boot(0, master);
+  hal::CanFrame f;
+  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning;
+       t += 10'000'000) {
+    if (device != nullptr) device->process(t);
+    while (master.receive(f)) link.on_frame(f, t, master);
+    link.step_boot(t, master);
+  }
+}
 }  // namespace
 
 // The whole field trial: sigma, clamp ceiling, depth, spacing; one run shared by the checks.
@@ -106,9 +118,7 @@ TEST(HeartbeatConsumer, DetectsSilenceWithinThreePeriods) {
   LockstepRunner r(s);
   run_until(r, 10.0);
   ASSERT_EQ(r.controller().state(), SupervisorState::kRunning);
-  // Stop the force sensor's heartbeat by writing 0x1017 = 0 behind the master's back.
-  auto& endpoint = r.device_endpoint(NodeRole::kDepthActuator);
-  (void)endpoint;
+  // Stop the depth actuator's heartbeat by writing 0x1017 = 0 behind the master's back.
   r.drive(NodeRole::kDepthActuator).od().set(0x1017, 0, 0);
   const double at = r.time_s();
   while (r.controller().state() == SupervisorState::kRunning && r.time_s() < at + 1.0) r.step();
@@ -150,26 +160,13 @@ TEST(Boot, IdentityMismatchFailsWithCiA302Letter) {
   id.vendor_id = expected.vendor_id + 1;  // another vendor's sensor on the bus
   Cia404ForceSensor sensor(id, device_end);
   NodeLink link(expected, s.board.controller.can);
-  link.start_boot(0, master);
-  hal::CanFrame f;
-  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning;
-       t += 10'000'000) {
-    sensor.process(t);
-    while (master.receive(f)) link.on_frame(f, t, master);
-    link.step_boot(t, master);
-  }
+  boot(link, master, &sensor);
   EXPECT_EQ(link.boot_state(), NodeLink::BootState::kFailed);
   EXPECT_EQ(link.boot_error(), 'D');
   // The same node with the right identity is configured: its TPDO1 is valid afterwards.
   Cia404ForceSensor good(
       {expected.node_id, 404, expected.vendor_id, expected.product_code, 1, 1, "ok"}, device_end);
-  link.start_boot(0, master);
-  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning;
-       t += 10'000'000) {
-    good.process(t);
-    while (master.receive(f)) link.on_frame(f, t, master);
-    link.step_boot(t, master);
-  }
+  boot(link, master, &good);
   EXPECT_EQ(link.boot_state(), NodeLink::BootState::kConfigured);
   EXPECT_EQ(good.od().get(0x1800, 1), 0x185u);
   EXPECT_EQ(good.od().get(0x1A00, 1), 0x71300110u);
@@ -181,11 +178,7 @@ TEST(Boot, SilentNodeFailsWithB) {
   hal::sim::VirtualCanBus bus;
   auto& master = bus.add_endpoint();
   NodeLink link(s.board.controller.node(NodeRole::kDiscDrive), s.board.controller.can);
-  link.start_boot(0, master);
-  for (std::int64_t t = 0; t < 1'000'000'000 && link.boot_state() == NodeLink::BootState::kRunning;
-       t += 10'000'000) {
-    link.step_boot(t, master);
-  }
+  boot(link, master, nullptr);
   EXPECT_EQ(link.boot_error(), 'B');
 }
 

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "firmware/canopen/pdo.h"
+
 namespace planter::canopen {
 
 void ObjectDictionary::add(std::uint16_t index, std::uint8_t sub, std::uint8_t size, Access access,
@@ -42,11 +44,7 @@ std::uint64_t ObjectDictionary::get(std::uint16_t index, std::uint8_t sub) const
 std::int64_t ObjectDictionary::get_signed(std::uint16_t index, std::uint8_t sub) const {
   const ObjectEntry* e = find(index, sub);
   if (e == nullptr || e->size == 0) return 0;
-  const unsigned bits = 8u * e->size;
-  if (bits >= 64) return static_cast<std::int64_t>(e->value);
-  const std::uint64_t sign = 1ull << (bits - 1);
-  const std::uint64_t v = e->value & ((1ull << bits) - 1);
-  return static_cast<std::int64_t>((v ^ sign) - sign);
+  return sign_extend(e->value, 8u * e->size);
 }
 
 void ObjectDictionary::set(std::uint16_t index, std::uint8_t sub, std::uint64_t value) {

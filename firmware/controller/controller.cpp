@@ -164,12 +164,7 @@ std::uint32_t Controller::check_faults(std::int64_t now_ns, std::int64_t dt_ns) 
 void Controller::run_commissioning(std::int64_t now_ns) {
   if (!commissioning_started_) {
     // Reset every node's communication so each boots into a known configuration.
-    hal::CanFrame nmt{};
-    nmt.id = canopen::kNmtCobId;
-    nmt.dlc = 2;
-    nmt.data[0] = static_cast<std::uint8_t>(canopen::NmtCommand::kResetCommunication);
-    nmt.data[1] = 0;
-    hal_.can.send(nmt);
+    send_nmt(canopen::NmtCommand::kResetCommunication, 0);
     commissioning_started_ = true;
     commissioning_start_ns_ = now_ns;
     nodes_started_ = false;
@@ -190,12 +185,7 @@ void Controller::run_commissioning(std::int64_t now_ns) {
   if (all_configured && !nodes_started_) {
     for (std::size_t i = 0; i < kNodeCount; ++i) {
       NodeLink& l = links_[i];
-      hal::CanFrame nmt{};
-      nmt.id = canopen::kNmtCobId;
-      nmt.dlc = 2;
-      nmt.data[0] = static_cast<std::uint8_t>(canopen::NmtCommand::kStart);
-      nmt.data[1] = l.config().node_id;
-      hal_.can.send(nmt);
+      send_nmt(canopen::NmtCommand::kStart, l.config().node_id);
       l.heartbeat().arm(now_ns);
       boot_ups_seen_[i] = l.heartbeat().boot_ups();
     }
@@ -247,6 +237,15 @@ void Controller::write_outputs(double dt_s) {
   depth.set_position_target(std::llround(depth_cmd * depth.config().counts_per_unit));
   depth.drive_towards(wanted);
   for (NodeLink& l : links_) l.send_rpdos(hal_.can);
+}
+
+void Controller::send_nmt(canopen::NmtCommand command, std::uint8_t node_id) {
+  hal::CanFrame nmt{};
+  nmt.id = canopen::kNmtCobId;
+  nmt.dlc = 2;
+  nmt.data[0] = static_cast<std::uint8_t>(command);
+  nmt.data[1] = node_id;  // 0 = every node
+  hal_.can.send(nmt);
 }
 
 void Controller::send_sync() {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 
+#include "firmware/canopen/cob_id.h"
 #include "firmware/control/clamp_force_loop.h"
 #include "firmware/control/furrow_depth_loop.h"
 #include "firmware/control/sigma_loop.h"
@@ -44,6 +45,7 @@ class Controller {
   std::uint32_t check_faults(std::int64_t now_ns, std::int64_t dt_ns);
   void run_commissioning(std::int64_t now_ns);
   void write_outputs(double dt_s);
+  void send_nmt(canopen::NmtCommand command, std::uint8_t node_id);
   void send_sync();
 
   ControllerConfig cfg_;

@@ -6,10 +6,6 @@
 
 namespace planter::sim {
 
-// Samples count towards sigma while the machine moves at least this fast: below it, sigma
-// = R*omega/v divides by almost nothing (stops and the first centimetres of a start).
-constexpr double kSigmaMinSpeedMps = 0.02;
-
 void SummaryBuilder::add(const Telemetry& c, const PlantTruth& t, bool running,
                          double running_for_s) {
   if (!running) return;

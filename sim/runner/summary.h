@@ -9,6 +9,10 @@
 
 namespace planter::sim {
 
+// Samples count towards sigma while the machine moves at least this fast: below it, sigma
+// = R*omega/v divides by almost nothing (stops and the first centimetres of a start).
+constexpr double kSigmaMinSpeedMps = 0.02;
+
 struct Summary {
   std::string scenario;
   double sigma_target = 1.5;

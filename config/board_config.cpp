@@ -140,6 +140,12 @@ BoardConfig load_board(const std::string& path) {
     c.supervisor.boot_timeout_ns = sup->integer("boot_timeout_ms", 5000, 100, 60000) * 1'000'000;
     sup->reject_unknown_keys();
   }
+  if (auto rt = root.table("realtime")) {
+    b.realtime.priority = static_cast<int>(rt->integer("priority", 80, 0, 99));
+    b.realtime.cpu = static_cast<int>(rt->integer("cpu", -1, -1, 1023));
+    b.realtime.require = rt->boolean("require", false);
+    rt->reject_unknown_keys();
+  }
   auto nodes = root.table("nodes");
   if (!nodes)
     throw ConfigError(

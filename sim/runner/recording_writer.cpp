@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "config/recording_format.h"
+
 namespace planter::sim {
 
 RecordingWriter::RecordingWriter(const std::string& path,
@@ -9,11 +11,8 @@ RecordingWriter::RecordingWriter(const std::string& path,
     : file_(std::fopen(path.c_str(), "w")), path_(path) {
   if (file_ == nullptr) throw std::runtime_error(path + ": cannot open for writing");
   for (const auto& [k, v] : metadata) std::fprintf(file_, "# %s: %s\n", k.c_str(), v.c_str());
-  std::fprintf(file_,
-               "t,v_ground,wheel_counts,v_wheel,omega_cmd,omega,disc_angle,disc_torque,sigma,clamp_"
-               "force_cmd,"
-               "clamp_pos_mm,clamp_force,depth_cmd_mm,depth_mm,depth_force,state,"
-               "true_x_m,true_sigma,true_omega,true_clamp_force,true_depth_mm,true_slip\n");
+  std::fprintf(file_, "%s,v_ground,true_x_m,true_sigma,true_omega,true_clamp_force,"
+               "true_depth_mm,true_slip\n", config::kControllerColumns);
 }
 
 RecordingWriter::~RecordingWriter() {
@@ -21,17 +20,13 @@ RecordingWriter::~RecordingWriter() {
 }
 
 void RecordingWriter::write(const TickRecord& r) {
-  const Telemetry& c = r.controller;
   const PlantTruth& p = r.truth;
-  std::fprintf(file_,
-               "%.3f,%.5f,%lld,%.5f,%.5f,%.5f,%.5f,%.4f,%.4f,%.2f,%.4f,%.2f,%.3f,%.3f,%.2f,%s,%.5f,"
-               "%.4f,%.5f,%.2f,%.3f,%.4f\n",
-               static_cast<double>(c.time_ns) * 1e-9, p.v_mps,
-               static_cast<long long>(c.wheel_counts), c.v_wheel_mps, c.omega_cmd_radps,
-               c.omega_radps, c.disc_angle_rad, c.disc_torque_Nm, c.sigma, c.clamp_force_cmd_N,
-               c.clamp_pos_mm, c.clamp_force_N, c.depth_cmd_mm, c.depth_mm, c.depth_force_N,
-               supervisor_state_name(c.state), p.x_m, p.sigma, p.disc_omega_radps, p.clamp_force_N,
-               p.depth_mm, p.slip);
+  char row[512];
+  config::format_controller_columns(row, sizeof row,
+                                    static_cast<double>(r.controller.time_ns) * 1e-9,
+                                    r.controller);
+  std::fprintf(file_, "%s,%.5f,%.5f,%.4f,%.5f,%.2f,%.3f,%.4f\n", row, p.v_mps, p.x_m, p.sigma,
+               p.disc_omega_radps, p.clamp_force_N, p.depth_mm, p.slip);
 }
 
 void RecordingWriter::close() {

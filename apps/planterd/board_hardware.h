@@ -1,0 +1,29 @@
+#pragma once
+// The Linux hardware a board file names, opened and checked at start: the CAN interface and
+// the GPIO chip with the encoder, e-stop and status lines. Throws HalError with one message.
+#include <memory>
+
+#include "config/board_config.h"
+#include "hal/linux/gpiod_lines.h"
+#include "hal/linux/socketcan_bus.h"
+#include "planter/hal/controller_hal.h"
+
+namespace planter::daemon {
+
+class BoardHardware {
+ public:
+  explicit BoardHardware(const config::BoardConfig& board);
+  hal::ControllerHal& controller_hal() { return hal_; }
+  hal::linux_backend::SocketCanBus& can() { return can_; }
+  hal::linux_backend::GpiodEdgeSource& encoder() { return encoder_; }
+
+ private:
+  hal::linux_backend::SocketCanBus can_;
+  hal::linux_backend::GpiodChip chip_;
+  hal::linux_backend::GpiodEdgeSource encoder_;
+  hal::linux_backend::GpiodInput estop_;
+  hal::linux_backend::GpiodOutput status_;
+  hal::ControllerHal hal_;
+};
+
+}  // namespace planter::daemon

@@ -1,0 +1,77 @@
+#pragma once
+// GPIO through libgpiod 1.6 (Debian 12): the soil-wheel encoder's A/B lines as edge events,
+// the e-stop input and the status output. Chips and lines are checked when opened, so a
+// board file naming a chip or line that does not exist fails at start with one message.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "planter/hal/gpio.h"
+
+struct gpiod_chip;
+struct gpiod_line;
+
+namespace planter::hal::linux_backend {
+
+// An open chip; `name` may be a name (gpiochip0), a path (/dev/gpiochip0), a label or a number.
+class GpiodChip {
+ public:
+  explicit GpiodChip(const std::string& name);  // throws HalError
+  ~GpiodChip();
+  GpiodChip(const GpiodChip&) = delete;
+  GpiodChip& operator=(const GpiodChip&) = delete;
+  // Throws HalError naming `what` when the chip has no such line.
+  gpiod_line* line(int offset, const std::string& what);
+  [[nodiscard]] const std::string& name() const { return name_; }
+
+ private:
+  std::string name_;
+  gpiod_chip* chip_;
+};
+
+// Both edges of two lines (0 = A, 1 = B), merged in kernel-timestamp order (CLOCK_MONOTONIC).
+class GpiodEdgeSource final : public GpioEdgeSource {
+ public:
+  GpiodEdgeSource(GpiodChip& chip, int line_a, int line_b);
+  ~GpiodEdgeSource() override;
+  bool next_edge(GpioEdge& edge) override;
+  // The v1 uAPI of libgpiod 1.6 drops events silently when its per-line FIFO is full; the
+  // decoder's invalid-transition count is what shows such a loss. Always 0 here.
+  [[nodiscard]] std::uint32_t overflow_count() const override { return 0; }
+  // Current levels, to seed the decoder before the first edge.
+  [[nodiscard]] bool level(int index) const;
+  [[nodiscard]] int fd(int index) const { return fds_[static_cast<std::size_t>(index)]; }
+
+ private:
+  void refill();
+
+  std::array<gpiod_line*, 2> lines_{};
+  std::array<int, 2> fds_{-1, -1};
+  std::array<GpioEdge, 64> pending_{};
+  std::size_t pending_count_ = 0;
+  std::size_t pending_next_ = 0;
+};
+
+class GpiodInput final : public DigitalInput {
+ public:
+  GpiodInput(GpiodChip& chip, int offset, bool active_low, const std::string& what);
+  ~GpiodInput() override;
+  [[nodiscard]] bool asserted() const override;
+
+ private:
+  gpiod_line* line_;
+};
+
+class GpiodOutput final : public DigitalOutput {
+ public:
+  GpiodOutput(GpiodChip& chip, int offset, const std::string& what);
+  ~GpiodOutput() override;
+  void set(bool on) override;
+
+ private:
+  gpiod_line* line_;
+  bool last_ = false;
+};
+
+}  // namespace planter::hal::linux_backend

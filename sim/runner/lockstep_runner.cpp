@@ -3,76 +3,35 @@
 #include <chrono>
 
 namespace planter::sim {
-namespace {
-
-DeviceIdentity identity_of(const NodeConfig& n, const char* name) {
-  DeviceIdentity id;
-  id.node_id = n.node_id;
-  id.device_type = n.profile;
-  id.vendor_id = n.vendor_id;
-  id.product_code = n.product_code;
-  id.name = name;
-  return id;
-}
-
-}  // namespace
-
 LockstepRunner::LockstepRunner(const Scenario& scenario)
     : scenario_(scenario),
       bus_(scenario.board.controller.can.bitrate_bps),
       period_ns_(scenario.board.controller.can.sync_period_ns) {
   const ControllerConfig& cfg = scenario_.board.controller;
   controller_endpoint_ = &bus_.add_endpoint(512);
-  for (auto& e : device_endpoints_) e = &bus_.add_endpoint(256);
   hal_ = std::make_unique<hal::ControllerHal>(
       hal::ControllerHal{*controller_endpoint_, encoder_, estop_, lamp_});
   controller_ = std::make_unique<Controller>(cfg, *hal_);
-  disc_ = std::make_unique<Cia402DriveDevice>(
-      identity_of(cfg.node(NodeRole::kDiscDrive), "sim disc drive"), *device_endpoints_[0]);
-  roller_ = std::make_unique<Cia402DriveDevice>(
-      identity_of(cfg.node(NodeRole::kRollerActuator), "sim roller actuator"),
-      *device_endpoints_[1]);
-  depth_ = std::make_unique<Cia402DriveDevice>(
-      identity_of(cfg.node(NodeRole::kDepthActuator), "sim depth actuator"), *device_endpoints_[2]);
-  force_ = std::make_unique<Cia404ForceSensor>(
-      identity_of(cfg.node(NodeRole::kForceSensor), "sim load cell"), *device_endpoints_[3]);
-  plant_ = std::make_unique<Plant>(scenario_.plant, cfg, scenario_.seed);
-  devices_ = std::make_unique<PlantDevices>(PlantDevices{*disc_, *roller_, *depth_, *force_});
+  rig_ = std::make_unique<PlantRig>(scenario_, bus_);
   summary_.configure(cfg.sigma.sigma, cfg.depth.target_mm, cfg.clamp.ceiling_N, 8.0);
-  disc_->power_on(0);
-  roller_->power_on(0);
-  depth_->power_on(0);
-  force_->power_on(0);
 }
 
 LockstepRunner::~LockstepRunner() = default;
 
 hal::sim::VirtualCanEndpoint& LockstepRunner::device_endpoint(NodeRole role) {
-  return *device_endpoints_[static_cast<std::size_t>(role)];
+  return rig_->endpoint(role);
 }
 
-Cia402DriveDevice& LockstepRunner::drive(NodeRole role) {
-  switch (role) {
-    case NodeRole::kRollerActuator:
-      return *roller_;
-    case NodeRole::kDepthActuator:
-      return *depth_;
-    default:
-      return *disc_;
-  }
-}
+Cia402DriveDevice& LockstepRunner::drive(NodeRole role) { return rig_->drive(role); }
+
+const Plant& LockstepRunner::plant() const { return rig_->plant(); }
 
 void LockstepRunner::apply_events() {
   const double t = time_s();
   const FaultEvents& f = scenario_.faults;
   if (f.estop_at_s >= 0.0)
     estop_.set(t >= f.estop_at_s && (f.estop_release_at_s < 0.0 || t < f.estop_release_at_s));
-  if (!f.silent_node.empty() && f.silent_at_s >= 0.0 && t >= f.silent_at_s) {
-    for (std::size_t i = 0; i < kNodeCount; ++i) {
-      if (f.silent_node == node_role_name(static_cast<NodeRole>(i)))
-        device_endpoints_[i]->set_unplugged(true);
-    }
-  }
+  rig_->apply_faults(t);
   // The operator presses "run" once the controller is ready, and drives off a little later.
   if (!run_requested_ && controller_->state() == SupervisorState::kReady) {
     controller_->request_run();
@@ -82,7 +41,7 @@ void LockstepRunner::apply_events() {
     running_since_s_ = t;
   if (!moving_ && running_since_s_ >= 0.0 &&
       t >= running_since_s_ + scenario_.plant.start_delay_s) {
-    plant_->start_moving();
+    rig_->plant().start_moving();
     moving_ = true;
   }
 }
@@ -91,34 +50,31 @@ void LockstepRunner::step() {
   apply_events();
   const std::int64_t now = clock_.now_ns();
   controller_->tick(now, period_ns_);
-  disc_->process(now);
-  roller_->process(now);
-  depth_->process(now);
-  force_->process(now);
+  rig_->process_devices(now);
   for (std::int64_t t = 0; t < period_ns_; t += substep_ns_) {
-    plant_->step(now + t, substep_ns_, *devices_, encoder_);
+    rig_->step_plant(now + t, substep_ns_, encoder_);
   }
   clock_.advance_ns(period_ns_);
   const bool running = controller_->state() == SupervisorState::kRunning;
-  summary_.add(controller_->telemetry(), plant_->truth(), running,
+  summary_.add(controller_->telemetry(), rig_->plant().truth(), running,
                running ? time_s() - running_since_s_ : 0.0);
-  if (observer_) observer_(TickRecord{controller_->telemetry(), plant_->truth()});
+  if (observer_) observer_(TickRecord{controller_->telemetry(), rig_->plant().truth()});
 }
 
 Summary LockstepRunner::run() {
   const auto wall0 = std::chrono::steady_clock::now();
   while (time_s() < scenario_.max_duration_s) {
     step();
-    if (moving_ && finished_at_s_ < 0.0 && plant_->ground().finished()) finished_at_s_ = time_s();
+    if (moving_ && finished_at_s_ < 0.0 && rig_->plant().ground().finished()) finished_at_s_ = time_s();
     if (finished_at_s_ >= 0.0 && time_s() >= finished_at_s_ + scenario_.tail_s) break;
   }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   const double plot_m = 3.0;
-  Summary s = summary_.finish(plant_->seedlings(), plot_m,
+  Summary s = summary_.finish(rig_->plant().seedlings(), plot_m,
                               static_cast<int>(scenario_.plant.route.distance_m / plot_m + 1e-9));
   s.scenario = scenario_.name;
-  s.distance_m = plant_->ground().x_m();
+  s.distance_m = rig_->plant().ground().x_m();
   s.sim_seconds = time_s();
   s.wall_seconds = wall;
   s.realtime_factor = wall > 0 ? s.sim_seconds / wall : 0.0;

@@ -14,6 +14,7 @@
 #include "hal/sim/sim_gpio.h"
 #include "hal/sim/virtual_can_bus.h"
 #include "sim/plant/plant.h"
+#include "sim/runner/plant_rig.h"
 #include "sim/runner/scenario.h"
 #include "sim/runner/summary.h"
 
@@ -44,7 +45,7 @@ class LockstepRunner {
   hal::sim::SimDigitalInput& estop() { return estop_; }
   hal::sim::VirtualCanEndpoint& device_endpoint(NodeRole role);
   Cia402DriveDevice& drive(NodeRole role);
-  [[nodiscard]] const Plant& plant() const { return *plant_; }
+  [[nodiscard]] const Plant& plant() const;
   [[nodiscard]] double time_s() const { return static_cast<double>(clock_.now_ns()) * 1e-9; }
   [[nodiscard]] const Scenario& scenario() const { return scenario_; }
 
@@ -58,13 +59,9 @@ class LockstepRunner {
   hal::sim::SimDigitalInput estop_;
   hal::sim::SimDigitalOutput lamp_;
   hal::sim::VirtualCanEndpoint* controller_endpoint_;
-  std::array<hal::sim::VirtualCanEndpoint*, kNodeCount> device_endpoints_{};
   std::unique_ptr<hal::ControllerHal> hal_;
   std::unique_ptr<Controller> controller_;
-  std::unique_ptr<Cia402DriveDevice> disc_, roller_, depth_;
-  std::unique_ptr<Cia404ForceSensor> force_;
-  std::unique_ptr<Plant> plant_;
-  std::unique_ptr<PlantDevices> devices_;
+  std::unique_ptr<PlantRig> rig_;
   Observer observer_;
   SummaryBuilder summary_;
   std::int64_t period_ns_;

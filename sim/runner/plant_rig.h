@@ -1,0 +1,45 @@
+#pragma once
+// The simulated machine as the controller's bus sees it: the four CANopen devices, each on its
+// own endpoint of a virtual bus, and the plant they act on. The lockstep runner puts the
+// controller on the same virtual bus; `planter-sim devices` bridges it to a real SocketCAN bus.
+#include <array>
+#include <cstdint>
+#include <memory>
+
+#include "hal/sim/sim_gpio.h"
+#include "hal/sim/virtual_can_bus.h"
+#include "sim/devices/cia402_drive_device.h"
+#include "sim/plant/plant.h"
+#include "sim/runner/scenario.h"
+
+namespace planter::sim {
+
+class PlantRig {
+ public:
+  PlantRig(const Scenario& scenario, hal::sim::VirtualCanBus& bus);
+
+  // Devices read their frames and answer (SDO, NMT, PDO on SYNC, heartbeats).
+  void process_devices(std::int64_t now_ns);
+  // Integrates the plant over one step; encoder edges go to `edges`.
+  void step_plant(std::int64_t now_ns, std::int64_t dt_ns, hal::sim::SimEdgeSource& edges);
+  // Scenario faults that belong to the machine: a node that stops answering.
+  void apply_faults(double t_s);
+
+  Cia402DriveDevice& drive(NodeRole role);
+  Cia404ForceSensor& force_sensor() { return *force_; }
+  hal::sim::VirtualCanEndpoint& endpoint(NodeRole role) {
+    return *endpoints_[static_cast<std::size_t>(role)];
+  }
+  Plant& plant() { return *plant_; }
+  [[nodiscard]] const Plant& plant() const { return *plant_; }
+
+ private:
+  const Scenario& scenario_;
+  std::array<hal::sim::VirtualCanEndpoint*, kNodeCount> endpoints_{};
+  std::unique_ptr<Cia402DriveDevice> disc_, roller_, depth_;
+  std::unique_ptr<Cia404ForceSensor> force_;
+  std::unique_ptr<Plant> plant_;
+  std::unique_ptr<PlantDevices> devices_;
+};
+
+}  // namespace planter::sim

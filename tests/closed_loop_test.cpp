@@ -208,3 +208,32 @@ TEST(Determinism, SameSeedSameResult) {
   EXPECT_DOUBLE_EQ(sa.sigma_true_rms_error_pct, sb.sigma_true_rms_error_pct);
   EXPECT_DOUBLE_EQ(sa.uprightness_pct, sb.uprightness_pct);
 }
+
+// The bus goes away for longer than a heartbeat period and comes back: the controller faults
+// on the lost heartbeats, and an operator's fault reset boots the nodes again and plants again.
+TEST(LinkLoss, FaultThenResetBootsTheNodesAgainAndRuns) {
+  LockstepRunner r(short_run(2.0));
+  run_until(r, 8.0);
+  ASSERT_EQ(r.controller().state(), SupervisorState::kRunning);
+  for (std::size_t i = 0; i < kNodeCount; ++i)
+    r.device_endpoint(static_cast<NodeRole>(i)).set_unplugged(true);
+  run_until(r, 9.2);
+  EXPECT_EQ(r.controller().state(), SupervisorState::kFault);
+  EXPECT_NE(r.controller().faults() & fault::kHeartbeatLost, 0u);
+  for (std::size_t i = 0; i < kNodeCount; ++i)
+    r.device_endpoint(static_cast<NodeRole>(i)).set_unplugged(false);
+  run_until(r, 9.8);
+  r.controller().request_fault_reset();
+  double ready_at = -1.0;
+  while (r.time_s() < 16.0) {
+    r.step();
+    if (ready_at < 0 && r.controller().state() == SupervisorState::kReady) {
+      ready_at = r.time_s();
+      r.controller().request_run();
+    }
+    ASSERT_NE(r.controller().state(), SupervisorState::kFault)
+        << "at " << r.time_s() << " s, faults 0x" << std::hex << r.controller().faults();
+  }
+  EXPECT_GT(ready_at, 0.0);
+  EXPECT_EQ(r.controller().state(), SupervisorState::kRunning);
+}

@@ -22,6 +22,7 @@ BoardHardware::BoardHardware(const config::BoardConfig& board)
       encoder_(chip_, board.gpio.encoder_a, board.gpio.encoder_b),
       estop_(chip_, board.gpio.estop, board.controller.estop_active_low, "gpio.estop_line"),
       status_(chip_, board.gpio.status, "gpio.status_line"),
-      hal_{can_, encoder_, estop_, status_} {}
+      probe_(encoder_),
+      hal_{can_, probe_, estop_, status_} {}
 
 }  // namespace planter::daemon

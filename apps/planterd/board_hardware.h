@@ -3,6 +3,7 @@
 // the GPIO chip with the encoder, e-stop and status lines. Throws HalError with one message.
 #include <memory>
 
+#include "apps/planterd/edge_latency_probe.h"
 #include "config/board_config.h"
 #include "hal/linux/gpiod_lines.h"
 #include "hal/linux/socketcan_bus.h"
@@ -15,7 +16,7 @@ class BoardHardware {
   explicit BoardHardware(const config::BoardConfig& board);
   hal::ControllerHal& controller_hal() { return hal_; }
   hal::linux_backend::SocketCanBus& can() { return can_; }
-  hal::linux_backend::GpiodEdgeSource& encoder() { return encoder_; }
+  EdgeLatencyProbe& edge_latency() { return probe_; }
 
  private:
   hal::linux_backend::SocketCanBus can_;
@@ -23,6 +24,7 @@ class BoardHardware {
   hal::linux_backend::GpiodEdgeSource encoder_;
   hal::linux_backend::GpiodInput estop_;
   hal::linux_backend::GpiodOutput status_;
+  EdgeLatencyProbe probe_;
   hal::ControllerHal hal_;
 };
 

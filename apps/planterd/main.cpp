@@ -34,7 +34,11 @@ struct Options {
   double duration_s = 0.0;
   int flush_ms = 200;
   double log_period_s = 5.0;
+  bool resume_after_link_loss = false;
 };
+
+// Faults a lost CAN link causes by itself; anything else needs the operator.
+constexpr std::uint32_t kLinkLossFaults = fault::kHeartbeatLost | fault::kPdoStale | fault::kBusOff;
 
 struct Row {
   double t_s;
@@ -48,6 +52,8 @@ struct Shared {
   std::atomic<bool> finished{false};
   std::atomic<std::uint64_t> ticks{0};
   std::atomic<std::uint64_t> rows_dropped{0};
+  std::atomic<std::uint32_t> link_resets{0};
+
   std::mutex status_mutex;  // the loop only try_locks it: never blocks
   Telemetry status;
 };
@@ -80,6 +86,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(10, 10000));
   app.add_option("--log-period", opt.log_period_s, "status line every N seconds (0 = off)")
       ->check(CLI::Range(0.0, 3600.0));
+  app.add_flag("--resume-after-link-loss", opt.resume_after_link_loss,
+               "after the CAN link went down and came back, reset the faults it caused and boot "
+               "the nodes again (with --run: plant again)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -90,6 +99,13 @@ int main(int argc, char** argv) {
   config::BoardConfig board;
   std::unique_ptr<daemon::BoardHardware> hw;
   std::unique_ptr<daemon::CrashSafeRecording> recording;
+  // Row times count from here; start_wall in the metadata places them on the wall clock.
+  const std::int64_t start_ns = monotonic_now_ns();
+  timespec start_wall{};
+  clock_gettime(CLOCK_REALTIME, &start_wall);
+  char start_wall_text[64];
+  std::snprintf(start_wall_text, sizeof start_wall_text, "start_wall: %lld.%06ld",
+                static_cast<long long>(start_wall.tv_sec), start_wall.tv_nsec / 1000);
   try {
     board = config::load_board(opt.board);
     hw = std::make_unique<daemon::BoardHardware>(board);
@@ -97,7 +113,7 @@ int main(int argc, char** argv) {
       recording = std::make_unique<daemon::CrashSafeRecording>(
           opt.record, std::vector<std::string>{"board: " + board.name, "source: planterd",
                                                "units: PRODUCT.md v1",
-                                               "flush_ms: " + std::to_string(opt.flush_ms)});
+                                               "flush_ms: " + std::to_string(opt.flush_ms), start_wall_text});
       if (!recording->moved_aside_to().empty())
         std::fprintf(stderr, "planterd: previous recording moved to %s\n",
                      recording->moved_aside_to().c_str());
@@ -141,13 +157,48 @@ int main(int argc, char** argv) {
       return;
     }
     setup_done = true;
-    const std::int64_t start_ns = monotonic_now_ns();
+    const std::int64_t loop_start_ns = monotonic_now_ns();
     const std::int64_t duration_ns = static_cast<std::int64_t>(opt.duration_s * 1e9);
     const std::int64_t stop_grace_ns = 5'000'000'000;
     std::int64_t stop_at_ns = -1;
     bool run_requested = false;
+    std::uint32_t link_downs_seen = hw->can().link_down_count();
+    bool link_resume_pending = false;
+    bool link_reset_done = false;
+    std::int64_t link_up_since = -1;
+    std::int64_t next_reset_ns = 0;
     loop.run([&](std::int64_t now, std::int64_t dt) {
-      if (duration_ns > 0 && now - start_ns >= duration_ns) shared.stop = true;
+      if (opt.resume_after_link_loss) {
+        // Reconnect and resume: only for faults the link loss explains, once it is back.
+        const std::uint32_t downs = hw->can().link_down_count();
+        if (downs != link_downs_seen) {
+          link_downs_seen = downs;
+          link_resume_pending = true;
+          link_reset_done = false;
+          link_up_since = -1;
+        }
+        if (link_resume_pending) {
+          if (!hw->can().link_up()) link_up_since = -1;
+          else if (link_up_since < 0) link_up_since = now;
+          const SupervisorState s = controller.state();
+          if (s == SupervisorState::kFault && (controller.faults() & ~kLinkLossFaults) == 0 &&
+              link_up_since >= 0 && now - link_up_since >= 500'000'000 && now >= next_reset_ns) {
+            controller.request_fault_reset();
+            run_requested = false;
+            next_reset_ns = now + 500'000'000;
+            link_reset_done = true;
+            shared.link_resets.fetch_add(1, std::memory_order_relaxed);
+          }
+          // Done once running again after a reset, or when the loss caused no fault at all.
+          const bool back = s == SupervisorState::kRunning || (s == SupervisorState::kReady && !opt.run);
+          if (back && (link_reset_done ||
+                       (link_up_since >= 0 && now - link_up_since > 2'000'000'000)))
+            link_resume_pending = false;
+          if (s == SupervisorState::kFault && (controller.faults() & ~kLinkLossFaults) != 0)
+            link_resume_pending = false;
+        }
+      }
+      if (duration_ns > 0 && now - loop_start_ns >= duration_ns) shared.stop = true;
       if (shared.stop && stop_at_ns < 0) {
         controller.request_stop();
         stop_at_ns = now;
@@ -158,6 +209,7 @@ int main(int argc, char** argv) {
         run_requested = true;
       }
       controller.tick(now, dt);
+      hw->edge_latency().tick_done(monotonic_now_ns());
       const Telemetry& t = controller.telemetry();
       if (recording && !rows.push(Row{static_cast<double>(now - start_ns) * 1e-9, t}))
         shared.rows_dropped.fetch_add(1, std::memory_order_relaxed);
@@ -245,16 +297,24 @@ int main(int argc, char** argv) {
     recording_ok = recording->flush() && recording_ok;
   }
   const auto& lat = loop.latency();
+  const auto& edge = hw->edge_latency().histogram();
+  std::fprintf(stderr,
+               "planterd: encoder edge to CAN command: %llu edges, p50 %.0f us p99 %.0f us max "
+               "%.0f us\n",
+               static_cast<unsigned long long>(edge.count()), edge.percentile_us(50),
+               edge.percentile_us(99), edge.max_us());
   const hal::CanBusCounters can = hw->can().counters();
   std::fprintf(stderr,
                "planterd: stopped in %s after %llu ticks; wake-up latency p50 %.0f us p99 %.0f "
                "us max %.0f us; overruns %llu; CAN link downs %u reopens %u, error frames %u, "
-               "tx dropped %u, rx overflow %u; unknown frames %u; rows dropped %llu\n",
+               "tx dropped %u, rx overflow %u; unknown frames %u; rows dropped %llu; link-loss resets "
+               "%u\n",
                supervisor_state_name(controller.state()),
                static_cast<unsigned long long>(loop.ticks()), lat.percentile_us(50),
                lat.percentile_us(99), lat.max_us(), static_cast<unsigned long long>(loop.overruns()),
                hw->can().link_down_count(), hw->can().reopen_count(), can.error_frames,
                can.tx_dropped, can.rx_overflow, controller.telemetry().unknown_frames,
-               static_cast<unsigned long long>(shared.rows_dropped.load()));
+               static_cast<unsigned long long>(shared.rows_dropped.load()),
+               shared.link_resets.load());
   return recording_ok ? 0 : 1;
 }

@@ -27,6 +27,8 @@ GpiodChip::GpiodChip(const std::string& name) : name_(name), chip_(nullptr) {
 
 GpiodChip::~GpiodChip() { gpiod_chip_close(chip_); }
 
+std::string GpiodChip::kernel_name() const { return gpiod_chip_name(chip_); }
+
 gpiod_line* GpiodChip::line(int offset, const std::string& what) {
   const unsigned count = gpiod_chip_num_lines(chip_);
   if (offset < 0 || static_cast<unsigned>(offset) >= count)

@@ -24,6 +24,8 @@ class GpiodChip {
   // Throws HalError naming `what` when the chip has no such line.
   gpiod_line* line(int offset, const std::string& what);
   [[nodiscard]] const std::string& name() const { return name_; }
+  // The kernel's name of the chip (gpiochipN), whatever name it was opened by.
+  [[nodiscard]] std::string kernel_name() const;
 
  private:
   std::string name_;

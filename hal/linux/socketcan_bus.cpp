@@ -13,6 +13,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <climits>
 #include <cstring>
 
 #include "hal/linux/hal_error.h"
@@ -31,6 +32,15 @@ bool interface_up(const std::string& name) {
   return up;
 }
 
+bool is_virtual(const std::string& name) {
+  char target[PATH_MAX];
+  const std::string link = "/sys/class/net/" + name;
+  const ssize_t n = readlink(link.c_str(), target, sizeof target - 1);
+  if (n <= 0) return false;
+  target[n] = 0;
+  return std::strstr(target, "/virtual/") != nullptr;
+}
+
 bool link_gone(int err) { return err == ENETDOWN || err == ENODEV || err == ENXIO; }
 
 }  // namespace
@@ -42,8 +52,9 @@ SocketCanBus::SocketCanBus(std::string interface, SocketCanOptions options)
   if (if_nametoindex(interface_.c_str()) == 0)
     throw HalError("'can.interface': '" + interface_ +
                    "' does not exist (`ip link` lists the interfaces)");
-  // Bus-off recovery by the kernel itself; vcan has no such setting, so failure is fine there.
-  if (options_.restart_ms > 0) can_set_restart_ms(interface_.c_str(), options_.restart_ms);
+  // Bus-off recovery by the kernel itself (restart-ms). Virtual interfaces (vcan) have none.
+  if (options_.restart_ms > 0 && !is_virtual(interface_))
+    restart_configured_ = can_set_restart_ms(interface_.c_str(), options_.restart_ms) == 0;
   if (!open_socket()) {
     const int err = errno;
     throw HalError("can: cannot open a raw CAN socket on '" + interface_ + "': " +

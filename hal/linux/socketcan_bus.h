@@ -37,6 +37,8 @@ class SocketCanBus final : public CanBus {
   [[nodiscard]] std::uint32_t reopen_count() const { return reopens_; }
   [[nodiscard]] std::uint32_t link_down_count() const { return link_downs_; }
   [[nodiscard]] const std::string& interface() const { return interface_; }
+  // True when the kernel's bus-off auto-restart was set (real CAN controllers only).
+  [[nodiscard]] bool restart_configured() const { return restart_configured_; }
 
  private:
   bool open_socket();
@@ -55,6 +57,7 @@ class SocketCanBus final : public CanBus {
   std::int64_t next_reopen_ns_ = 0;
   std::uint32_t reopens_ = 0;
   std::uint32_t link_downs_ = 0;
+  bool restart_configured_ = false;
 };
 
 }  // namespace planter::hal::linux_backend

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Host-in-the-loop test on a real kernel: prepares the VM (cached), then runs
+# tests/hil/guest_hil_test.sh inside it against this build. Logs stay in BUILD/vm-hil.
+# Usage: scripts/vm-hil-test.sh [build-dir]
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=$(cd "${1:-$root/build}" && pwd)
+[ -x "$build/apps/planterd/planterd" ] && [ -x "$build/sim/planter-sim" ] ||
+  { echo "vm-hil-test: build planterd and planter-sim first (scripts/setup.sh)" >&2; exit 1; }
+dpkg-query -W -f='${Status}' python3 2>/dev/null | grep -q "install ok installed" ||
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends python3 >/dev/null
+"$root/scripts/vm/prepare.sh" "$build/vm-cache"
+run_dir="$build/vm-hil"
+rm -rf "$run_dir" && mkdir -p "$run_dir"
+"$root/scripts/vm/run.sh" "$build/vm-cache" "$run_dir" 600 \
+  sh "$root/tests/hil/guest_hil_test.sh" "$root" "$build" 2>&1 |
+  grep -v -e '^\s*$' -e 'SeaBIOS' -e 'Booting from ROM' -e 'reboot: Power down' | tr -d '\033' |
+  sed 's/^c\[?7l\[2J\(\[0m\)\?//'
+exit "${PIPESTATUS[0]}"

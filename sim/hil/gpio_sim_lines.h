@@ -1,0 +1,28 @@
+#pragma once
+// Drives input lines of a gpio-sim chip (the kernel's GPIO simulator) from user space by
+// writing each line's pull: "pull-up" makes the controller's libgpiod see a rising edge,
+// "pull-down" a falling one. This is how the simulated soil wheel reaches a real GPIO chip.
+#include <array>
+#include <string>
+
+namespace planter::sim {
+
+class GpioSimLines {
+ public:
+  // `chip` as libgpiod names it (gpiochipN, path or label). Throws HalError when the chip
+  // does not exist, is not a gpio-sim chip, or lacks a line.
+  GpioSimLines(const std::string& chip, std::array<int, 4> offsets);
+  ~GpioSimLines();
+  GpioSimLines(const GpioSimLines&) = delete;
+  GpioSimLines& operator=(const GpioSimLines&) = delete;
+  // index into the offsets given at construction.
+  void set(int index, bool high);
+  [[nodiscard]] unsigned writes() const { return writes_; }
+
+ private:
+  std::array<int, 4> fds_{-1, -1, -1, -1};
+  std::array<int, 4> level_{-1, -1, -1, -1};
+  unsigned writes_ = 0;
+};
+
+}  // namespace planter::sim

@@ -1,0 +1,82 @@
+#!/bin/sh
+# Runs inside the test VM (scripts/vm/run.sh): planterd and `planter-sim devices` on the real
+# vcan0 and gpio-sim chip, with candump recording the bus. Then check_hil.py judges the logs.
+# Usage: guest_hil_test.sh REPO BUILD   (cwd: the run directory, shared with the host)
+set -u
+R=$1
+B=$2
+BOARD=$R/boards/vm-hil/board.toml
+PLANTERD=$B/apps/planterd/planterd
+SIM=$B/sim/planter-sim
+fail=0
+note() { echo "hil: $*"; }
+
+# candump exits when the link goes down; keep one running for the whole of a run.
+record_bus() {
+  while [ ! -f "$1.stop" ]; do candump -L vcan0 >> "$1" 2>/dev/null; sleep 0.01; done
+}
+expect_exit2() {  # name, command...: must exit 2 with one message, within 10 s
+  name=$1; shift
+  timeout 10 "$@" > "bad-$name.out" 2> "bad-$name.err"
+  rc=$?
+  if [ $rc -eq 2 ] && [ "$(wc -l < "bad-$name.err")" -eq 1 ]; then
+    note "bad input '$name': exit 2: $(cat "bad-$name.err")"
+  else
+    note "FAIL bad input '$name': exit $rc, stderr: $(cat "bad-$name.err")"; fail=1
+  fi
+}
+
+# 1. Bad input on the real kernel: one message, exit 2, never a hang.
+sed 's/interface = "vcan0"/interface = "vcan9"/' "$BOARD" > bad-iface.toml
+sed 's/chip = "planter-sim"/chip = "no-such-chip"/' "$BOARD" > bad-chip.toml
+sed 's/estop_line = 2/estop_line = 40/' "$BOARD" > bad-line.toml
+expect_exit2 missing-interface "$PLANTERD" --board bad-iface.toml
+expect_exit2 wrong-chip "$PLANTERD" --board bad-chip.toml
+expect_exit2 missing-line "$PLANTERD" --board bad-line.toml
+expect_exit2 devices-wrong-chip "$SIM" devices "$R/scenarios/hil-field-short.toml" --can vcan0 --gpio nochip
+expect_exit2 devices-missing-interface "$SIM" devices "$R/scenarios/hil-field-short.toml" --can vcan7 --gpio planter-sim
+
+# 2. Field run (about 50 s real time): garbage frames at 20 s, e-stop at 44 s (scenario time).
+rm -f a.* a-*
+record_bus a.candump & REC=$!
+"$SIM" devices "$R/scenarios/hil-field-short.toml" --board "$BOARD" --can vcan0 --gpio planter-sim \
+  --truth a-truth.csv --duration 50 > a-devices.out 2> a-devices.log & DEV=$!
+sleep 1
+"$PLANTERD" --board "$BOARD" --record a.csv --run --duration 49 --log-period 10 2> a-planterd.log & PD=$!
+sleep 20
+for f in 182#01 182#0102030405060708 555#DEADBEEF 7FF# 12345678#00 183#R 000#0102 080#11223344; do
+  cansend vcan0 "$f"
+done
+echo 8 > a-garbage-count
+wait $PD; echo $? > a-planterd.rc
+wait $DEV; echo $? > a-devices.rc
+touch a.candump.stop; pkill -x candump; wait $REC
+
+# 3. Link down and up at 10 s, then the depth actuator goes silent at 20 s.
+rm -f b.* b-*
+record_bus b.candump & REC=$!
+"$SIM" devices "$R/scenarios/hil-node-silent.toml" --board "$BOARD" --can vcan0 --gpio planter-sim \
+  --truth b-truth.csv --duration 27 > b-devices.out 2> b-devices.log & DEV=$!
+sleep 1
+"$PLANTERD" --board "$BOARD" --record b.csv --run --resume-after-link-loss --duration 25 \
+  --log-period 5 2> b-planterd.log & PD=$!
+sleep 10
+date +%s.%N > b-link-down-wall
+ip link set vcan0 down; sleep 0.2; ip link set vcan0 up
+date +%s.%N > b-link-up-wall
+wait $PD; echo $? > b-planterd.rc
+wait $DEV; echo $? > b-devices.rc
+touch b.candump.stop; pkill -x candump; wait $REC
+
+# 4. kill -9 while recording: the file must end on a complete row; a restart moves it aside.
+rm -f c.* c-*
+"$PLANTERD" --board "$BOARD" --record c.csv --flush-ms 200 --log-period 0 2> c-planterd.log & PD=$!
+sleep 4
+date +%s.%N > c-kill-wall
+kill -9 $PD; wait $PD 2>/dev/null
+cp c.csv c-killed.csv
+timeout 10 "$PLANTERD" --board "$BOARD" --record c.csv --duration 1 --log-period 0 2> c-restart.log
+echo $? > c-restart.rc
+
+python3 "$R/tests/hil/check_hil.py" "$BOARD" . || fail=1
+exit $fail

@@ -21,8 +21,8 @@ struct GpioLines {
 
 // [realtime]: how planterd's control loop is scheduled on the board.
 struct RealtimeConfig {
-  int priority = 80;  // SCHED_FIFO 1-99; 0 = ordinary scheduling
-  int cpu = -1;       // CPU to pin the loop to; -1 = any
+  int priority = 80;     // SCHED_FIFO 1-99; 0 = ordinary scheduling
+  int cpu = -1;          // CPU to pin the loop to; -1 = any
   bool require = false;  // refuse to start when SCHED_FIFO or mlockall is refused
 };
 

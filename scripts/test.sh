@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every test: set up, format check, the unit and closed-loop tests under address and
-# undefined-behaviour sanitizers, the release build's tests, and the benchmarks.
+# undefined-behaviour sanitizers, the release build's tests, the benchmarks, and the
+# host-in-the-loop test of planterd in a VM with a real CAN and GPIO kernel.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -15,5 +16,8 @@ echo "== tests under sanitizers"
 echo "== benchmarks"
 "$root/build/bench/planter_bench_rtf" "$root/scenarios/zhangqiu-field.toml"
 "$root/build/bench/planter_bench_alloc" "$root/scenarios/zhangqiu-field.toml"
+"$root/build/bench/planter_bench_latency" "$root/scenarios/zhangqiu-field.toml" 60
 echo "== tests (release build)"
 (cd "$root/build" && ctest -j "$(nproc)" --output-on-failure)
+echo "== host-in-the-loop on a real kernel (qemu VM: vcan0, gpio-sim)"
+scripts/vm-hil-test.sh "$root/build"

@@ -42,7 +42,8 @@ std::uint64_t repair_torn_tail(const std::string& path) {
   char buf[4096];
   // Scan back from the end to the last newline.
   while (keep > 0) {
-    const off_t start = keep > static_cast<off_t>(sizeof buf) ? keep - static_cast<off_t>(sizeof buf) : 0;
+    const off_t start =
+        keep > static_cast<off_t>(sizeof buf) ? keep - static_cast<off_t>(sizeof buf) : 0;
     const ssize_t n = pread(fd, buf, static_cast<std::size_t>(keep - start), start);
     if (n <= 0) break;
     ssize_t i = n - 1;

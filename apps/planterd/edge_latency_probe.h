@@ -25,9 +25,7 @@ class EdgeLatencyProbe final : public hal::GpioEdgeSource {
     for (std::size_t i = 0; i < taken_; ++i) histogram_.add(now_ns - times_[i]);
     taken_ = 0;
   }
-  [[nodiscard]] const hal::linux_backend::LatencyHistogram& histogram() const {
-    return histogram_;
-  }
+  [[nodiscard]] const hal::linux_backend::LatencyHistogram& histogram() const { return histogram_; }
 
  private:
   hal::GpioEdgeSource& inner_;

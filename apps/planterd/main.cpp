@@ -111,9 +111,9 @@ int main(int argc, char** argv) {
     hw = std::make_unique<daemon::BoardHardware>(board);
     if (!opt.record.empty()) {
       recording = std::make_unique<daemon::CrashSafeRecording>(
-          opt.record, std::vector<std::string>{"board: " + board.name, "source: planterd",
-                                               "units: PRODUCT.md v1",
-                                               "flush_ms: " + std::to_string(opt.flush_ms), start_wall_text});
+          opt.record, std::vector<std::string>{
+                          "board: " + board.name, "source: planterd", "units: PRODUCT.md v1",
+                          "flush_ms: " + std::to_string(opt.flush_ms), start_wall_text});
       if (!recording->moved_aside_to().empty())
         std::fprintf(stderr, "planterd: previous recording moved to %s\n",
                      recording->moved_aside_to().c_str());
@@ -178,8 +178,10 @@ int main(int argc, char** argv) {
           link_up_since = -1;
         }
         if (link_resume_pending) {
-          if (!hw->can().link_up()) link_up_since = -1;
-          else if (link_up_since < 0) link_up_since = now;
+          if (!hw->can().link_up())
+            link_up_since = -1;
+          else if (link_up_since < 0)
+            link_up_since = now;
           const SupervisorState s = controller.state();
           if (s == SupervisorState::kFault && (controller.faults() & ~kLinkLossFaults) == 0 &&
               link_up_since >= 0 && now - link_up_since >= 500'000'000 && now >= next_reset_ns) {
@@ -190,9 +192,10 @@ int main(int argc, char** argv) {
             shared.link_resets.fetch_add(1, std::memory_order_relaxed);
           }
           // Done once running again after a reset, or when the loss caused no fault at all.
-          const bool back = s == SupervisorState::kRunning || (s == SupervisorState::kReady && !opt.run);
-          if (back && (link_reset_done ||
-                       (link_up_since >= 0 && now - link_up_since > 2'000'000'000)))
+          const bool back =
+              s == SupervisorState::kRunning || (s == SupervisorState::kReady && !opt.run);
+          if (back &&
+              (link_reset_done || (link_up_since >= 0 && now - link_up_since > 2'000'000'000)))
             link_resume_pending = false;
           if (s == SupervisorState::kFault && (controller.faults() & ~kLinkLossFaults) != 0)
             link_resume_pending = false;
@@ -281,8 +284,9 @@ int main(int argc, char** argv) {
       next_kick_ns = now + static_cast<std::int64_t>(watchdog_us) * 1000 / 2;
     }
     if (status.state != logged_state) {
-      std::fprintf(stderr, "planterd: %s -> %s (faults 0x%x)\n", supervisor_state_name(logged_state),
-                   supervisor_state_name(status.state), status.faults);
+      std::fprintf(stderr, "planterd: %s -> %s (faults 0x%x)\n",
+                   supervisor_state_name(logged_state), supervisor_state_name(status.state),
+                   status.faults);
       sd_notifyf(0, "STATUS=%s", supervisor_state_name(status.state));
       logged_state = status.state;
     }
@@ -304,17 +308,17 @@ int main(int argc, char** argv) {
                static_cast<unsigned long long>(edge.count()), edge.percentile_us(50),
                edge.percentile_us(99), edge.max_us());
   const hal::CanBusCounters can = hw->can().counters();
-  std::fprintf(stderr,
-               "planterd: stopped in %s after %llu ticks; wake-up latency p50 %.0f us p99 %.0f "
-               "us max %.0f us; overruns %llu; CAN link downs %u reopens %u, error frames %u, "
-               "tx dropped %u, rx overflow %u; unknown frames %u; rows dropped %llu; link-loss resets "
-               "%u\n",
-               supervisor_state_name(controller.state()),
-               static_cast<unsigned long long>(loop.ticks()), lat.percentile_us(50),
-               lat.percentile_us(99), lat.max_us(), static_cast<unsigned long long>(loop.overruns()),
-               hw->can().link_down_count(), hw->can().reopen_count(), can.error_frames,
-               can.tx_dropped, can.rx_overflow, controller.telemetry().unknown_frames,
-               static_cast<unsigned long long>(shared.rows_dropped.load()),
-               shared.link_resets.load());
+  std::fprintf(
+      stderr,
+      "planterd: stopped in %s after %llu ticks; wake-up latency p50 %.0f us p99 %.0f "
+      "us max %.0f us; overruns %llu; CAN link downs %u reopens %u, error frames %u, "
+      "tx dropped %u, rx overflow %u; unknown frames %u; rows dropped %llu; link-loss resets "
+      "%u\n",
+      supervisor_state_name(controller.state()), static_cast<unsigned long long>(loop.ticks()),
+      lat.percentile_us(50), lat.percentile_us(99), lat.max_us(),
+      static_cast<unsigned long long>(loop.overruns()), hw->can().link_down_count(),
+      hw->can().reopen_count(), can.error_frames, can.tx_dropped, can.rx_overflow,
+      controller.telemetry().unknown_frames,
+      static_cast<unsigned long long>(shared.rows_dropped.load()), shared.link_resets.load());
   return recording_ok ? 0 : 1;
 }

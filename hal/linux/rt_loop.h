@@ -42,6 +42,9 @@ class LatencyHistogram {
 class RtLoop {
  public:
   explicit RtLoop(const RtLoopConfig& config) : config_(config) {}
+  ~RtLoop();
+  RtLoop(const RtLoop&) = delete;
+  RtLoop& operator=(const RtLoop&) = delete;
 
   // Applies scheduling, affinity, mlockall and pre-faulting. Returns "" on success, else what
   // was refused; throws HalError instead when require_realtime is set.
@@ -94,6 +97,7 @@ class RtLoop {
   LatencyHistogram latency_;
   std::uint64_t overruns_ = 0;
   std::uint64_t ticks_ = 0;
+  int dma_latency_fd_ = -1;
 };
 
 }  // namespace planter::hal::linux_backend

@@ -57,8 +57,8 @@ SocketCanBus::SocketCanBus(std::string interface, SocketCanOptions options)
     restart_configured_ = can_set_restart_ms(interface_.c_str(), options_.restart_ms) == 0;
   if (!open_socket()) {
     const int err = errno;
-    throw HalError("can: cannot open a raw CAN socket on '" + interface_ + "': " +
-                   std::strerror(err) +
+    throw HalError("can: cannot open a raw CAN socket on '" + interface_ +
+                   "': " + std::strerror(err) +
                    (err == EAFNOSUPPORT ? " (this kernel has no CAN support)" : ""));
   }
   if (!interface_up(interface_)) link_lost();
@@ -152,8 +152,8 @@ bool SocketCanBus::receive(CanFrame& frame) {
   for (;;) {
     can_frame cf{};
     iovec iov{&cf, sizeof cf};
-    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(scm_timestamping)) +
-                                  CMSG_SPACE(sizeof(std::uint32_t)) + 64];
+    alignas(cmsghdr) char
+        control[CMSG_SPACE(sizeof(scm_timestamping)) + CMSG_SPACE(sizeof(std::uint32_t)) + 64];
     msghdr msg{};
     msg.msg_iov = &iov;
     msg.msg_iovlen = 1;

@@ -10,8 +10,8 @@
 namespace planter::hal::linux_backend {
 
 struct SocketCanOptions {
-  bool receive_own = false;          // a recorder wants its own frames too
-  std::uint32_t restart_ms = 100;    // bus-off auto-restart written through libsocketcan
+  bool receive_own = false;        // a recorder wants its own frames too
+  std::uint32_t restart_ms = 100;  // bus-off auto-restart written through libsocketcan
   std::int64_t reopen_interval_ns = 50'000'000;
 };
 

@@ -124,13 +124,12 @@ int run_devices(const std::string& scenario_path, const std::string& board_path,
   std::signal(SIGTERM, on_signal);
   std::signal(SIGINT, on_signal);
   const RealtimeDevicesResult r = run_realtime_devices(scenario, options, g_stop);
-  std::printf("devices ran %.1f s: %.2f m, %d seedlings planted; CAN in %llu out %llu lost %llu; "
-              "gpio writes %u; link downs %u reopens %u; late steps %llu\n",
-              r.seconds, r.distance_m, r.seedlings_planted,
-              static_cast<unsigned long long>(r.frames_in),
-              static_cast<unsigned long long>(r.frames_out),
-              static_cast<unsigned long long>(r.frames_lost), r.gpio_writes, r.link_downs,
-              r.reopens, static_cast<unsigned long long>(r.late_steps));
+  std::printf(
+      "devices ran %.1f s: %.2f m, %d seedlings planted; CAN in %llu out %llu lost %llu; "
+      "gpio writes %u; link downs %u reopens %u; late steps %llu\n",
+      r.seconds, r.distance_m, r.seedlings_planted, static_cast<unsigned long long>(r.frames_in),
+      static_cast<unsigned long long>(r.frames_out), static_cast<unsigned long long>(r.frames_lost),
+      r.gpio_writes, r.link_downs, r.reopens, static_cast<unsigned long long>(r.late_steps));
   return 0;
 }
 

@@ -105,7 +105,8 @@ RealtimeDevicesResult run_realtime_devices(const Scenario& scenario,
           enabled_since_ns = -1;
         }
         if (!moving && enabled_since_ns >= 0 &&
-            sim_ns - enabled_since_ns >= static_cast<std::int64_t>(scenario.plant.start_delay_s * 1e9)) {
+            sim_ns - enabled_since_ns >=
+                static_cast<std::int64_t>(scenario.plant.start_delay_s * 1e9)) {
           rig.plant().start_moving();
           moving = true;
         }
@@ -139,7 +140,8 @@ RealtimeDevicesResult run_realtime_devices(const Scenario& scenario,
   }
   result.seconds = static_cast<double>(sim_ns) * 1e-9;
   result.distance_m = rig.plant().ground().x_m();
-  for (const Seedling& s : rig.plant().seedlings().seedlings()) result.seedlings_planted += s.planted;
+  for (const Seedling& s : rig.plant().seedlings().seedlings())
+    result.seedlings_planted += s.planted;
   result.frames_in = bridge.frames_in();
   result.frames_out = bridge.frames_out();
   result.frames_lost = bridge.frames_lost();

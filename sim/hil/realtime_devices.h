@@ -13,7 +13,7 @@ namespace planter::sim {
 struct RealtimeDevicesOptions {
   std::string can_interface;
   std::string gpio_chip;
-  std::string truth_path;  // ground truth CSV, every 10 ms; empty = none
+  std::string truth_path;   // ground truth CSV, every 10 ms; empty = none
   double duration_s = 0.0;  // 0 = until the route's end plus the scenario's tail
 };
 

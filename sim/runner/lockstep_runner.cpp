@@ -65,7 +65,8 @@ Summary LockstepRunner::run() {
   const auto wall0 = std::chrono::steady_clock::now();
   while (time_s() < scenario_.max_duration_s) {
     step();
-    if (moving_ && finished_at_s_ < 0.0 && rig_->plant().ground().finished()) finished_at_s_ = time_s();
+    if (moving_ && finished_at_s_ < 0.0 && rig_->plant().ground().finished())
+      finished_at_s_ = time_s();
     if (finished_at_s_ >= 0.0 && time_s() >= finished_at_s_ + scenario_.tail_s) break;
   }
   const double wall =

@@ -52,8 +52,7 @@ void PlantRig::process_devices(std::int64_t now_ns) {
   force_->process(now_ns);
 }
 
-void PlantRig::step_plant(std::int64_t now_ns, std::int64_t dt_ns,
-                          hal::sim::SimEdgeSource& edges) {
+void PlantRig::step_plant(std::int64_t now_ns, std::int64_t dt_ns, hal::sim::SimEdgeSource& edges) {
   plant_->step(now_ns, dt_ns, *devices_, edges);
 }
 
@@ -61,7 +60,8 @@ void PlantRig::apply_faults(double t_s) {
   const FaultEvents& f = scenario_.faults;
   if (f.silent_node.empty() || f.silent_at_s < 0.0 || t_s < f.silent_at_s) return;
   for (std::size_t i = 0; i < kNodeCount; ++i) {
-    if (f.silent_node == node_role_name(static_cast<NodeRole>(i))) endpoints_[i]->set_unplugged(true);
+    if (f.silent_node == node_role_name(static_cast<NodeRole>(i)))
+      endpoints_[i]->set_unplugged(true);
   }
 }
 

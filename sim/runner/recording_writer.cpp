@@ -11,8 +11,10 @@ RecordingWriter::RecordingWriter(const std::string& path,
     : file_(std::fopen(path.c_str(), "w")), path_(path) {
   if (file_ == nullptr) throw std::runtime_error(path + ": cannot open for writing");
   for (const auto& [k, v] : metadata) std::fprintf(file_, "# %s: %s\n", k.c_str(), v.c_str());
-  std::fprintf(file_, "%s,v_ground,true_x_m,true_sigma,true_omega,true_clamp_force,"
-               "true_depth_mm,true_slip\n", config::kControllerColumns);
+  std::fprintf(file_,
+               "%s,v_ground,true_x_m,true_sigma,true_omega,true_clamp_force,"
+               "true_depth_mm,true_slip\n",
+               config::kControllerColumns);
 }
 
 RecordingWriter::~RecordingWriter() {
@@ -23,8 +25,7 @@ void RecordingWriter::write(const TickRecord& r) {
   const PlantTruth& p = r.truth;
   char row[512];
   config::format_controller_columns(row, sizeof row,
-                                    static_cast<double>(r.controller.time_ns) * 1e-9,
-                                    r.controller);
+                                    static_cast<double>(r.controller.time_ns) * 1e-9, r.controller);
   std::fprintf(file_, "%s,%.5f,%.5f,%.4f,%.5f,%.2f,%.3f,%.4f\n", row, p.v_mps, p.x_m, p.sigma,
                p.disc_omega_radps, p.clamp_force_N, p.depth_mm, p.slip);
 }

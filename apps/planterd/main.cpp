@@ -92,8 +92,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    return fail(2, std::string(e.what()) + " (planterd --help lists the options)");
   }
 
   config::BoardConfig board;

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "hal/linux/hal_error.h"
+#include "hal/linux/monotonic_clock.h"
 
 namespace planter::hal::linux_backend {
 namespace {
@@ -77,8 +78,7 @@ void GpiodEdgeSource::refill() {
       GpioEdge& e = pending_[pending_count_++];
       e.line = static_cast<std::uint8_t>(i);
       e.rising = events[k].event_type == GPIOD_LINE_EVENT_RISING_EDGE;
-      e.time_ns =
-          static_cast<std::int64_t>(events[k].ts.tv_sec) * 1'000'000'000 + events[k].ts.tv_nsec;
+      e.time_ns = timespec_ns(events[k].ts);
     }
   }
   // A and B come from two queues; the decoder needs them in the order they happened.

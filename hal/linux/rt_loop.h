@@ -56,7 +56,7 @@ class RtLoop {
   void run(Tick&& tick) {
     timespec next{};
     clock_gettime(CLOCK_MONOTONIC, &next);
-    std::int64_t next_ns = to_ns(next);
+    std::int64_t next_ns = timespec_ns(next);
     std::int64_t previous_ns = next_ns - config_.period_ns;
     for (;;) {
       next_ns += config_.period_ns;
@@ -83,9 +83,6 @@ class RtLoop {
   [[nodiscard]] const RtLoopConfig& config() const { return config_; }
 
  private:
-  static std::int64_t to_ns(const timespec& t) {
-    return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
-  }
   static timespec from_ns(std::int64_t ns) {
     timespec t{};
     t.tv_sec = static_cast<time_t>(ns / 1'000'000'000);

@@ -178,7 +178,7 @@ bool SocketCanBus::receive(CanFrame& frame) {
         std::memcpy(&ts, CMSG_DATA(c), sizeof ts);
         last_rx_hw_ = ts.ts[2].tv_sec != 0 || ts.ts[2].tv_nsec != 0;
         const timespec& t = last_rx_hw_ ? ts.ts[2] : ts.ts[0];
-        last_rx_ns_ = static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+        last_rx_ns_ = timespec_ns(t);
       }
     }
     if ((cf.can_id & CAN_ERR_FLAG) != 0) {

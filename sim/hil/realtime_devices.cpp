@@ -1,7 +1,5 @@
 #include "sim/hil/realtime_devices.h"
 
-#include <time.h>
-
 #include <csignal>
 #include <cstdio>
 #include <memory>
@@ -15,16 +13,6 @@
 #include "sim/runner/plant_rig.h"
 
 namespace planter::sim {
-namespace {
-
-std::int64_t realtime_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_REALTIME, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-}  // namespace
-
 RealtimeDevicesResult run_realtime_devices(const Scenario& scenario,
                                            const RealtimeDevicesOptions& options,
                                            const std::atomic<bool>& stop) {
@@ -87,14 +75,16 @@ RealtimeDevicesResult run_realtime_devices(const Scenario& scenario,
         if (!silent_shown && !faults.silent_node.empty() && faults.silent_at_s >= 0.0 &&
             t >= faults.silent_at_s) {
           std::fprintf(stderr, "planter-sim devices: %s silent at wall %.6f\n",
-                       faults.silent_node.c_str(), static_cast<double>(realtime_ns()) * 1e-9);
+                       faults.silent_node.c_str(),
+                       static_cast<double>(hal::linux_backend::realtime_now_ns()) * 1e-9);
           silent_shown = true;
         }
         const bool estop = faults.estop_at_s >= 0.0 && t >= faults.estop_at_s &&
                            (faults.estop_release_at_s < 0.0 || t < faults.estop_release_at_s);
         if (estop != estop_shown) {
           std::fprintf(stderr, "planter-sim devices: e-stop %s at wall %.6f\n",
-                       estop ? "pressed" : "released", static_cast<double>(realtime_ns()) * 1e-9);
+                       estop ? "pressed" : "released",
+                       static_cast<double>(hal::linux_backend::realtime_now_ns()) * 1e-9);
           estop_shown = estop;
         }
         gpio.set(kEstop, estop_active_low ? !estop : estop);
@@ -119,9 +109,9 @@ RealtimeDevicesResult run_realtime_devices(const Scenario& scenario,
           const PlantTruth& p = rig.plant().truth();
           std::fprintf(truth.get(), "%.3f,%.6f,%.5f,%.5f,%.4f,%.5f,%.2f,%.3f,%d,%d\n",
                        static_cast<double>(sim_ns) * 1e-9,
-                       static_cast<double>(realtime_ns()) * 1e-9, p.x_m, p.v_mps, p.sigma,
-                       p.disc_omega_radps, p.clamp_force_N, p.depth_mm, moving ? 1 : 0,
-                       estop ? 1 : 0);
+                       static_cast<double>(hal::linux_backend::realtime_now_ns()) * 1e-9, p.x_m,
+                       p.v_mps, p.sigma, p.disc_omega_radps, p.clamp_force_N, p.depth_mm,
+                       moving ? 1 : 0, estop ? 1 : 0);
         }
       }
     }

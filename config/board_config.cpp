@@ -44,6 +44,7 @@ void parse_node(TomlSection& nodes, NodeRole role, NodeConfig& out, std::set<int
   out.vendor_id = static_cast<std::uint32_t>(t->integer("vendor_id", 0, 0, 0xFFFFFFFF));
   out.product_code = static_cast<std::uint32_t>(t->integer("product_code", 0, 0, 0xFFFFFFFF));
   out.counts_per_unit = t->number("counts_per_unit", 1.0, 1e-6, 1e9);
+  out.zero_counts = t->number("zero_counts", 0.0, -1e9, 1e9);
   out.rated_torque = t->number("rated_torque", 1.0, 1e-6, 1e9);
   out.profile_velocity_units_per_s = t->number("profile_velocity", 0.0, 0.0, 1e6);
   for (int k = 0; k < 4; ++k) {
@@ -127,6 +128,11 @@ BoardConfig load_board(const std::string& path) {
     c.depth.target_mm = ctl->number("depth_mm", 102.0, 40.0, 160.0, "mm");
     c.depth.rate_mm_per_s = ctl->number("depth_rate_mm_per_s", 20.0, 1.0, 500.0, "mm/s");
     c.depth.ki_per_s = ctl->number("depth_ki_per_s", 0.5, 0.0, 20.0, "1/s");
+    c.depth.min_mm = ctl->number("depth_min_mm", c.depth.min_mm, -50.0, 500.0, "mm");
+    c.depth.max_mm = ctl->number("depth_max_mm", c.depth.max_mm, 10.0, 500.0, "mm");
+    if (c.depth.max_mm <= c.depth.min_mm) ctl->fail("depth_max_mm", "must be above depth_min_mm");
+    if (c.depth.target_mm > c.depth.max_mm)
+      ctl->fail("depth_mm", "must not be beyond depth_max_mm (the actuator's travel)");
     ctl->reject_unknown_keys();
   }
   if (auto sup = root.table("supervisor")) {

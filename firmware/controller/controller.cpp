@@ -122,7 +122,8 @@ void Controller::read_process_values() {
       static_cast<double>(depth.value(depth_torque_slot_)) * 1e-3 * depth.config().rated_torque;
   const NodeLink& force = link(NodeRole::kForceSensor);
   telemetry_.clamp_force_N =
-      static_cast<double>(force.value(force_slot_)) / force.config().counts_per_unit;
+      (static_cast<double>(force.value(force_slot_)) - force.config().zero_counts) /
+      force.config().counts_per_unit;
   telemetry_.sigma = sigma_loop_.sigma_seen(telemetry_.omega_radps, telemetry_.v_wheel_mps);
 }
 

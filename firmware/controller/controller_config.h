@@ -27,6 +27,7 @@ struct NodeConfig {
   std::array<canopen::PdoMapping, 4> rpdo{};
   std::array<canopen::PdoMapping, 4> tpdo{};
   double counts_per_unit = 1.0;  // drive position counts per rad (disc) or per mm (actuators)
+  double zero_counts = 0.0;      // sensors: the reading at zero load (tare, from calibration)
   double rated_torque = 1.0;     // 0x6077 per-mille base: N*m for the disc, N for actuators
   double profile_velocity_units_per_s = 0.0;  // position drives: 0x6081, in rad/s or mm/s
 };

@@ -27,7 +27,7 @@ NodeLink::NodeLink(const NodeConfig& config, const CanConfig& can)
   controlword_slot_ = slot(canopen::cia402::kControlword);
   statusword_slot_ = slot(canopen::cia402::kStatusword);
   target_position_slot_ = slot(canopen::cia402::kTargetPosition);
-  build_script();
+  build_node_config_script(cfg_, heartbeat_ms_, script_);
 }
 
 int NodeLink::add_object(std::uint16_t index, std::uint8_t sub, std::uint8_t bits) {
@@ -53,52 +53,6 @@ void NodeLink::set_value(int s, std::int64_t v) {
   if (s >= 0) objects_[static_cast<std::size_t>(s)].value = v;
 }
 
-void NodeLink::add_step(const Step& step) {
-  if (step_count_ < kMaxSteps) steps_[step_count_++] = step;
-}
-
-void NodeLink::build_script() {
-  // Identity first (CiA 302-2): no answer = B, wrong profile = C, wrong vendor = D, product = M.
-  add_step({false, 0x1000, 0, 4, cfg_.profile, 0xFFFF, 'C'});
-  if (cfg_.vendor_id != 0) add_step({false, 0x1018, 1, 4, cfg_.vendor_id, 0xFFFFFFFF, 'D'});
-  if (cfg_.product_code != 0) add_step({false, 0x1018, 2, 4, cfg_.product_code, 0xFFFFFFFF, 'M'});
-  if (cfg_.profile == 402) {
-    const bool velocity = cfg_.role == NodeRole::kDiscDrive;
-    add_step({true, canopen::cia402::kModesOfOperation, 0, 1,
-              static_cast<std::uint32_t>(velocity ? canopen::cia402::kModeProfileVelocity
-                                                  : canopen::cia402::kModeProfilePosition),
-              0, 'J'});
-    if (!velocity && cfg_.profile_velocity_units_per_s > 0) {
-      add_step(
-          {true, canopen::cia402::kProfileVelocity, 0, 4,
-           static_cast<std::uint32_t>(cfg_.profile_velocity_units_per_s * cfg_.counts_per_unit), 0,
-           'J'});
-    }
-  }
-  // PDO configuration in the order CiA 301 requires: invalidate, clear, map, count, validate.
-  auto configure = [this](std::uint16_t comm, std::uint16_t map, std::uint16_t cob,
-                          const canopen::PdoMapping& m, std::uint8_t transmission) {
-    add_step({true, comm, 1, 4, 0x80000000u | cob, 0, 'J'});
-    if (m.count == 0) return;  // left invalid
-    add_step({true, map, 0, 1, 0, 0, 'J'});
-    for (std::uint8_t i = 0; i < m.count; ++i) {
-      add_step(
-          {true, map, static_cast<std::uint8_t>(i + 1), 4, m.entries[i].mapping_value(), 0, 'J'});
-    }
-    add_step({true, map, 0, 1, m.count, 0, 'J'});
-    add_step({true, comm, 2, 1, transmission, 0, 'J'});
-    add_step({true, comm, 1, 4, cob, 0, 'J'});
-  };
-  for (std::uint16_t k = 0; k < 4; ++k) {
-    configure(static_cast<std::uint16_t>(0x1800 + k), static_cast<std::uint16_t>(0x1A00 + k),
-              static_cast<std::uint16_t>(canopen::kTpdoBase[k] + cfg_.node_id), cfg_.tpdo[k], 1);
-    configure(static_cast<std::uint16_t>(0x1400 + k), static_cast<std::uint16_t>(0x1600 + k),
-              static_cast<std::uint16_t>(canopen::kRpdoBase[k] + cfg_.node_id), cfg_.rpdo[k], 255);
-  }
-  // Heartbeat last, so its watch starts from a configured node.
-  add_step({true, 0x1017, 0, 2, heartbeat_ms_, 0, 'K'});
-}
-
 void NodeLink::start_boot(std::int64_t now_ns, hal::CanBus& bus) {
   step_ = 0;
   boot_error_ = 0;
@@ -109,7 +63,7 @@ void NodeLink::start_boot(std::int64_t now_ns, hal::CanBus& bus) {
 }
 
 void NodeLink::start_step(std::int64_t now_ns, hal::CanBus& bus) {
-  const Step& s = steps_[step_];
+  const ConfigStep& s = script_.steps[step_];
   if (s.write) {
     sdo_.start_write_u32(s.index, s.sub, s.value, s.size, now_ns, bus);
   } else {
@@ -130,20 +84,20 @@ void NodeLink::step_boot(std::int64_t now_ns, hal::CanBus& bus) {
       boot_state_ = BootState::kFailed;
       return;
     case canopen::SdoStatus::kAborted:
-      boot_error_ = steps_[step_].error;
+      boot_error_ = script_.steps[step_].error;
       boot_state_ = BootState::kFailed;
       return;
     case canopen::SdoStatus::kDone:
       break;
   }
-  const Step& s = steps_[step_];
+  const ConfigStep& s = script_.steps[step_];
   if (!s.write && (static_cast<std::uint32_t>(sdo_.value()) & s.check_mask) != s.value) {
     boot_error_ = s.error;
     boot_state_ = BootState::kFailed;
     return;
   }
   sdo_.reset();
-  if (++step_ >= step_count_) {
+  if (++step_ >= script_.count) {
     boot_state_ = BootState::kConfigured;
     return;
   }

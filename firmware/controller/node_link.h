@@ -8,6 +8,7 @@
 #include "firmware/canopen/heartbeat_consumer.h"
 #include "firmware/canopen/sdo_client.h"
 #include "firmware/controller/controller_config.h"
+#include "firmware/controller/node_config_script.h"
 
 namespace planter {
 
@@ -15,7 +16,6 @@ class NodeLink {
  public:
   enum class BootState : std::uint8_t { kIdle, kRunning, kConfigured, kFailed };
   static constexpr std::size_t kMaxObjects = 24;
-  static constexpr std::size_t kMaxSteps = 96;
 
   NodeLink(const NodeConfig& config, const CanConfig& can);
 
@@ -58,18 +58,7 @@ class NodeLink {
     std::uint8_t bits;
     std::int64_t value;
   };
-  struct Step {
-    bool write;
-    std::uint16_t index;
-    std::uint8_t sub;
-    std::uint8_t size;
-    std::uint32_t value;
-    std::uint32_t check_mask;  // reads: (value & mask) must equal `value` field
-    char error;
-  };
   int add_object(std::uint16_t index, std::uint8_t sub, std::uint8_t bits);
-  void add_step(const Step& step);
-  void build_script();
   void start_step(std::int64_t now_ns, hal::CanBus& bus);
 
   NodeConfig cfg_;
@@ -80,8 +69,7 @@ class NodeLink {
   std::size_t object_count_ = 0;
   std::array<std::array<int, canopen::PdoMapping::kMaxEntries>, 4> tpdo_slots_{};
   std::array<std::array<int, canopen::PdoMapping::kMaxEntries>, 4> rpdo_slots_{};
-  std::array<Step, kMaxSteps> steps_{};
-  std::size_t step_count_ = 0;
+  NodeConfigScript script_;
   std::size_t step_ = 0;
   std::array<std::uint8_t, 8> read_buffer_{};
   BootState boot_state_ = BootState::kIdle;

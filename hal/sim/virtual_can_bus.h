@@ -23,6 +23,7 @@ class VirtualCanEndpoint final : public CanBus {
   // Unplugged: frames sent are lost and nothing is received (a node that stops answering).
   void set_unplugged(bool unplugged) { unplugged_ = unplugged; }
   [[nodiscard]] bool unplugged() const { return unplugged_; }
+  [[nodiscard]] std::size_t pending() const { return rx_.size(); }
 
  private:
   friend class VirtualCanBus;

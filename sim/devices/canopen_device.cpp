@@ -7,9 +7,14 @@ namespace planter::sim {
 using canopen::Access;
 
 CanopenDevice::CanopenDevice(const DeviceIdentity& id, hal::CanBus& bus)
-    : identity_(id), bus_(bus), sdo_(id.node_id, od_) {
+    : identity_(id),
+      bus_(bus),
+      sdo_(id.node_id, od_),
+      lss_({id.vendor_id, id.product_code, id.revision, id.serial}, id.node_id) {
   od_.add(0x1000, 0, 4, Access::kConst, id.device_type);
   od_.add(0x1001, 0, 1, Access::kReadOnly, 0);
+  od_.add(0x1003, 0, 1, Access::kReadWrite, 0);  // error history: count; write 0 clears
+  for (std::uint8_t s = 1; s <= kErrorHistoryDepth; ++s) od_.add(0x1003, s, 4, Access::kReadOnly);
   od_.add_string(0x1008, 0, id.name);
   od_.add_string(0x1009, 0, "sim-1");
   od_.add_string(0x100A, 0, "0.1.0");
@@ -38,7 +43,29 @@ CanopenDevice::CanopenDevice(const DeviceIdentity& id, hal::CanBus& bus)
   reset_communication(0);
 }
 
+namespace {
+
+bool is_comm_object(std::uint16_t index) {
+  return index == 0x1017 || (index >= 0x1400 && index <= 0x1403) ||
+         (index >= 0x1600 && index <= 0x1603) || (index >= 0x1800 && index <= 0x1803) ||
+         (index >= 0x1A00 && index <= 0x1A03);
+}
+
+}  // namespace
+
+void CanopenDevice::set_node_id(std::uint8_t node_id) {
+  identity_.node_id = node_id;
+  sdo_.set_node_id(node_id);
+}
+
 void CanopenDevice::reset_communication(std::int64_t now_ns) {
+  set_node_id(lss_.active_node_id());
+  nmt_ = canopen::NmtState::kPreOperational;
+  next_heartbeat_ns_ = now_ns;
+  if (!stored_comm_.empty()) {
+    for (const auto& e : stored_comm_) od_.set(e.index, e.sub, e.value);
+    return;
+  }
   // Default connection set, every PDO invalid until the master configures it.
   for (std::uint16_t k = 0; k < 4; ++k) {
     od_.set(static_cast<std::uint16_t>(0x1400 + k), 1,
@@ -49,12 +76,28 @@ void CanopenDevice::reset_communication(std::int64_t now_ns) {
     od_.set(static_cast<std::uint16_t>(0x1A00 + k), 0, 0);
   }
   od_.set(0x1017, 0, 0);
-  nmt_ = canopen::NmtState::kPreOperational;
-  next_heartbeat_ns_ = now_ns;
+}
+
+void CanopenDevice::after_sdo_write() {
+  // 0x1010:1 = "save" stores the communication parameters; the entry reads 1 again after.
+  constexpr std::uint64_t kSaveSignature = 0x65766173;
+  if (od_.get(0x1010, 1) == kSaveSignature) {
+    stored_comm_.clear();
+    for (std::uint16_t index = 0x1017; index <= 0x1A03; ++index) {
+      if (!is_comm_object(index)) continue;
+      for (std::uint8_t sub = 0; sub <= 8; ++sub) {
+        if (const auto* e = od_.find(index, sub)) stored_comm_.push_back(*e);
+      }
+    }
+    od_.set(0x1010, 1, 1);
+  }
+  if (od_.get(0x1003, 0) != 0) od_.set(0x1003, 0, error_count_);  // only 0 may be written
+  error_count_ = static_cast<std::uint8_t>(od_.get(0x1003, 0));
 }
 
 void CanopenDevice::power_on(std::int64_t now_ns) {
   reset_communication(now_ns);
+  if (unconfigured()) return;  // silent until LSS gives it an ID
   send_heartbeat(static_cast<std::uint8_t>(canopen::NmtState::kBootUp));
 }
 
@@ -74,12 +117,26 @@ void CanopenDevice::send_emcy(std::uint16_t code, std::uint8_t error_register) {
   f.data[1] = static_cast<std::uint8_t>(code >> 8);
   f.data[2] = error_register;
   od_.set(0x1001, 0, error_register);
+  if (code != 0) {
+    // Newest first in 0x1003:1.
+    for (std::uint8_t s = kErrorHistoryDepth; s > 1; --s) od_.set(0x1003, s, od_.get(0x1003, s - 1));
+    od_.set(0x1003, 1, code);
+    if (error_count_ < kErrorHistoryDepth) ++error_count_;
+    od_.set(0x1003, 0, error_count_);
+  }
+  if (unconfigured()) return;
   bus_.send(f);
 }
 
 void CanopenDevice::process(std::int64_t now_ns) {
   hal::CanFrame f;
   while (bus_.receive(f)) handle(f, now_ns);
+  if (sdo_.writes() != sdo_writes_seen_) {
+    sdo_writes_seen_ = sdo_.writes();
+    after_sdo_write();
+    on_rpdo();  // the application sees SDO-written commands too (commissioning moves)
+  }
+  if (unconfigured()) return;
   const auto period_ms = od_.get(0x1017, 0);
   if (period_ms > 0 && now_ns >= next_heartbeat_ns_) {
     send_heartbeat(static_cast<std::uint8_t>(nmt_));
@@ -100,6 +157,14 @@ canopen::PdoMapping CanopenDevice::mapping(std::uint16_t map_index) const {
 void CanopenDevice::handle(const hal::CanFrame& f, std::int64_t now_ns) {
   if (!f.is_standard_data()) return;
   const std::uint16_t cob = f.cob_id();
+  if (cob == canopen::kLssMasterCobId) {
+    if (lss_.on_frame(f, bus_) == canopen::LssSlave::Event::kActivateNodeId) {
+      lss_.reset_communication();
+      power_on(now_ns);
+    }
+    return;
+  }
+  if (unconfigured()) return;
   if (cob == canopen::kNmtCobId) {
     if (f.dlc < 2 || (f.data[1] != 0 && f.data[1] != identity_.node_id)) return;
     switch (static_cast<canopen::NmtCommand>(f.data[0])) {
@@ -114,9 +179,11 @@ void CanopenDevice::handle(const hal::CanFrame& f, std::int64_t now_ns) {
         break;
       case canopen::NmtCommand::kResetNode:
         on_reset();
+        lss_.reset_communication();
         power_on(now_ns);
         break;
       case canopen::NmtCommand::kResetCommunication:
+        lss_.reset_communication();
         power_on(now_ns);
         break;
     }

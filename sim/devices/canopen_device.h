@@ -3,8 +3,10 @@
 // PDO engine driven by its own communication objects (so the master's configuration is real).
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "firmware/canopen/cob_id.h"
+#include "firmware/canopen/lss.h"
 #include "firmware/canopen/object_dictionary.h"
 #include "firmware/canopen/pdo.h"
 #include "firmware/canopen/sdo_server.h"
@@ -13,7 +15,7 @@
 namespace planter::sim {
 
 struct DeviceIdentity {
-  std::uint8_t node_id = 1;
+  std::uint8_t node_id = 1;  // 0xFF: unconfigured, waits for an ID over LSS
   std::uint32_t device_type = 0;  // 0x1000
   std::uint32_t vendor_id = 0;
   std::uint32_t product_code = 0;
@@ -24,6 +26,7 @@ struct DeviceIdentity {
 
 class CanopenDevice {
  public:
+  static constexpr std::uint8_t kErrorHistoryDepth = 8;
   CanopenDevice(const DeviceIdentity& identity, hal::CanBus& bus);
   virtual ~CanopenDevice() = default;
 
@@ -34,6 +37,9 @@ class CanopenDevice {
 
   [[nodiscard]] canopen::NmtState nmt_state() const { return nmt_; }
   [[nodiscard]] std::uint8_t node_id() const { return identity_.node_id; }
+  [[nodiscard]] bool unconfigured() const {
+    return identity_.node_id == canopen::kUnconfiguredNodeId;
+  }
   canopen::ObjectDictionary& od() { return od_; }
   [[nodiscard]] const canopen::ObjectDictionary& od() const { return od_; }
   // Sends an EMCY frame (code 0 = error reset).
@@ -51,11 +57,18 @@ class CanopenDevice {
   void on_sync();
   [[nodiscard]] canopen::PdoMapping mapping(std::uint16_t map_index) const;
   void send_heartbeat(std::uint8_t state);
+  void after_sdo_write();
+  void set_node_id(std::uint8_t node_id);
 
   DeviceIdentity identity_;
   hal::CanBus& bus_;
   canopen::ObjectDictionary od_;
   canopen::SdoServer sdo_;
+  canopen::LssSlave lss_;
+  std::uint32_t sdo_writes_seen_ = 0;
+  std::uint8_t error_count_ = 0;
+  // Communication objects saved by 0x1010:1 = "save"; restored on reset communication.
+  std::vector<canopen::ObjectEntry> stored_comm_;
   canopen::NmtState nmt_ = canopen::NmtState::kPreOperational;
   std::int64_t next_heartbeat_ns_ = 0;
   std::uint32_t sync_count_ = 0;

@@ -44,7 +44,16 @@ void Cia402DriveDevice::on_rpdo() {
   state_ = c402::apply_controlword(state_, cw, previous_controlword_);
   const bool new_setpoint = (cw & c402::controlword::kNewSetPoint) != 0 &&
                             (previous_controlword_ & c402::controlword::kNewSetPoint) == 0;
-  if (new_setpoint && enabled()) position_setpoint_ = o.get_signed(c402::kTargetPosition, 0);
+  if (new_setpoint && enabled()) {
+    if (mode() == c402::kModeHoming) {
+      // Homing on the lower end stop: drive down until the actuator stops there.
+      homing_ = true;
+      homed_ = false;
+      position_setpoint_ = -(std::int64_t{1} << 40);
+    } else {
+      position_setpoint_ = o.get_signed(c402::kTargetPosition, 0);
+    }
+  }
   previous_controlword_ = cw;
   o.set(c402::kModesDisplay, 0, o.get(c402::kModesOfOperation, 0));
   publish_status();
@@ -59,6 +68,8 @@ void Cia402DriveDevice::on_reset() {
 void Cia402DriveDevice::publish_status() {
   std::uint16_t sw = c402::encode_state(state_);
   sw |= 0x0010;  // voltage enabled
+  if (homed_ && mode() == c402::kModeHoming)
+    sw |= c402::statusword::kTargetReached | c402::statusword::kSetPointAcknowledge;
   od().set(c402::kStatusword, 0, sw);
 }
 
@@ -68,6 +79,17 @@ void Cia402DriveDevice::set_actual(std::int64_t position, std::int64_t velocity,
   o.set(c402::kPositionActual, 0, static_cast<std::uint64_t>(position));
   o.set(c402::kVelocityActual, 0, static_cast<std::uint64_t>(velocity));
   o.set(c402::kTorqueActual, 0, static_cast<std::uint64_t>(static_cast<std::int64_t>(torque)));
+  if (homing_) {
+    // The end stop is reached when the position stops falling.
+    homing_stalled_steps_ = position >= last_position_ ? homing_stalled_steps_ + 1 : 0;
+    if (homing_stalled_steps_ >= 50) {
+      homing_ = false;
+      homed_ = true;
+      position_setpoint_ = position;
+      publish_status();
+    }
+  }
+  last_position_ = position;
   if (mode() == c402::kModeProfilePosition && std::llabs(position - position_setpoint_) < 20) {
     o.set(c402::kStatusword, 0, o.get(c402::kStatusword, 0) | c402::statusword::kTargetReached);
   }

@@ -33,6 +33,10 @@ class Cia402DriveDevice final : public CanopenDevice {
   canopen::cia402::State state_ = canopen::cia402::State::kSwitchOnDisabled;
   std::uint16_t previous_controlword_ = 0;
   std::int64_t position_setpoint_ = 0;
+  bool homing_ = false;
+  bool homed_ = false;
+  int homing_stalled_steps_ = 0;  // plant steps without the position falling
+  std::int64_t last_position_ = 0;
 };
 
 class Cia404ForceSensor final : public CanopenDevice {

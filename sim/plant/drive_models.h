@@ -67,18 +67,22 @@ class DiscDriveModel {
 // A linear position actuator: first-order lag T_a towards its set-point with a rate limit.
 class LinearActuatorModel {
  public:
-  explicit LinearActuatorModel(double time_constant_s) : tau_s_(time_constant_s) {}
+  // Travel between the end stops [min_mm, max_mm] (infinite by default).
+  explicit LinearActuatorModel(double time_constant_s, double min_mm = -1e9, double max_mm = 1e9)
+      : tau_s_(time_constant_s), min_mm_(min_mm), max_mm_(max_mm) {}
   void step(double setpoint_mm, double rate_limit_mm_per_s, bool enabled, double dt_s) {
     if (!enabled) return;  // holds (quick stop or disabled: brake engaged)
     double v = (setpoint_mm - x_mm_) / tau_s_;
     if (rate_limit_mm_per_s > 0.0) v = std::clamp(v, -rate_limit_mm_per_s, rate_limit_mm_per_s);
-    x_mm_ += v * dt_s;
+    x_mm_ = std::clamp(x_mm_ + v * dt_s, min_mm_, max_mm_);
   }
   [[nodiscard]] double position_mm() const { return x_mm_; }
   void set_position_mm(double x) { x_mm_ = x; }
 
  private:
   double tau_s_;
+  double min_mm_;
+  double max_mm_;
   double x_mm_ = 0.0;
 };
 

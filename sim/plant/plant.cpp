@@ -15,7 +15,7 @@ Plant::Plant(const PlantConfig& config, const ControllerConfig& board, std::uint
       wheel_(config.soil.wheel_radius_m, board.encoder.counts_per_rev),
       disc_(config.drive, config.effects),
       roller_(config.drive.actuator_time_constant_s),
-      depth_(config.drive.actuator_time_constant_s),
+      depth_(config.drive.actuator_time_constant_s, 0.0, config.drive.depth_travel_max_mm),
       seedlings_(config, seed ^ 0x5eed11u),
       noise_rng_(seed) {}
 
@@ -64,7 +64,8 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   const double clamp_force = std::max(0.0, elastic - relaxation_N_);
   std::normal_distribution<double> noise(0.0, 1.0);
   const double vibration = fx.vibration_hz > 0.0 ? std::sin(kTwoPi * fx.vibration_hz * t) : 0.0;
-  const double measured = clamp_force + cfg_.drive.force_noise_N * noise(noise_rng_) +
+  const double measured = (clamp_force + fixture_load_N_) * (1.0 + 0.01 * fx.force_gain_pct) +
+                          cfg_.drive.force_noise_N * noise(noise_rng_) +
                           fx.force_offset_N + fx.force_drift_N_per_min * t / 60.0 +
                           fx.vibration_force_N * vibration;
   dev.force.set_force_N(measured);

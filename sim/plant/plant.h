@@ -36,6 +36,8 @@ class Plant {
   Plant(const PlantConfig& config, const ControllerConfig& board, std::uint64_t seed);
 
   void start_moving() { ground_.start(); }
+  // A known weight hung on the load cell (commissioning), in newtons.
+  void set_fixture_load_N(double load_N) { fixture_load_N_ = load_N; }
   void step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& devices,
             hal::sim::SimEdgeSource& edges);
 
@@ -54,6 +56,7 @@ class Plant {
   SeedlingProcess seedlings_;
   std::mt19937_64 noise_rng_;
   double relaxation_N_ = 0.0;
+  double fixture_load_N_ = 0.0;
   PlantTruth truth_;
 };
 

@@ -65,6 +65,7 @@ struct DriveModelConfig {
   double clamp_n = 1.3;
   double seedling_thickness_gain = 0.5;  // extra lip compression per mm of seedling over reference
   double force_noise_N = 1.0;
+  double depth_travel_max_mm = 165.0;  // mechanical end stop of the opener actuator
 };
 
 struct Effects {
@@ -79,6 +80,7 @@ struct Effects {
   double vibration_force_N = 0.0;
   double vibration_tilt_deg = 0.0;
   double force_offset_N = 0.0;  // load-cell offset
+  double force_gain_pct = 0.0;  // load-cell span error
   double force_drift_N_per_min = 0.0;
 };
 

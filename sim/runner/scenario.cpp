@@ -97,6 +97,8 @@ Scenario load_scenario(const std::string& path) {
     d.clamp_x0_mm = t->number("clamp_x0_mm", d.clamp_x0_mm, 0.0, 50.0, "mm");
     d.clamp_n = t->number("clamp_n", d.clamp_n, 1.0, 3.0);
     d.force_noise_N = t->number("force_noise_N", d.force_noise_N, 0.0, 50.0, "N");
+    d.depth_travel_max_mm =
+        t->number("depth_travel_max_mm", d.depth_travel_max_mm, 10.0, 500.0, "mm");
     t->reject_unknown_keys();
   }
   if (auto t = root.table("effects")) {
@@ -112,6 +114,7 @@ Scenario load_scenario(const std::string& path) {
     e.vibration_force_N = t->number("vibration_force_N", 0.0, 0.0, 100.0, "N");
     e.vibration_tilt_deg = t->number("vibration_tilt_deg", 0.0, 0.0, 30.0, "deg");
     e.force_offset_N = t->number("force_offset_N", 0.0, -100.0, 100.0, "N");
+    e.force_gain_pct = t->number("force_gain_pct", 0.0, -50.0, 50.0, "%");
     e.force_drift_N_per_min = t->number("force_drift_N_per_min", 0.0, -10.0, 10.0, "N/min");
     t->reject_unknown_keys();
   }

@@ -1,0 +1,145 @@
+#include "apps/planter-can/board_file_edit.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "config/board_config.h"
+#include "config/config_error.h"
+
+namespace planter::cantool {
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t\r");
+  if (a == std::string::npos) return "";
+  const auto b = s.find_last_not_of(" \t\r");
+  return s.substr(a, b - a + 1);
+}
+
+// "[nodes.force_sensor]  # comment" -> "nodes.force_sensor"; "" when not a header.
+std::string header_name(const std::string& line) {
+  const std::string t = trim(line);
+  if (t.size() < 3 || t[0] != '[' || t[1] == '[') return "";
+  const auto close = t.find(']');
+  if (close == std::string::npos) return "";
+  return trim(t.substr(1, close - 1));
+}
+
+bool write_all(int fd, const std::string& data) {
+  std::size_t off = 0;
+  while (off < data.size()) {
+    const ssize_t n = ::write(fd, data.data() + off, data.size() - off);
+    if (n <= 0) return false;
+    off += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool edit_board_text(std::string& text, const std::vector<BoardEdit>& edits, std::string& error) {
+  std::vector<std::string> lines;
+  {
+    std::istringstream in(text);
+    std::string l;
+    while (std::getline(in, l)) lines.push_back(l);
+  }
+  for (const auto& e : edits) {
+    std::size_t header = lines.size();
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      if (header_name(lines[i]) == e.table) header = i;
+    }
+    if (header == lines.size()) {
+      error = "table [" + e.table + "] is missing";
+      return false;
+    }
+    std::size_t end = header + 1;
+    while (end < lines.size() && header_name(lines[end]).empty()) ++end;
+    bool replaced = false;
+    std::size_t last_key = header;
+    for (std::size_t i = header + 1; i < end; ++i) {
+      const std::string t = trim(lines[i]);
+      if (t.empty() || t[0] == '#') continue;
+      last_key = i;
+      const auto eq = t.find('=');
+      if (eq == std::string::npos || trim(t.substr(0, eq)) != e.key) continue;
+      // Keep the comment after the value (values here are numbers: no '#' inside them).
+      const auto hash = lines[i].find('#', lines[i].find('='));
+      std::string comment;
+      if (hash != std::string::npos) comment = "  " + lines[i].substr(hash);
+      const std::string indent = lines[i].substr(0, lines[i].find_first_not_of(" \t"));
+      lines[i] = indent + e.key + " = " + e.value + comment;
+      replaced = true;
+      break;
+    }
+    if (!replaced) {
+      lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(last_key + 1), e.key + " = " + e.value);
+    }
+  }
+  text.clear();
+  for (const auto& l : lines) text += l + "\n";
+  return true;
+}
+
+bool write_board_edits(const std::string& path, const std::vector<BoardEdit>& edits,
+                       std::string& error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    error = path + ": cannot be read";
+    return false;
+  }
+  std::stringstream buf;
+  buf << in.rdbuf();
+  const std::string original = buf.str();
+  std::string text = original;
+  if (!edit_board_text(text, edits, error)) {
+    error = path + ": " + error;
+    return false;
+  }
+  const std::string tmp = path + ".tmp";
+  const std::string backup = path + ".bak";
+  auto put = [&](const std::string& file, const std::string& data) {
+    const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) return false;
+    const bool ok = write_all(fd, data) && ::fsync(fd) == 0;
+    ::close(fd);
+    return ok;
+  };
+  if (!put(tmp, text)) {
+    error = tmp + ": cannot be written";
+    ::unlink(tmp.c_str());
+    return false;
+  }
+  try {
+    (void)config::load_board(tmp);  // the edited board must still be a valid board
+  } catch (const config::ConfigError& e) {
+    error = std::string("the edited board would not load: ") + e.what();
+    ::unlink(tmp.c_str());
+    return false;
+  }
+  if (!put(backup, original)) {
+    error = backup + ": cannot be written";
+    ::unlink(tmp.c_str());
+    return false;
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    error = path + ": cannot be replaced";
+    ::unlink(tmp.c_str());
+    return false;
+  }
+  // The rename is durable once the directory is synced.
+  const auto slash = path.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash);
+  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dfd >= 0) {
+    ::fsync(dfd);
+    ::close(dfd);
+  }
+  return true;
+}
+
+}  // namespace planter::cantool

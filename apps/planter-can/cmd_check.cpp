@@ -1,0 +1,184 @@
+#include "apps/planter-can/cmd_check.h"
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <ostream>
+
+#include "apps/planter-can/bus_watch.h"
+#include "apps/planter-can/cmd_scan.h"
+#include "apps/planter-can/object_names.h"
+#include "apps/planter-can/operator_prompt.h"
+#include "apps/planter-can/sdo_session.h"
+#include "firmware/canopen/cob_id.h"
+#include "firmware/sensing/quadrature_decoder.h"
+
+namespace planter::cantool {
+namespace {
+
+struct Item {
+  std::string name;
+  bool pass = false;
+  std::string detail;
+};
+
+std::string fmt(const char* format, auto... args) {
+  char b[256];
+  std::snprintf(b, sizeof b, format, args...);
+  return b;
+}
+
+}  // namespace
+
+int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
+  if (ctx.board == nullptr) {
+    ctx.err << "planter-can: check needs --board (it checks the bus against it)\n";
+    return kExitBadInput;
+  }
+  const ControllerConfig& cfg = ctx.board->controller;
+  std::vector<Item> items;
+  BusWatch watch;
+  SdoSession sdo(ctx.link, ctx.sdo_timeout_ns);
+  sdo.set_observer([&watch](const hal::CanFrame& f, std::int64_t t) { watch.on_frame(f, t); });
+  const auto counters_before = ctx.link.counters();
+  Progress progress(ctx.err, ctx.progress);
+
+  // 1. Presence, identity and profile, error register.
+  for (const auto& n : cfg.nodes) {
+    const std::string who = fmt("%s (node %u)", node_role_name(n.role), n.node_id);
+    const SdoResult type = sdo.read(n.node_id, 0x1000, 0);
+    if (!type.ok()) {
+      items.push_back({who + " present", false, type.error_text(n.node_id, ctx.sdo_timeout_ns)});
+      continue;
+    }
+    const auto profile = static_cast<std::uint16_t>(type.value() & 0xFFFF);
+    items.push_back({who + " profile", profile == n.profile,
+                     fmt("CiA %u, board expects %u", profile, n.profile)});
+    const SdoResult vendor = sdo.read(n.node_id, 0x1018, 1);
+    const SdoResult product = sdo.read(n.node_id, 0x1018, 2);
+    const bool id_ok = vendor.ok() && product.ok() &&
+                       (n.vendor_id == 0 || vendor.value() == n.vendor_id) &&
+                       (n.product_code == 0 || product.value() == n.product_code);
+    items.push_back({who + " identity", id_ok,
+                     fmt("vendor 0x%08X product 0x%08X (board 0x%08X 0x%08X)",
+                         static_cast<unsigned>(vendor.value()), static_cast<unsigned>(product.value()),
+                         n.vendor_id, n.product_code)});
+    const SdoResult er = sdo.read(n.node_id, 0x1001, 0);
+    items.push_back({who + " error register", er.ok() && er.value() == 0,
+                     er.ok() ? fmt("0x%02X", static_cast<unsigned>(er.value()))
+                             : er.error_text(n.node_id, ctx.sdo_timeout_ns)});
+  }
+
+  // 2. Listen: heartbeats, PDO rates, SYNC, EMCY, bus load.
+  const std::int64_t t0 = ctx.link.now_ns();
+  watch.start(t0);
+  hal::CanFrame f;
+  while (ctx.link.now_ns() - t0 < opt.listen_ns) {
+    if (ctx.link.receive_until(f, t0 + opt.listen_ns)) watch.on_frame(f, ctx.link.now_ns());
+    progress.update("listening to the bus...");
+  }
+  progress.done();
+  const std::int64_t t1 = ctx.link.now_ns();
+  const double hb_ms = cfg.can.heartbeat_producer_ms;
+  const double hb_limit_ms = hb_ms * cfg.can.heartbeat_consumer_factor;
+  for (const auto& n : cfg.nodes) {
+    const NodeSeen& s = watch.node(n.node_id);
+    const std::string who = fmt("%s (node %u)", node_role_name(n.role), n.node_id);
+    const double gap_ms = static_cast<double>(s.max_heartbeat_gap_ns) * 1e-6;
+    const double since_ms = static_cast<double>(t1 - s.last_heartbeat_ns) * 1e-6;
+    const bool ok = s.heartbeats >= 2 && gap_ms <= hb_limit_ms && since_ms <= hb_limit_ms;
+    items.push_back({who + " heartbeat", ok,
+                     s.heartbeats == 0
+                         ? fmt("none in %.1f s (is 0x1017 set? run configure)", static_cast<double>(opt.listen_ns) * 1e-9)
+                         : fmt("%u beats, longest gap %.0f ms (limit %.0f ms), state %s", s.heartbeats,
+                               gap_ms, hb_limit_ms, nmt_state_name(s.state))});
+    if (s.emcy_count > 0) {
+      items.push_back({who + " EMCY", false,
+                       fmt("%u EMCY, last 0x%04X %s", s.emcy_count, s.last_emcy_code,
+                           emcy_code_text(s.last_emcy_code))});
+    }
+  }
+  const auto sync_it = watch.cobs().find(canopen::kSyncCobId);
+  const double sync_hz = sync_it == watch.cobs().end() ? 0.0 : sync_it->second.rate_hz();
+  const double sync_expected_hz = 1e9 / static_cast<double>(cfg.can.sync_period_ns);
+  items.push_back({"SYNC rate", std::fabs(sync_hz - sync_expected_hz) <= 0.05 * sync_expected_hz,
+                   sync_hz == 0.0 ? std::string("no SYNC on the bus (is planterd running?)")
+                                  : fmt("%.1f Hz, board %.1f Hz", sync_hz, sync_expected_hz)});
+  for (const auto& n : cfg.nodes) {
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (n.tpdo[k].count == 0) continue;
+      const auto cob = static_cast<std::uint16_t>(canopen::kTpdoBase[k] + n.node_id);
+      const auto it = watch.cobs().find(cob);
+      const double hz = it == watch.cobs().end() ? 0.0 : it->second.rate_hz();
+      // Transmission type 1: one TPDO per SYNC.
+      const bool ok = sync_hz > 0.0 && std::fabs(hz - sync_hz) <= 0.05 * sync_hz;
+      items.push_back({fmt("%s TPDO%zu rate", node_role_name(n.role), k + 1), ok,
+                       fmt("%.1f Hz on 0x%03X, expected %.1f Hz (every SYNC)", hz, cob,
+                           sync_hz > 0 ? sync_hz : sync_expected_hz)});
+    }
+  }
+  const double load = watch.bus_load_pct(cfg.can.bitrate_bps, t1);
+  items.push_back({"bus load", load <= opt.max_bus_load_pct,
+                   fmt("%.1f %% at %u bit/s (limit %.0f %%)", load, cfg.can.bitrate_bps,
+                       opt.max_bus_load_pct)});
+  const auto counters = ctx.link.counters();
+  const auto new_errors = counters.error_frames - counters_before.error_frames + watch.error_frames();
+  items.push_back({"error frames", new_errors == 0 && !counters.bus_off,
+                   fmt("%llu error frames%s", static_cast<unsigned long long>(new_errors),
+                       counters.bus_off ? ", bus-off" : "")});
+  items.push_back({"lost frames", counters.rx_overflow == counters_before.rx_overflow &&
+                                      counters.tx_dropped == counters_before.tx_dropped,
+                   fmt("%u receive overflows, %u refused sends",
+                       counters.rx_overflow - counters_before.rx_overflow,
+                       counters.tx_dropped - counters_before.tx_dropped)});
+
+  // 3. Encoder direction: a push forward must count up.
+  if (opt.encoder) {
+    hal::GpioEdgeSource* edges = ctx.link.encoder();
+    if (edges == nullptr) {
+      items.push_back({"encoder direction", false, "no access to the encoder lines (run on the board, or --skip-encoder)"});
+    } else {
+      QuadratureDecoder decoder(cfg.encoder.glitch_filter_ns);
+      hal::GpioEdge e;
+      while (edges->next_edge(e)) {
+      }
+      OperatorPrompt person(ctx.link, in, ctx.err, opt.ready_after_s);
+      if (!person.ask("push the machine forward a little (half a metre is plenty)",
+                      OperatorAction::kPushMachine, 0.5)) {
+        items.push_back({"encoder direction", false, "nobody pushed the machine"});
+      } else {
+        const std::int64_t t2 = ctx.link.now_ns();
+        while (ctx.link.now_ns() - t2 < 5'000'000'000 && std::llabs(decoder.count()) < 200) {
+          ctx.link.receive_until(f, ctx.link.now_ns() + 10'000'000);
+          while (edges->next_edge(e)) decoder.on_edge(e);
+        }
+        const std::int64_t c = decoder.count();
+        items.push_back({"encoder direction", c >= 200,
+                         c >= 200 ? fmt("%lld counts forward", static_cast<long long>(c))
+                         : c <= -200 ? fmt("%lld counts: A and B are swapped (swap encoder_a_line and encoder_b_line)", static_cast<long long>(c))
+                                     : fmt("%lld counts in 5 s: the wheel did not turn", static_cast<long long>(c))});
+      }
+    }
+  }
+
+  int failed = 0;
+  for (const auto& i : items) failed += i.pass ? 0 : 1;
+  if (ctx.json) {
+    nlohmann::json j{{"board", ctx.board->name}, {"interface", ctx.link.name()}, {"passed", failed == 0},
+                     {"failed_items", failed}};
+    for (const auto& i : items) j["items"].push_back({{"item", i.name}, {"pass", i.pass}, {"detail", i.detail}});
+    ctx.out << j.dump(2) << "\n";
+  } else {
+    for (const auto& i : items) {
+      char line[400];
+      std::snprintf(line, sizeof line, "%-4s  %-36s %s\n", i.pass ? "pass" : "FAIL", i.name.c_str(),
+                    i.detail.c_str());
+      ctx.out << line;
+    }
+    ctx.out << (failed == 0 ? "all " + std::to_string(items.size()) + " items passed\n"
+                            : std::to_string(failed) + " of " + std::to_string(items.size()) + " items failed\n");
+  }
+  return failed == 0 ? kExitOk : kExitFailed;
+}
+
+}  // namespace planter::cantool

@@ -1,0 +1,172 @@
+#include "apps/planter-can/cmd_sdo.h"
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <ostream>
+
+#include "apps/planter-can/cmd_scan.h"
+#include "apps/planter-can/object_names.h"
+#include "apps/planter-can/sdo_session.h"
+#include "firmware/canopen/cob_id.h"
+
+namespace planter::cantool {
+
+bool read_batch_file(const std::string& path, std::vector<SdoLine>& lines, std::string& error) {
+  std::ifstream in(path);
+  if (!in) {
+    error = path + ": cannot be read";
+    return false;
+  }
+  std::string text;
+  int number = 0;
+  while (std::getline(in, text)) {
+    ++number;
+    const auto first = text.find_first_not_of(" \t\r");
+    if (first == std::string::npos || text[first] == '#') continue;
+    lines.push_back({path + ":" + std::to_string(number), text});
+  }
+  return true;
+}
+
+std::string execute_cia309(ToolContext& ctx, const Cia309Command& cmd, bool& ok) {
+  SdoSession sdo(ctx.link, ctx.sdo_timeout_ns);
+  ok = true;
+  if (cmd.kind == Cia309Command::Kind::kNmt) {
+    hal::CanFrame f{};
+    f.id = canopen::kNmtCobId;
+    f.dlc = 2;
+    f.data[0] = static_cast<std::uint8_t>(cmd.nmt);
+    f.data[1] = cmd.node;
+    ok = ctx.link.send(f);
+    return ok ? "OK" : "ERROR: the frame could not be sent (transmit queue full or bus-off)";
+  }
+  SdoResult res = cmd.kind == Cia309Command::Kind::kRead
+                      ? sdo.read(cmd.node, cmd.index, cmd.sub)
+                      : sdo.write(cmd.node, cmd.index, cmd.sub, cmd.value);
+  if (!res.ok()) {
+    ok = false;
+    char buf[160];
+    if (res.status == SdoResult::Status::kTimedOut) {
+      std::snprintf(buf, sizeof buf, "ERROR: 0x%08X no answer from node %u in %lld ms",
+                    res.abort_code, cmd.node, static_cast<long long>(ctx.sdo_timeout_ns / 1'000'000));
+    } else {
+      std::snprintf(buf, sizeof buf, "ERROR: 0x%08X %s", res.abort_code,
+                    canopen::abort_code_text(res.abort_code));
+    }
+    return buf;
+  }
+  if (cmd.kind == Cia309Command::Kind::kWrite) return "OK";
+  ValueType type;
+  if (cmd.type) {
+    type = *cmd.type;
+  } else if (const ObjectInfo* o = find_object(cmd.index, cmd.sub)) {
+    type = *parse_value_type(o->type);
+  } else {
+    type = res.data.size() <= 4 ? *parse_value_type("x32") : *parse_value_type("os");
+  }
+  return format_value(type, res.data);
+}
+
+int run_sdo(ToolContext& ctx, const std::vector<SdoLine>& lines) {
+  // Parse everything first: a batch with a typo is not half applied.
+  std::vector<Cia309Command> commands;
+  for (const auto& l : lines) {
+    Cia309Parse p = parse_cia309(l.text);
+    if (const auto* e = std::get_if<Cia309Error>(&p)) {
+      ctx.err << "planter-can: " << l.source << ": " << e->text() << "\n";
+      return kExitBadInput;
+    }
+    commands.push_back(std::get<Cia309Command>(p));
+  }
+  int exit_code = kExitOk;
+  nlohmann::json results = nlohmann::json::array();
+  for (std::size_t i = 0; i < commands.size(); ++i) {
+    const Cia309Command& c = commands[i];
+    bool ok = false;
+    const std::string reply = execute_cia309(ctx, c, ok);
+    if (!ok) exit_code = kExitFailed;
+    const std::string seq = c.sequence ? "[" + std::to_string(*c.sequence) + "] " : "";
+    if (ctx.json) {
+      nlohmann::json j{{"command", lines[i].text}, {"ok", ok}, {"reply", reply}};
+      if (c.sequence) j["sequence"] = *c.sequence;
+      results.push_back(j);
+    } else {
+      ctx.out << seq << reply << "\n";
+    }
+  }
+  if (ctx.json) ctx.out << results.dump(2) << "\n";
+  return exit_code;
+}
+
+int run_nmt(ToolContext& ctx, const std::string& command, const std::string& node_text) {
+  struct Row {
+    const char* word;
+    canopen::NmtCommand cs;
+    std::uint8_t expect;  // heartbeat state that confirms it; 0xFF = none
+  };
+  static constexpr Row kRows[] = {
+      {"start", canopen::NmtCommand::kStart, 0x05},
+      {"stop", canopen::NmtCommand::kStop, 0x04},
+      {"preop", canopen::NmtCommand::kPreOperational, 0x7F},
+      {"reset", canopen::NmtCommand::kResetNode, 0x00},
+      {"reset-comm", canopen::NmtCommand::kResetCommunication, 0x00},
+  };
+  const Row* row = nullptr;
+  for (const auto& r : kRows) {
+    if (command == r.word) row = &r;
+  }
+  if (row == nullptr) {
+    ctx.err << "planter-can: nmt: '" << command
+            << "' is not an NMT command (start, stop, preop, reset, reset-comm)\n";
+    return kExitBadInput;
+  }
+  std::uint8_t node = 0;
+  if (node_text != "all" && node_text != "0") {
+    node = resolve_node(ctx, node_text);
+    if (node == 0) {
+      ctx.err << "planter-can: nmt: '" << node_text
+              << "' is not a node-ID (1-127), 'all' or a node of the board\n";
+      return kExitBadInput;
+    }
+  }
+  hal::CanFrame f{};
+  f.id = canopen::kNmtCobId;
+  f.dlc = 2;
+  f.data[0] = static_cast<std::uint8_t>(row->cs);
+  f.data[1] = node;
+  if (!ctx.link.send(f)) {
+    ctx.err << "planter-can: nmt: the frame could not be sent (transmit queue full or bus-off)\n";
+    return kExitFailed;
+  }
+  // Confirmation: the heartbeat (or boot-up) with the new state, within a second.
+  BusWatch watch;
+  const std::int64_t t0 = ctx.link.now_ns();
+  watch.start(t0);
+  bool confirmed = false;
+  hal::CanFrame r;
+  while (!confirmed && ctx.link.receive_until(r, t0 + 1'000'000'000)) {
+    watch.on_frame(r, ctx.link.now_ns());
+    if (node != 0 && r.is_standard_data() && r.cob_id() == canopen::kHeartbeatBase + node &&
+        r.dlc >= 1 && (r.data[0] & 0x7F) == row->expect) {
+      confirmed = true;
+    }
+  }
+  const std::string who = node == 0 ? "all nodes" : "node " + std::to_string(node);
+  if (ctx.json) {
+    nlohmann::json j{{"command", command}, {"node", node}, {"sent", true},
+                     {"confirmed", node != 0 ? nlohmann::json(confirmed) : nlohmann::json()}};
+    ctx.out << j.dump(2) << "\n";
+  } else if (node == 0) {
+    ctx.out << command << " sent to all nodes\n";
+  } else if (confirmed) {
+    ctx.out << command << " " << who << ": confirmed, heartbeat says "
+            << nmt_state_name(row->expect) << "\n";
+  } else {
+    ctx.out << command << " " << who << ": sent; no heartbeat within 1 s confirmed "
+            << nmt_state_name(row->expect) << " (is the heartbeat off?)\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace planter::cantool

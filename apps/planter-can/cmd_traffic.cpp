@@ -1,0 +1,344 @@
+#include "apps/planter-can/cmd_traffic.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <vector>
+
+#include "apps/planter-can/bus_watch.h"
+#include "apps/planter-can/candump_log.h"
+#include "apps/planter-can/frame_decoder.h"
+#include "firmware/canopen/cob_id.h"
+
+namespace planter::cantool {
+namespace {
+
+bool stopped(const TrafficOptions& o) { return o.stop != nullptr && o.stop->load(); }
+
+// Deadline from a duration; "forever" (until stopped) when 0.
+std::int64_t end_of(ToolLink& link, double duration_s) {
+  return duration_s > 0 ? link.now_ns() + static_cast<std::int64_t>(duration_s * 1e9)
+                        : INT64_MAX / 2;
+}
+
+void print_summary(ToolContext& ctx, const BusWatch& watch, const FrameDecoder& decoder,
+                   std::int64_t now_ns) {
+  const std::uint32_t bitrate = ctx.board ? ctx.board->controller.can.bitrate_bps : 500000;
+  const auto c = ctx.link.counters();
+  if (ctx.json) {
+    nlohmann::json j{{"summary", true},
+                     {"frames", watch.frames()},
+                     {"bus_load_pct", watch.bus_load_pct(bitrate, now_ns)},
+                     {"error_frames", watch.error_frames() + c.error_frames},
+                     {"rx_overflow", c.rx_overflow},
+                     {"bus_off", c.bus_off}};
+    for (const auto& [cob, s] : watch.cobs()) {
+      hal::CanFrame f{};
+      f.id = cob;
+      f.dlc = s.last_dlc;
+      f.data = s.last_data;
+      const DecodedFrame d = decoder.decode(f);
+      j["cobs"].push_back({{"cob_id", cob}, {"service", service_name(d.service)}, {"node", d.node},
+                           {"count", s.count}, {"rate_hz", s.rate_hz()}, {"last", d.text}});
+    }
+    ctx.out << j.dump() << "\n";
+    return;
+  }
+  char line[400];
+  std::snprintf(line, sizeof line, "%-5s %-7s %-18s %8s %9s  %s\n", "COB", "service", "node",
+                "frames", "rate Hz", "last value");
+  ctx.out << line;
+  for (const auto& [cob, s] : watch.cobs()) {
+    hal::CanFrame f{};
+    f.id = cob;
+    f.dlc = s.last_dlc;
+    f.data = s.last_data;
+    const DecodedFrame d = decoder.decode(f);
+    const std::string node = d.node == 0 ? "-"
+                             : d.node_name.empty() ? std::to_string(d.node)
+                                                   : d.node_name + " (" + std::to_string(d.node) + ")";
+    std::snprintf(line, sizeof line, "0x%03X %-7s %-18s %8llu %9.1f  %s\n", cob,
+                  service_name(d.service), node.c_str(), static_cast<unsigned long long>(s.count),
+                  s.rate_hz(), d.text.c_str());
+    ctx.out << line;
+  }
+  std::snprintf(line, sizeof line,
+                "%llu frames, bus load %.1f %% at %u bit/s, %llu error frames, %u rx overflows%s\n",
+                static_cast<unsigned long long>(watch.frames()), watch.bus_load_pct(bitrate, now_ns),
+                bitrate, static_cast<unsigned long long>(watch.error_frames() + c.error_frames),
+                c.rx_overflow, c.bus_off ? ", BUS-OFF" : "");
+  ctx.out << line;
+}
+
+}  // namespace
+
+int run_monitor(ToolContext& ctx, const TrafficOptions& opt) {
+  const FrameDecoder decoder(ctx.board ? &ctx.board->controller : nullptr);
+  BusWatch watch;
+  const std::int64_t t0 = ctx.link.now_ns();
+  watch.start(t0);
+  const std::int64_t end = end_of(ctx.link, opt.duration_s);
+  std::int64_t next_summary =
+      opt.summary_every_s > 0 ? t0 + static_cast<std::int64_t>(opt.summary_every_s * 1e9) : INT64_MAX;
+  hal::CanFrame f;
+  while (!stopped(opt) && ctx.link.now_ns() < end) {
+    const std::int64_t wake = std::min({end, next_summary, ctx.link.now_ns() + 100'000'000});
+    if (ctx.link.receive_until(f, wake)) {
+      const std::int64_t now = ctx.link.now_ns();
+      watch.on_frame(f, now);
+      if (!opt.summary_only) {
+        const DecodedFrame d = decoder.decode(f);
+        const double t = static_cast<double>(now - t0) * 1e-9;
+        if (ctx.json) {
+          nlohmann::json j{{"t", t}, {"cob_id", f.cob_id()}, {"service", service_name(d.service)},
+                           {"node", d.node}, {"text", d.text}, {"malformed", d.malformed}};
+          if (!d.node_name.empty()) j["role"] = d.node_name;
+          for (const auto& v : d.values)
+            j["values"].push_back({{"name", v.name}, {"value", v.value}, {"unit", v.unit}, {"raw", v.raw}});
+          ctx.out << j.dump() << "\n";
+        } else {
+          char line[512];
+          const std::string node = d.node == 0 ? ""
+                                   : d.node_name.empty() ? std::to_string(d.node)
+                                                         : d.node_name + "(" + std::to_string(d.node) + ")";
+          std::snprintf(line, sizeof line, "%10.4f  %-20s %-7s %s%s%s\n", t, node.c_str(),
+                        service_name(d.service), d.text.c_str(), opt.raw ? "   | " : "",
+                        opt.raw ? raw_frame_text(f).c_str() : "");
+          ctx.out << line;
+        }
+      }
+    }
+    if (ctx.link.now_ns() >= next_summary) {
+      print_summary(ctx, watch, decoder, ctx.link.now_ns());
+      next_summary += static_cast<std::int64_t>(opt.summary_every_s * 1e9);
+    }
+  }
+  print_summary(ctx, watch, decoder, ctx.link.now_ns());
+  return kExitOk;
+}
+
+namespace {
+
+class LogWriter final : public FrameTap {
+ public:
+  LogWriter(std::ofstream& out, std::string interface) : out_(out), interface_(std::move(interface)) {}
+  void on_frame(std::int64_t time_ns, const hal::CanFrame& frame, bool transmitted) override {
+    (void)transmitted;  // candump -L has no direction; own frames are logged like the rest
+    out_ << format_log_line(time_ns, interface_, frame) << '\n';
+    ++frames_;
+  }
+  [[nodiscard]] std::uint64_t frames() const { return frames_; }
+
+ private:
+  std::ofstream& out_;
+  std::string interface_;
+  std::uint64_t frames_ = 0;
+};
+
+}  // namespace
+
+int run_record(ToolContext& ctx, const std::string& path, const TrafficOptions& opt) {
+  std::ofstream out(path, std::ios::trunc);
+  if (!out) {
+    ctx.err << "planter-can: record: " << path << ": cannot be written\n";
+    return kExitBadInput;
+  }
+  LogWriter writer(out, ctx.link.name());
+  ctx.link.set_tap(&writer);
+  const std::int64_t end = end_of(ctx.link, opt.duration_s);
+  hal::CanFrame f;
+  std::int64_t next_flush = ctx.link.now_ns() + 1'000'000'000;
+  Progress progress(ctx.err, ctx.progress);
+  while (!stopped(opt) && ctx.link.now_ns() < end) {
+    ctx.link.receive_until(f, std::min(end, ctx.link.now_ns() + 100'000'000));
+    if (ctx.link.now_ns() >= next_flush) {
+      out.flush();  // a killed recorder loses at most a second
+      next_flush += 1'000'000'000;
+      progress.update("recorded " + std::to_string(writer.frames()) + " frames");
+    }
+  }
+  ctx.link.set_tap(nullptr);
+  out.flush();
+  progress.done();
+  if (!out) {
+    ctx.err << "planter-can: record: " << path << ": write failed\n";
+    return kExitFailed;
+  }
+  if (ctx.json) {
+    ctx.out << nlohmann::json{{"file", path}, {"frames", writer.frames()}}.dump(2) << "\n";
+  } else {
+    ctx.out << writer.frames() << " frames recorded to " << path << "\n";
+  }
+  return kExitOk;
+}
+
+namespace {
+
+bool read_log(const std::string& path, std::vector<LogRecord>& records, std::ostream& err) {
+  std::ifstream in(path);
+  if (!in) {
+    err << "planter-can: " << path << ": cannot be read\n";
+    return false;
+  }
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    LogParse p = parse_log_line(line);
+    if (p.kind == LogLineKind::kError) {
+      err << "planter-can: " << path << ":" << number << ": " << p.error << "\n";
+      return false;
+    }
+    if (p.kind == LogLineKind::kFrame) {
+      if (!records.empty() && p.record.time_ns < records.back().time_ns) {
+        err << "planter-can: " << path << ":" << number << ": time goes backwards\n";
+        return false;
+      }
+      records.push_back(std::move(p.record));
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+int run_replay(ToolContext& ctx, const std::string& path, const TrafficOptions& opt) {
+  std::vector<LogRecord> records;
+  if (!read_log(path, records, ctx.err)) return kExitBadInput;
+  if (!(opt.speed > 0.0)) {
+    ctx.err << "planter-can: replay: --speed must be above 0\n";
+    return kExitBadInput;
+  }
+  const std::int64_t t0 = ctx.link.now_ns();
+  const std::int64_t log0 = records.empty() ? 0 : records.front().time_ns;
+  std::uint64_t sent = 0, refused = 0;
+  hal::CanFrame f;
+  Progress progress(ctx.err, ctx.progress);
+  for (const auto& r : records) {
+    if (stopped(opt)) break;
+    const auto at = t0 + static_cast<std::int64_t>(static_cast<double>(r.time_ns - log0) / opt.speed);
+    while (ctx.link.now_ns() < at) ctx.link.receive_until(f, at);  // keep the rx queue drained
+    if (r.frame.id & hal::CanFrame::kErrorFlag) continue;  // error frames are not sendable
+    if (ctx.link.send(r.frame)) {
+      ++sent;
+    } else {
+      ++refused;
+    }
+    progress.update("replayed " + std::to_string(sent) + "/" + std::to_string(records.size()));
+  }
+  progress.done();
+  if (ctx.json) {
+    ctx.out << nlohmann::json{{"file", path}, {"frames", records.size()}, {"sent", sent}, {"refused", refused}}.dump(2)
+            << "\n";
+  } else {
+    ctx.out << sent << " of " << records.size() << " frames replayed from " << path
+            << (refused ? " (" + std::to_string(refused) + " refused by the bus)" : "") << "\n";
+  }
+  return refused == 0 ? kExitOk : kExitFailed;
+}
+
+int run_decode(const config::BoardConfig* board, const std::string& log_path,
+               const std::string& out_path, std::ostream& out, std::ostream& err) {
+  if (board == nullptr) {
+    err << "planter-can: decode needs --board (the PDO maps and scalings come from it)\n";
+    return kExitBadInput;
+  }
+  std::vector<LogRecord> records;
+  if (!read_log(log_path, records, err)) return kExitBadInput;
+  // Columns of PRODUCT.md that travel on the bus, by (role, object).
+  struct Column {
+    const char* name;
+    NodeRole role;
+    std::uint16_t index;
+    bool rpdo;  // the controller's command rather than the node's measurement
+  };
+  static constexpr Column kColumns[] = {
+      {"omega_cmd", NodeRole::kDiscDrive, 0x60FF, true},
+      {"omega", NodeRole::kDiscDrive, 0x606C, false},
+      {"disc_angle", NodeRole::kDiscDrive, 0x6064, false},
+      {"disc_torque", NodeRole::kDiscDrive, 0x6077, false},
+      {"clamp_pos_mm", NodeRole::kRollerActuator, 0x6064, false},
+      {"clamp_force", NodeRole::kForceSensor, 0x7130, false},
+      {"depth_cmd_mm", NodeRole::kDepthActuator, 0x607A, true},
+      {"depth_mm", NodeRole::kDepthActuator, 0x6064, false},
+      {"depth_force", NodeRole::kDepthActuator, 0x6077, false},
+  };
+  constexpr std::size_t kCount = sizeof kColumns / sizeof kColumns[0];
+  const FrameDecoder decoder(&board->controller);
+  std::array<double, kCount> values{};
+  std::array<bool, kCount> seen{};
+  std::ofstream file;
+  if (!out_path.empty()) {
+    file.open(out_path, std::ios::trunc);
+    if (!file) {
+      err << "planter-can: decode: " << out_path << ": cannot be written\n";
+      return kExitBadInput;
+    }
+  }
+  std::ostream& csv = out_path.empty() ? out : file;
+  // One row per SYNC: the values the controller had for that cycle.
+  std::size_t syncs = 0;
+  for (const auto& r : records) syncs += r.frame.is_standard_data() && r.frame.cob_id() == canopen::kSyncCobId;
+  if (syncs == 0) {
+    err << "planter-can: decode: " << log_path << " has no SYNC frames to sample the signals on\n";
+    return kExitFailed;
+  }
+  // Columns whose objects never appear in the log are left out (PRODUCT.md: columns may be
+  // absent); rows start once every present column has a value, so no cell is empty.
+  auto for_each_value = [&](const LogRecord& r, auto&& take) {
+    const DecodedFrame d = decoder.decode(r.frame);
+    if ((d.service != Service::kTpdo && d.service != Service::kRpdo) || d.malformed) return;
+    const NodeConfig* node = decoder.node_config(d.node);
+    if (node == nullptr) return;
+    for (const auto& v : d.values) {
+      for (std::size_t i = 0; i < kCount; ++i) {
+        const Column& c = kColumns[i];
+        if (c.role == node->role && c.index == v.index && c.rpdo == (d.service == Service::kRpdo))
+          take(i, v.value);
+      }
+    }
+  };
+  std::array<bool, kCount> present{};
+  for (const auto& r : records) {
+    if (r.frame.is_standard_data()) for_each_value(r, [&](std::size_t i, double) { present[i] = true; });
+  }
+  csv << "# source: " << log_path << "\n# board: " << board->name << "\nt";
+  for (std::size_t i = 0; i < kCount; ++i) {
+    if (present[i]) csv << "," << kColumns[i].name;
+  }
+  csv << "\n";
+  const std::int64_t t0 = records.front().time_ns;
+  std::size_t rows = 0;
+  for (const auto& r : records) {
+    if (!r.frame.is_standard_data()) continue;
+    if (r.frame.cob_id() != canopen::kSyncCobId) {
+      for_each_value(r, [&](std::size_t i, double v) {
+        values[i] = v;
+        seen[i] = true;
+      });
+      continue;
+    }
+    bool complete = true;
+    for (std::size_t i = 0; i < kCount; ++i) complete = complete && (seen[i] || !present[i]);
+    if (!complete) continue;
+    char b[48];
+    std::snprintf(b, sizeof b, "%.6f", static_cast<double>(r.time_ns - t0) * 1e-9);
+    csv << b;
+    for (std::size_t i = 0; i < kCount; ++i) {
+      if (!present[i]) continue;
+      std::snprintf(b, sizeof b, ",%.6g", values[i]);
+      csv << b;
+    }
+    csv << "\n";
+    ++rows;
+  }
+  if (!out_path.empty()) {
+    out << rows << " rows (one per SYNC) from " << records.size() << " frames written to " << out_path << "\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace planter::cantool

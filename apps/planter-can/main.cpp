@@ -1,0 +1,249 @@
+// planter-can: the CAN bus commissioning tool. `planter-can --iface IFACE [--board B] COMMAND`;
+// IFACE is a SocketCAN interface or `sim`, the simulated machine in-process.
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
+#include <iostream>
+#include <memory>
+
+#include "apps/planter-can/cmd_calibrate.h"
+#include "apps/planter-can/cmd_check.h"
+#include "apps/planter-can/cmd_configure.h"
+#include "apps/planter-can/cmd_info.h"
+#include "apps/planter-can/cmd_lss.h"
+#include "apps/planter-can/cmd_scan.h"
+#include "apps/planter-can/cmd_sdo.h"
+#include "apps/planter-can/cmd_traffic.h"
+#include "apps/planter-can/sim_link.h"
+#include "apps/planter-can/socket_link.h"
+#include "config/config_error.h"
+#include "hal/linux/hal_error.h"
+#include "sim/runner/scenario.h"
+
+namespace {
+
+std::atomic<bool> g_stop{false};  // set by SIGINT/SIGTERM: monitor, record, replay end cleanly
+
+void on_signal(int) { g_stop.store(true); }
+
+int fail(int code, const std::string& message) {
+  std::cerr << "planter-can: " << message << "\n";
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace planter;
+  using namespace planter::cantool;
+  CLI::App app{"planter-can: CAN bus commissioning for the scallion transplanter"};
+  app.require_subcommand(1);
+  std::string iface, board_path, scenario_path;
+  bool json = false, no_progress = false, sim_controller = false;
+  int timeout_ms = 100;
+  double push_m = 5.0;
+  app.add_option("--iface", iface, "SocketCAN interface (can0, vcan0) or 'sim'");
+  app.add_option("--board", board_path, "board file (boards/<board>/board.toml)");
+  app.add_flag("--json", json, "machine-readable output");
+  app.add_option("--timeout-ms", timeout_ms, "SDO timeout")->check(CLI::Range(1, 60000));
+  app.add_flag("--no-progress", no_progress, "no progress line on stderr");
+  app.add_option("--sim-scenario", scenario_path, "sim: the machine and field to simulate");
+  app.add_flag("--sim-controller", sim_controller,
+               "sim: planterd runs on the bus too (SYNC, PDOs, heartbeats)");
+  app.add_option("--sim-push-m", push_m, "sim: how far the fixture pushes the machine")
+      ->check(CLI::Range(0.1, 1000.0));
+
+  ScanOptions scan;
+  int listen_ms = 300;
+  auto* c_scan = app.add_subcommand("scan", "list the nodes: listen, then probe IDs 1-127");
+  c_scan->add_option("--listen-ms", listen_ms, "passive listening first")->check(CLI::Range(0, 60000));
+  bool no_probe = false;
+  c_scan->add_flag("--passive", no_probe, "listen only, send nothing");
+
+  std::string info_node;
+  auto* c_info = app.add_subcommand("info", "identity, versions, errors, heartbeat, PDOs of a node");
+  c_info->add_option("node", info_node, "node-ID or board role")->required();
+
+  std::vector<std::string> sdo_words;
+  std::string sdo_file;
+  auto* c_sdo = app.add_subcommand("sdo", "CiA 309-3: NODE r IDX SUB [TYPE] | NODE w IDX SUB TYPE VALUE");
+  c_sdo->add_option("command", sdo_words, "one command line");
+  c_sdo->add_option("-f,--file", sdo_file, "batch file, one command per line");
+  c_sdo->allow_extras(false);
+  c_sdo->prefix_command();
+
+  std::string nmt_command, nmt_node;
+  auto* c_nmt = app.add_subcommand("nmt", "start | stop | preop | reset | reset-comm NODE|all");
+  c_nmt->add_option("command", nmt_command)->required();
+  c_nmt->add_option("node", nmt_node)->required();
+
+  LssOptions lss;
+  std::vector<std::string> lss_identity;
+  int lss_timeout_ms = 20;
+  auto* c_lss = app.add_subcommand("lss", "fastscan | assign NEW_ID | inquire (CiA 305)");
+  c_lss->add_option("action", lss.action)->required();
+  c_lss->add_option("new_id", lss.new_id, "assign: the node-ID to give");
+  c_lss->add_option("--identity", lss_identity, "VENDOR PRODUCT REVISION SERIAL instead of a fastscan")
+      ->expected(4);
+  c_lss->add_option("--lss-timeout-ms", lss_timeout_ms, "silence this long means no")->check(CLI::Range(1, 10000));
+
+  ConfigureOptions configure;
+  bool no_store = false;
+  auto* c_configure = app.add_subcommand("configure", "apply the board's node configuration, verify, store");
+  c_configure->add_option("--node", configure.node, "only this node (ID or role)");
+  c_configure->add_flag("--dry-run", configure.dry_run, "print the SDO writes (CiA 309-3 lines)");
+  c_configure->add_flag("--no-store", no_store, "do not store (0x1010) after verifying");
+
+  TrafficOptions traffic;
+  traffic.stop = &g_stop;
+  auto* c_monitor = app.add_subcommand("monitor", "live decode with names, units and rates");
+  c_monitor->add_option("--duration", traffic.duration_s, "seconds (default: until Ctrl-C)")->check(CLI::Range(0.0, 1e7));
+  c_monitor->add_flag("--raw", traffic.raw, "raw bytes beside the decode");
+  c_monitor->add_flag("--summary-only", traffic.summary_only, "the rate table only");
+  c_monitor->add_option("--summary-every", traffic.summary_every_s, "rate table every N seconds")->check(CLI::Range(0.0, 3600.0));
+
+  std::string record_path;
+  auto* c_record = app.add_subcommand("record", "candump -L log of the bus, own frames included");
+  c_record->add_option("file", record_path)->required();
+  c_record->add_option("--duration", traffic.duration_s, "seconds (default: until Ctrl-C)")->check(CLI::Range(0.0, 1e7));
+
+  std::string replay_path;
+  auto* c_replay = app.add_subcommand("replay", "send a candump log back onto the bus, timed");
+  c_replay->add_option("file", replay_path)->required();
+  c_replay->add_option("--speed", traffic.speed, "time factor (2 = twice as fast)")->check(CLI::Range(0.001, 1000.0));
+
+  std::string decode_log, decode_out;
+  auto* c_decode = app.add_subcommand("decode", "candump log -> recording CSV (PRODUCT.md)");
+  c_decode->add_option("log", decode_log)->required();
+  c_decode->add_option("-o,--out", decode_out, "CSV file (default: stdout)");
+
+  CalibrateOptions calibrate;
+  bool no_write = false;
+  auto* c_cal = app.add_subcommand("calibrate", "force | soil-wheel | depth; results into the board file");
+  c_cal->add_option("what", calibrate.what)->required();
+  c_cal->add_option("--known-N", calibrate.known_N, "force: the weight, in newtons")->check(CLI::Range(0.001, 1e5));
+  c_cal->add_option("--distance-m", calibrate.distance_m, "soil-wheel: the measured distance")->check(CLI::Range(0.01, 1e4));
+  c_cal->add_option("--samples", calibrate.samples, "force: readings per step")->check(CLI::Range(1, 10000));
+  c_cal->add_option("--ready-after-s", calibrate.ready_after_s, "scripts: wait this long instead of asking for Enter")
+      ->check(CLI::Range(0.0, 3600.0));
+  c_cal->add_flag("--no-write", no_write, "show the result, leave the board file alone");
+
+  CheckOptions check;
+  double check_listen_s = 2.0;
+  bool skip_encoder = false;
+  auto* c_check = app.add_subcommand("check", "the commissioning checklist; exit 1 on any fail");
+  c_check->add_option("--listen-s", check_listen_s, "how long to watch the bus")->check(CLI::Range(0.1, 600.0));
+  c_check->add_option("--max-bus-load", check.max_bus_load_pct, "percent")->check(CLI::Range(1.0, 100.0));
+  c_check->add_flag("--skip-encoder", skip_encoder, "do not check the encoder direction");
+  c_check->add_option("--ready-after-s", check.ready_after_s, "scripts: wait instead of asking for Enter")
+      ->check(CLI::Range(0.0, 3600.0));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    return fail(kExitBadInput, std::string(e.what()) + " (planter-can --help lists the commands)");
+  }
+
+  config::BoardConfig board;
+  const bool have_board = !board_path.empty();
+  try {
+    if (have_board) board = config::load_board(board_path);
+  } catch (const config::ConfigError& e) {
+    return fail(kExitBadInput, e.what());
+  }
+  if (c_decode->parsed())
+    return run_decode(have_board ? &board : nullptr, decode_log, decode_out, std::cout, std::cerr);
+
+  if (iface.empty()) return fail(kExitBadInput, "--iface is required (can0, vcan0, ... or sim)");
+  std::unique_ptr<ToolLink> link;
+  try {
+    if (iface == "sim") {
+      sim::Scenario scenario;
+      if (!scenario_path.empty()) scenario = sim::load_scenario(scenario_path);
+      if (have_board) {
+        scenario.board = board;
+      } else if (scenario_path.empty()) {
+        return fail(kExitBadInput, "--iface sim needs --board or --sim-scenario (the simulated machine is built from it)");
+      } else {
+        board = scenario.board;
+      }
+      SimLinkOptions so;
+      so.with_controller = sim_controller;
+      so.push_distance_m = c_cal->parsed() && calibrate.distance_m > 0 ? calibrate.distance_m : push_m;
+      link = std::make_unique<SimLink>(scenario, so);
+    } else {
+      auto socket = std::make_unique<SocketLink>(iface);
+      // The encoder lines are opened only by the commands that need them (planterd may hold them).
+      const bool wants_encoder = (c_cal->parsed() && calibrate.what == "soil-wheel") ||
+                                 (c_check->parsed() && !skip_encoder);
+      if (wants_encoder && have_board && board.gpio.chip != "sim") socket->open_encoder(board);
+      link = std::move(socket);
+    }
+  } catch (const config::ConfigError& e) {
+    return fail(kExitBadInput, e.what());
+  } catch (const hal::linux_backend::HalError& e) {
+    return fail(kExitBadInput, iface + ": " + e.what());
+  }
+  const bool board_known = have_board || !scenario_path.empty();
+  ToolContext ctx{*link, board_known ? &board : nullptr, json, std::cout, std::cerr,
+                  std::int64_t{timeout_ms} * 1'000'000, !no_progress};
+
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+
+  if (c_scan->parsed()) {
+    scan.listen_ns = std::int64_t{listen_ms} * 1'000'000;
+    scan.probe = !no_probe;
+    return run_scan(ctx, scan);
+  }
+  if (c_info->parsed()) return run_info(ctx, info_node);
+  if (c_sdo->parsed()) {
+    std::vector<SdoLine> lines;
+    if (!sdo_file.empty()) {
+      std::string error;
+      if (!read_batch_file(sdo_file, lines, error)) return fail(kExitBadInput, error);
+    }
+    if (!sdo_words.empty()) {
+      std::string text;
+      for (const auto& w : sdo_words) text += (text.empty() ? "" : " ") + w;
+      lines.push_back({"command line", text});
+    }
+    if (lines.empty()) return fail(kExitBadInput, "sdo: give a command (NODE r IDX SUB [TYPE]) or -f FILE");
+    return run_sdo(ctx, lines);
+  }
+  if (c_nmt->parsed()) return run_nmt(ctx, nmt_command, nmt_node);
+  if (c_lss->parsed()) {
+    if (!lss_identity.empty()) {
+      std::array<std::uint32_t, 4> id{};
+      for (std::size_t i = 0; i < 4; ++i) {
+        const auto v = parse_integer(lss_identity[i]);
+        if (!v || *v < 0 || *v > 0xFFFFFFFF)
+          return fail(kExitBadInput, "lss: --identity value '" + lss_identity[i] + "' is not a 32-bit number");
+        id[i] = static_cast<std::uint32_t>(*v);
+      }
+      lss.identity = id;
+    }
+    lss.timeout_ns = std::int64_t{lss_timeout_ms} * 1'000'000;
+    return run_lss(ctx, lss);
+  }
+  if (c_configure->parsed()) {
+    configure.store = !no_store;
+    return run_configure(ctx, configure);
+  }
+  if (c_monitor->parsed()) return run_monitor(ctx, traffic);
+  if (c_record->parsed()) return run_record(ctx, record_path, traffic);
+  if (c_replay->parsed()) return run_replay(ctx, replay_path, traffic);
+  if (c_cal->parsed()) {
+    calibrate.write = !no_write;
+    return run_calibrate(ctx, calibrate, std::cin);
+  }
+  if (c_check->parsed()) {
+    check.listen_ns = static_cast<std::int64_t>(check_listen_s * 1e9);
+    check.encoder = !skip_encoder;
+    return run_check(ctx, check, std::cin);
+  }
+  return fail(kExitBadInput, "no command (planter-can --help lists them)");
+}

@@ -1,0 +1,35 @@
+#include "apps/planter-can/tool_link.h"
+
+namespace planter::cantool {
+
+bool ToolLink::send(const hal::CanFrame& frame) {
+  // About 20 ms of retries: enough for a 10-frame queue to drain at 125 kbit/s.
+  constexpr int kRetries = 20;
+  for (int attempt = 0; attempt <= kRetries; ++attempt) {
+    if (try_send(frame)) {
+      if (tap_ != nullptr) tap_->on_frame(wall_time_ns(), frame, true);
+      return true;
+    }
+    if (attempt < kRetries) {
+      ++paced_;
+      back_off();
+    }
+  }
+  ++lost_;
+  return false;
+}
+
+bool ToolLink::receive(hal::CanFrame& frame) {
+  if (!try_receive(frame)) return false;
+  if (tap_ != nullptr) tap_->on_frame(rx_time_ns(), frame, false);
+  return true;
+}
+
+bool ToolLink::receive_until(hal::CanFrame& frame, std::int64_t deadline_ns) {
+  for (;;) {
+    if (receive(frame)) return true;
+    if (!wait(deadline_ns)) return false;
+  }
+}
+
+}  // namespace planter::cantool

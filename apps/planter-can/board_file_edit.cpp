@@ -77,7 +77,8 @@ bool edit_board_text(std::string& text, const std::vector<BoardEdit>& edits, std
       break;
     }
     if (!replaced) {
-      lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(last_key + 1), e.key + " = " + e.value);
+      lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(last_key + 1),
+                   e.key + " = " + e.value);
     }
   }
   text.clear();

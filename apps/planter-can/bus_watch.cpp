@@ -46,7 +46,8 @@ void BusWatch::on_frame(const hal::CanFrame& f, std::int64_t now_ns) {
     if (state == 0) {
       n.boot_up = true;
     } else {
-      if (n.heartbeats > 0) n.max_heartbeat_gap_ns = std::max(n.max_heartbeat_gap_ns, now_ns - n.last_heartbeat_ns);
+      if (n.heartbeats > 0)
+        n.max_heartbeat_gap_ns = std::max(n.max_heartbeat_gap_ns, now_ns - n.last_heartbeat_ns);
       if (n.heartbeats == 0) n.first_heartbeat_ns = now_ns;
       ++n.heartbeats;
       n.last_heartbeat_ns = now_ns;
@@ -65,8 +66,8 @@ void BusWatch::on_frame(const hal::CanFrame& f, std::int64_t now_ns) {
 double BusWatch::bus_load_pct(std::uint32_t bitrate_bps, std::int64_t now_ns) const {
   const std::int64_t span = now_ns - start_ns_;
   if (span <= 0 || bitrate_bps == 0) return 0.0;
-  return 100.0 * static_cast<double>(bits_) / (static_cast<double>(bitrate_bps) * 1e-9 *
-                                               static_cast<double>(span));
+  return 100.0 * static_cast<double>(bits_) /
+         (static_cast<double>(bitrate_bps) * 1e-9 * static_cast<double>(span));
 }
 
 }  // namespace planter::cantool

@@ -122,7 +122,8 @@ LogParse parse_log_line(std::string_view line) {
   if (!data.empty() && (data[0] == 'R' || data[0] == 'r')) {
     f.id |= hal::CanFrame::kRemoteFlag;
     f.dlc = 0;
-    if (data.size() == 2 && data[1] >= '0' && data[1] <= '8') f.dlc = static_cast<std::uint8_t>(data[1] - '0');
+    if (data.size() == 2 && data[1] >= '0' && data[1] <= '8')
+      f.dlc = static_cast<std::uint8_t>(data[1] - '0');
     p.kind = LogLineKind::kFrame;
     return p;
   }

@@ -35,7 +35,9 @@ std::vector<std::string> split_tokens(std::string_view line) {
 
 Cia309Parse parse_cia309(std::string_view line) {
   const auto tokens = split_tokens(line);
-  if (tokens.empty()) return Cia309Error{0, "", "an empty command: expected [seq] [net] node r|w|start|stop|preop|reset ..."};
+  if (tokens.empty())
+    return Cia309Error{
+        0, "", "an empty command: expected [seq] [net] node r|w|start|stop|preop|reset ..."};
   Cia309Command cmd;
   std::size_t i = 0;
   auto error = [&](std::size_t at, const std::string& expected) -> Cia309Parse {
@@ -56,7 +58,8 @@ Cia309Parse parse_cia309(std::string_view line) {
   }
   if (i >= tokens.size()) return error(i, "a node-ID from 1 to 127");
   const auto node = parse_integer(tokens[i]);
-  if (!node || *node < 0 || *node > 127) return error(i, "a node-ID from 1 to 127 (0 = all, NMT only)");
+  if (!node || *node < 0 || *node > 127)
+    return error(i, "a node-ID from 1 to 127 (0 = all, NMT only)");
   cmd.node = static_cast<std::uint8_t>(*node);
   ++i;
   if (i >= tokens.size()) return error(i, "a command: r, w, start, stop, preop or reset");
@@ -107,7 +110,8 @@ Cia309Parse parse_cia309(std::string_view line) {
     if (i < tokens.size()) return error(i, "the end of the line");
     return cmd;
   }
-  if (i >= tokens.size()) return error(i, std::string("a value of type ") + std::string(cmd.type->name));
+  if (i >= tokens.size())
+    return error(i, std::string("a value of type ") + std::string(cmd.type->name));
   // A visible string may be written unquoted with spaces: take the rest of the line.
   std::string text = tokens[i];
   if (cmd.type->kind == ValueKind::kString || cmd.type->kind == ValueKind::kOctets) {

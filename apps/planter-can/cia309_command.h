@@ -24,8 +24,8 @@ struct Cia309Command {
   std::uint8_t node = 0;  // 0 = all nodes (NMT only)
   std::uint16_t index = 0;
   std::uint8_t sub = 0;
-  std::optional<ValueType> type;     // reads may leave it to the object table
-  std::vector<std::uint8_t> value;   // writes: encoded
+  std::optional<ValueType> type;    // reads may leave it to the object table
+  std::vector<std::uint8_t> value;  // writes: encoded
   canopen::NmtCommand nmt = canopen::NmtCommand::kStart;
 };
 

@@ -41,8 +41,11 @@ int report(ToolContext& ctx, const CalibrateOptions& opt, const std::vector<Chan
   if (ctx.json) {
     nlohmann::json j{{"calibration", opt.what}, {"evidence", evidence}, {"written", written}};
     for (const auto& c : changes) {
-      j["changes"].push_back({{"table", c.table}, {"key", c.key}, {"before", c.before},
-                              {"after", c.after}, {"unit", c.unit}});
+      j["changes"].push_back({{"table", c.table},
+                              {"key", c.key},
+                              {"before", c.before},
+                              {"after", c.after},
+                              {"unit", c.unit}});
     }
     if (!write_error.empty()) j["error"] = write_error;
     ctx.out << j.dump(2) << "\n";
@@ -55,7 +58,9 @@ int report(ToolContext& ctx, const CalibrateOptions& opt, const std::vector<Chan
                     c.before, c.after, c.unit.c_str());
       ctx.out << line;
     }
-    if (written) ctx.out << "written to " << ctx.board->file << " (previous kept as " << ctx.board->file << ".bak)\n";
+    if (written)
+      ctx.out << "written to " << ctx.board->file << " (previous kept as " << ctx.board->file
+              << ".bak)\n";
     if (!opt.write) ctx.out << "not written (--no-write)\n";
   }
   if (!write_error.empty()) {
@@ -122,9 +127,9 @@ int calibrate_force(ToolContext& ctx, const CalibrateOptions& opt, OperatorPromp
       {"nodes.force_sensor", "zero_counts", n.zero_counts, zero, "counts"},
       {"nodes.force_sensor", "counts_per_unit", n.counts_per_unit, span, "counts/N"}};
   const double before_N = (loaded - n.zero_counts) / n.counts_per_unit;
-  nlohmann::json ev{{"zero_counts_mean", zero},       {"zero_counts_sd", zero_sd},
-                    {"loaded_counts_mean", loaded},   {"loaded_counts_sd", loaded_sd},
-                    {"known_N", opt.known_N},         {"weight_read_before_N", before_N},
+  nlohmann::json ev{{"zero_counts_mean", zero},     {"zero_counts_sd", zero_sd},
+                    {"loaded_counts_mean", loaded}, {"loaded_counts_sd", loaded_sd},
+                    {"known_N", opt.known_N},       {"weight_read_before_N", before_N},
                     {"samples", opt.samples}};
   if (!ctx.json) {
     char line[160];
@@ -137,7 +142,8 @@ int calibrate_force(ToolContext& ctx, const CalibrateOptions& opt, OperatorPromp
 
 int calibrate_soil_wheel(ToolContext& ctx, const CalibrateOptions& opt, OperatorPrompt& person) {
   if (!(opt.distance_m > 0.0)) {
-    ctx.err << "planter-can: calibrate soil-wheel needs --distance-m, the measured distance (> 0)\n";
+    ctx.err
+        << "planter-can: calibrate soil-wheel needs --distance-m, the measured distance (> 0)\n";
     return kExitBadInput;
   }
   hal::GpioEdgeSource* edges = ctx.link.encoder();
@@ -165,8 +171,9 @@ int calibrate_soil_wheel(ToolContext& ctx, const CalibrateOptions& opt, Operator
     if (decoder.count() != 0) moved = true;
     if (moved && now - decoder.last_count_time_ns() >= still_ns) break;
     if (now - t0 > static_cast<std::int64_t>(opt.max_wait_s * 1e9)) {
-      ctx.err << "planter-can: calibrate soil-wheel: " << (moved ? "the wheel never came to rest" : "the wheel never turned")
-              << " within " << opt.max_wait_s << " s\n";
+      ctx.err << "planter-can: calibrate soil-wheel: "
+              << (moved ? "the wheel never came to rest" : "the wheel never turned") << " within "
+              << opt.max_wait_s << " s\n";
       return kExitFailed;
     }
     while (ctx.link.receive_until(f, now + 10'000'000)) {
@@ -200,15 +207,18 @@ int calibrate_soil_wheel(ToolContext& ctx, const CalibrateOptions& opt, Operator
 // Drives a CiA 402 actuator over SDO (no PDOs needed): enable, move, wait.
 class SdoDrive {
  public:
-  SdoDrive(ToolContext& ctx, const NodeConfig& n) : ctx_(ctx), n_(n), sdo_(ctx.link, ctx.sdo_timeout_ns) {}
+  SdoDrive(ToolContext& ctx, const NodeConfig& n)
+      : ctx_(ctx), n_(n), sdo_(ctx.link, ctx.sdo_timeout_ns) {}
   bool write(std::uint16_t index, std::uint32_t value, std::size_t size) {
     const SdoResult r = sdo_.write_u32(n_.node_id, index, 0, value, size);
-    if (!r.ok()) error_ = "writing " + object(index) + ": " + r.error_text(n_.node_id, ctx_.sdo_timeout_ns);
+    if (!r.ok())
+      error_ = "writing " + object(index) + ": " + r.error_text(n_.node_id, ctx_.sdo_timeout_ns);
     return r.ok();
   }
   bool read(std::uint16_t index, std::int64_t& value, unsigned bits) {
     const SdoResult r = sdo_.read(n_.node_id, index, 0);
-    if (!r.ok()) error_ = "reading " + object(index) + ": " + r.error_text(n_.node_id, ctx_.sdo_timeout_ns);
+    if (!r.ok())
+      error_ = "reading " + object(index) + ": " + r.error_text(n_.node_id, ctx_.sdo_timeout_ns);
     value = canopen::sign_extend(r.value(), bits);
     return r.ok();
   }
@@ -274,9 +284,11 @@ int calibrate_depth(ToolContext& ctx, const CalibrateOptions& opt) {
   if (!drive.read(c402::kPositionActual, home, 32)) return fail(drive.error());
   // 2. Travel: up to the board's upper limit, slowly; where it stops is the end stop.
   const double cpu = n.counts_per_unit;
-  if (!drive.write(c402::kModesOfOperation, static_cast<std::uint8_t>(c402::kModeProfilePosition), 1) ||
+  if (!drive.write(c402::kModesOfOperation, static_cast<std::uint8_t>(c402::kModeProfilePosition),
+                   1) ||
       !drive.enable() ||
-      !drive.write(c402::kTargetPosition, static_cast<std::uint32_t>(std::llround(depth.max_mm * cpu)), 4) ||
+      !drive.write(c402::kTargetPosition,
+                   static_cast<std::uint32_t>(std::llround(depth.max_mm * cpu)), 4) ||
       !drive.trigger())
     return fail(drive.error());
   std::int64_t pos = 0, last = INT64_MIN;
@@ -294,7 +306,8 @@ int calibrate_depth(ToolContext& ctx, const CalibrateOptions& opt) {
   }
   const double top_mm = static_cast<double>(pos) / cpu;
   // 3. Back to the raised position and disabled.
-  if (!drive.write(c402::kTargetPosition, static_cast<std::uint32_t>(std::llround(depth.raised_mm * cpu)), 4) ||
+  if (!drive.write(c402::kTargetPosition,
+                   static_cast<std::uint32_t>(std::llround(depth.raised_mm * cpu)), 4) ||
       !drive.trigger())
     return fail(drive.error());
   drive.pause_ms(100);
@@ -306,13 +319,15 @@ int calibrate_depth(ToolContext& ctx, const CalibrateOptions& opt) {
                     {"reached_board_max", reached}};
   if (!ctx.json) {
     char line[200];
-    std::snprintf(line, sizeof line, "homed at %lld counts; travel %s at %.2f mm (board max %.2f mm)\n",
-                  static_cast<long long>(home), reached ? "reached the board's limit" : "stopped at an end stop",
-                  top_mm, depth.max_mm);
+    std::snprintf(
+        line, sizeof line, "homed at %lld counts; travel %s at %.2f mm (board max %.2f mm)\n",
+        static_cast<long long>(home),
+        reached ? "reached the board's limit" : "stopped at an end stop", top_mm, depth.max_mm);
     ctx.out << line;
   }
-  std::vector<Change> changes{{"control", "depth_min_mm", depth.min_mm, static_cast<double>(home) / cpu, "mm"},
-                              {"control", "depth_max_mm", depth.max_mm, reached ? depth.max_mm : top_mm, "mm"}};
+  std::vector<Change> changes{
+      {"control", "depth_min_mm", depth.min_mm, static_cast<double>(home) / cpu, "mm"},
+      {"control", "depth_max_mm", depth.max_mm, reached ? depth.max_mm : top_mm, "mm"}};
   return report(ctx, opt, changes, ev);
 }
 

@@ -61,8 +61,8 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
                        (n.product_code == 0 || product.value() == n.product_code);
     items.push_back({who + " identity", id_ok,
                      fmt("vendor 0x%08X product 0x%08X (board 0x%08X 0x%08X)",
-                         static_cast<unsigned>(vendor.value()), static_cast<unsigned>(product.value()),
-                         n.vendor_id, n.product_code)});
+                         static_cast<unsigned>(vendor.value()),
+                         static_cast<unsigned>(product.value()), n.vendor_id, n.product_code)});
     const SdoResult er = sdo.read(n.node_id, 0x1001, 0);
     items.push_back({who + " error register", er.ok() && er.value() == 0,
                      er.ok() ? fmt("0x%02X", static_cast<unsigned>(er.value()))
@@ -89,9 +89,10 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
     const bool ok = s.heartbeats >= 2 && gap_ms <= hb_limit_ms && since_ms <= hb_limit_ms;
     items.push_back({who + " heartbeat", ok,
                      s.heartbeats == 0
-                         ? fmt("none in %.1f s (is 0x1017 set? run configure)", static_cast<double>(opt.listen_ns) * 1e-9)
-                         : fmt("%u beats, longest gap %.0f ms (limit %.0f ms), state %s", s.heartbeats,
-                               gap_ms, hb_limit_ms, nmt_state_name(s.state))});
+                         ? fmt("none in %.1f s (is 0x1017 set? run configure)",
+                               static_cast<double>(opt.listen_ns) * 1e-9)
+                         : fmt("%u beats, longest gap %.0f ms (limit %.0f ms), state %s",
+                               s.heartbeats, gap_ms, hb_limit_ms, nmt_state_name(s.state))});
     if (s.emcy_count > 0) {
       items.push_back({who + " EMCY", false,
                        fmt("%u EMCY, last 0x%04X %s", s.emcy_count, s.last_emcy_code,
@@ -122,12 +123,14 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
                    fmt("%.1f %% at %u bit/s (limit %.0f %%)", load, cfg.can.bitrate_bps,
                        opt.max_bus_load_pct)});
   const auto counters = ctx.link.counters();
-  const auto new_errors = counters.error_frames - counters_before.error_frames + watch.error_frames();
+  const auto new_errors =
+      counters.error_frames - counters_before.error_frames + watch.error_frames();
   items.push_back({"error frames", new_errors == 0 && !counters.bus_off,
                    fmt("%llu error frames%s", static_cast<unsigned long long>(new_errors),
                        counters.bus_off ? ", bus-off" : "")});
-  items.push_back({"lost frames", counters.rx_overflow == counters_before.rx_overflow &&
-                                      counters.tx_dropped == counters_before.tx_dropped,
+  items.push_back({"lost frames",
+                   counters.rx_overflow == counters_before.rx_overflow &&
+                       counters.tx_dropped == counters_before.tx_dropped,
                    fmt("%u receive overflows, %u refused sends",
                        counters.rx_overflow - counters_before.rx_overflow,
                        counters.tx_dropped - counters_before.tx_dropped)});
@@ -136,7 +139,8 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
   if (opt.encoder) {
     hal::GpioEdgeSource* edges = ctx.link.encoder();
     if (edges == nullptr) {
-      items.push_back({"encoder direction", false, "no access to the encoder lines (run on the board, or --skip-encoder)"});
+      items.push_back({"encoder direction", false,
+                       "no access to the encoder lines (run on the board, or --skip-encoder)"});
     } else {
       QuadratureDecoder decoder(cfg.encoder.glitch_filter_ns);
       hal::GpioEdge e;
@@ -153,10 +157,13 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
           while (edges->next_edge(e)) decoder.on_edge(e);
         }
         const std::int64_t c = decoder.count();
-        items.push_back({"encoder direction", c >= 200,
-                         c >= 200 ? fmt("%lld counts forward", static_cast<long long>(c))
-                         : c <= -200 ? fmt("%lld counts: A and B are swapped (swap encoder_a_line and encoder_b_line)", static_cast<long long>(c))
-                                     : fmt("%lld counts in 5 s: the wheel did not turn", static_cast<long long>(c))});
+        items.push_back(
+            {"encoder direction", c >= 200,
+             c >= 200 ? fmt("%lld counts forward", static_cast<long long>(c))
+             : c <= -200
+                 ? fmt("%lld counts: A and B are swapped (swap encoder_a_line and encoder_b_line)",
+                       static_cast<long long>(c))
+                 : fmt("%lld counts in 5 s: the wheel did not turn", static_cast<long long>(c))});
       }
     }
   }
@@ -164,9 +171,12 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
   int failed = 0;
   for (const auto& i : items) failed += i.pass ? 0 : 1;
   if (ctx.json) {
-    nlohmann::json j{{"board", ctx.board->name}, {"interface", ctx.link.name()}, {"passed", failed == 0},
+    nlohmann::json j{{"board", ctx.board->name},
+                     {"interface", ctx.link.name()},
+                     {"passed", failed == 0},
                      {"failed_items", failed}};
-    for (const auto& i : items) j["items"].push_back({{"item", i.name}, {"pass", i.pass}, {"detail", i.detail}});
+    for (const auto& i : items)
+      j["items"].push_back({{"item", i.name}, {"pass", i.pass}, {"detail", i.detail}});
     ctx.out << j.dump(2) << "\n";
   } else {
     for (const auto& i : items) {
@@ -176,7 +186,8 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
       ctx.out << line;
     }
     ctx.out << (failed == 0 ? "all " + std::to_string(items.size()) + " items passed\n"
-                            : std::to_string(failed) + " of " + std::to_string(items.size()) + " items failed\n");
+                            : std::to_string(failed) + " of " + std::to_string(items.size()) +
+                                  " items failed\n");
   }
   return failed == 0 ? kExitOk : kExitFailed;
 }

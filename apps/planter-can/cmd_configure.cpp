@@ -60,13 +60,14 @@ NodeOutcome configure_node(ToolContext& ctx, const NodeConfig& n, const Configur
     char b[192];
     if (!r.ok()) {
       std::snprintf(b, sizeof b, "step %zu (%s): %s [boot error %c]", i + 1,
-                    step_line(n.node_id, s).c_str(), r.error_text(n.node_id, ctx.sdo_timeout_ns).c_str(),
-                    s.error);
+                    step_line(n.node_id, s).c_str(),
+                    r.error_text(n.node_id, ctx.sdo_timeout_ns).c_str(), s.error);
       out.error = b;
       return out;
     }
     if (!s.write && (static_cast<std::uint32_t>(r.value()) & s.check_mask) != s.value) {
-      std::snprintf(b, sizeof b, "step %zu: %04X:%02X reads 0x%08X, the board expects 0x%08X [boot error %c]",
+      std::snprintf(b, sizeof b,
+                    "step %zu: %04X:%02X reads 0x%08X, the board expects 0x%08X [boot error %c]",
                     i + 1, s.index, s.sub, static_cast<std::uint32_t>(r.value()) & s.check_mask,
                     s.value, s.error);
       out.error = b;
@@ -126,7 +127,8 @@ int run_configure(ToolContext& ctx, const ConfigureOptions& opt) {
     for (const NodeConfig* n : nodes) {
       NodeConfigScript script;
       build_node_config_script(*n, ctx.board->controller.can.heartbeat_producer_ms, script);
-      if (!ctx.json) ctx.out << "# " << node_role_name(n->role) << " (node " << unsigned{n->node_id} << ")\n";
+      if (!ctx.json)
+        ctx.out << "# " << node_role_name(n->role) << " (node " << unsigned{n->node_id} << ")\n";
       for (std::size_t i = 0; i < script.count; ++i) {
         const std::string line = step_line(n->node_id, script.steps[i]);
         if (ctx.json) {
@@ -166,7 +168,8 @@ int run_configure(ToolContext& ctx, const ConfigureOptions& opt) {
       char line[320];
       if (o.error.empty()) {
         std::snprintf(line, sizeof line, "%-16s node %-3u %3d writes, %3d read back ok, %s\n",
-                      o.role.c_str(), o.id, o.writes, o.verified, o.stored ? "stored" : "not stored");
+                      o.role.c_str(), o.id, o.writes, o.verified,
+                      o.stored ? "stored" : "not stored");
       } else {
         std::snprintf(line, sizeof line, "%-16s node %-3u FAILED: %s\n", o.role.c_str(), o.id,
                       o.error.c_str());

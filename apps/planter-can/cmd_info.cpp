@@ -41,7 +41,8 @@ int run_info(ToolContext& ctx, const std::string& node_text) {
   j["profile"] = device_profile_text(device_type);
   auto text = [&](std::uint16_t index) -> std::string {
     const SdoResult r = sdo.read(id, index, 0);
-    return r.ok() ? std::string(r.data.begin(), r.data.end()) : "(" + r.error_text(id, ctx.sdo_timeout_ns) + ")";
+    return r.ok() ? std::string(r.data.begin(), r.data.end())
+                  : "(" + r.error_text(id, ctx.sdo_timeout_ns) + ")";
   };
   auto u32 = [&](std::uint16_t index, std::uint8_t sub, bool& ok) -> std::uint32_t {
     const SdoResult r = sdo.read(id, index, sub);
@@ -66,8 +67,8 @@ int run_info(ToolContext& ctx, const std::string& node_text) {
       bool ok2 = false;
       const std::uint32_t code = u32(0x1003, s, ok2);
       if (ok2) {
-        j["error_history"].push_back({{"code", hex32(code)},
-                                      {"meaning", emcy_code_text(static_cast<std::uint16_t>(code))}});
+        j["error_history"].push_back(
+            {{"code", hex32(code)}, {"meaning", emcy_code_text(static_cast<std::uint16_t>(code))}});
       }
     }
   }
@@ -110,7 +111,9 @@ int run_info(ToolContext& ctx, const std::string& node_text) {
     std::snprintf(line, sizeof line, "%-18s %s\n", k, v.c_str());
     ctx.out << line;
   };
-  row("node", std::to_string(id) + (j["role"].get<std::string>().empty() ? "" : " (" + j["role"].get<std::string>() + ")"));
+  row("node",
+      std::to_string(id) +
+          (j["role"].get<std::string>().empty() ? "" : " (" + j["role"].get<std::string>() + ")"));
   row("device type", j["device_type"].get<std::string>() + "  " + j["profile"].get<std::string>());
   row("device name", j["device_name"].get<std::string>());
   row("hardware version", j["hardware_version"].get<std::string>());
@@ -120,7 +123,8 @@ int run_info(ToolContext& ctx, const std::string& node_text) {
   if (j["error_history"].empty()) row("error history", "empty");
   for (const auto& e : j["error_history"])
     row("error history", e["code"].get<std::string>() + "  " + e["meaning"].get<std::string>());
-  row("heartbeat", j["heartbeat_ms"].is_number() ? std::to_string(j["heartbeat_ms"].get<int>()) + " ms" : "-");
+  row("heartbeat",
+      j["heartbeat_ms"].is_number() ? std::to_string(j["heartbeat_ms"].get<int>()) + " ms" : "-");
   for (const auto& p : j["pdos"]) {
     std::string v = p["cob_id"].get<std::string>() + (p["valid"].get<bool>() ? "" : " (invalid)") +
                     " type " + std::to_string(p["transmission"].get<int>());

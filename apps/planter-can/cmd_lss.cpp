@@ -141,7 +141,8 @@ int run_lss(ToolContext& ctx, const LssOptions& opt) {
     id = *found;
   }
   j["found"] = true;
-  j["identity"] = {{"vendor_id", id[0]}, {"product_code", id[1]}, {"revision", id[2]}, {"serial", id[3]}};
+  j["identity"] = {
+      {"vendor_id", id[0]}, {"product_code", id[1]}, {"revision", id[2]}, {"serial", id[3]}};
   if (opt.action == "fastscan") {
     send_lss(link, cs::kSwitchGlobal, 0);  // back to waiting, unchanged
     if (ctx.json) {
@@ -190,8 +191,9 @@ int run_lss(ToolContext& ctx, const LssOptions& opt) {
   if (ctx.json) {
     ctx.out << j.dump(2) << "\n";
   } else {
-    ctx.out << identity_text(id) << "\n  node-ID " << (old_id == 0xFF ? std::string("unconfigured") : std::to_string(old_id))
-            << " -> " << opt.new_id << (j["stored"].get<bool>() ? ", stored" : ", NOT stored")
+    ctx.out << identity_text(id) << "\n  node-ID "
+            << (old_id == 0xFF ? std::string("unconfigured") : std::to_string(old_id)) << " -> "
+            << opt.new_id << (j["stored"].get<bool>() ? ", stored" : ", NOT stored")
             << (booted ? ", boot-up seen" : ", no boot-up seen within 1 s") << "\n";
   }
   return booted && j["stored"].get<bool>() ? kExitOk : kExitFailed;

@@ -11,10 +11,10 @@
 namespace planter::cantool {
 
 struct LssOptions {
-  std::string action;  // fastscan | assign | inquire
-  int new_id = 0;      // assign
+  std::string action;                                    // fastscan | assign | inquire
+  int new_id = 0;                                        // assign
   std::optional<std::array<std::uint32_t, 4>> identity;  // vendor, product, revision, serial
-  std::int64_t timeout_ns = 20'000'000;  // silence this long means "no"
+  std::int64_t timeout_ns = 20'000'000;                  // silence this long means "no"
 };
 
 // Fastscan: the identity of one unconfigured node, which is left in configuration state.

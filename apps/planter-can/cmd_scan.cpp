@@ -15,12 +15,18 @@ namespace planter::cantool {
 
 const char* nmt_state_name(std::uint8_t state) {
   switch (state) {
-    case 0x00: return "boot-up";
-    case 0x04: return "stopped";
-    case 0x05: return "operational";
-    case 0x7F: return "pre-operational";
-    case 0xFF: return "-";
-    default: return "invalid";
+    case 0x00:
+      return "boot-up";
+    case 0x04:
+      return "stopped";
+    case 0x05:
+      return "operational";
+    case 0x7F:
+      return "pre-operational";
+    case 0xFF:
+      return "-";
+    default:
+      return "invalid";
   }
 }
 
@@ -47,7 +53,8 @@ ScanResult scan_bus(ToolContext& ctx, const ScanOptions& opt) {
       while (link.receive(f)) {
         r.watch.on_frame(f, link.now_ns());
         const std::uint16_t cob = f.cob_id();
-        if (f.is_standard_data() && cob > canopen::kSdoResponseBase && cob < 0x600 && clients[cob & 0x7F])
+        if (f.is_standard_data() && cob > canopen::kSdoResponseBase && cob < 0x600 &&
+            clients[cob & 0x7F])
           clients[cob & 0x7F]->on_frame(f, link.now_ns(), link);
       }
       progress.update("probing node " + std::to_string(id) + "/127");
@@ -64,7 +71,8 @@ ScanResult scan_bus(ToolContext& ctx, const ScanOptions& opt) {
       if (!link.receive_until(f, now + 5'000'000)) continue;
       r.watch.on_frame(f, link.now_ns());
       const std::uint16_t cob = f.cob_id();
-      if (f.is_standard_data() && cob > canopen::kSdoResponseBase && cob < 0x600 && clients[cob & 0x7F])
+      if (f.is_standard_data() && cob > canopen::kSdoResponseBase && cob < 0x600 &&
+          clients[cob & 0x7F])
         clients[cob & 0x7F]->on_frame(f, link.now_ns(), link);
     }
   }
@@ -132,9 +140,8 @@ int run_scan(ToolContext& ctx, const ScanOptions& opt) {
   ctx.out << line;
   for (const auto& n : r.nodes) {
     if (n.answered_sdo) {
-      std::snprintf(line, sizeof line,
-                    "%-4u %-16s %-26s 0x%08X 0x%08X %-8u 0x%08X %-16s %s\n", n.id,
-                    n.role.empty() ? "-" : n.role.c_str(), device_profile_text(n.device_type),
+      std::snprintf(line, sizeof line, "%-4u %-16s %-26s 0x%08X 0x%08X %-8u 0x%08X %-16s %s\n",
+                    n.id, n.role.empty() ? "-" : n.role.c_str(), device_profile_text(n.device_type),
                     n.vendor, n.product, n.revision, n.serial, nmt_state_name(n.state),
                     n.device_name.c_str());
     } else {

@@ -49,7 +49,8 @@ std::string execute_cia309(ToolContext& ctx, const Cia309Command& cmd, bool& ok)
     char buf[160];
     if (res.status == SdoResult::Status::kTimedOut) {
       std::snprintf(buf, sizeof buf, "ERROR: 0x%08X no answer from node %u in %lld ms",
-                    res.abort_code, cmd.node, static_cast<long long>(ctx.sdo_timeout_ns / 1'000'000));
+                    res.abort_code, cmd.node,
+                    static_cast<long long>(ctx.sdo_timeout_ns / 1'000'000));
     } else {
       std::snprintf(buf, sizeof buf, "ERROR: 0x%08X %s", res.abort_code,
                     canopen::abort_code_text(res.abort_code));
@@ -154,7 +155,9 @@ int run_nmt(ToolContext& ctx, const std::string& command, const std::string& nod
   }
   const std::string who = node == 0 ? "all nodes" : "node " + std::to_string(node);
   if (ctx.json) {
-    nlohmann::json j{{"command", command}, {"node", node}, {"sent", true},
+    nlohmann::json j{{"command", command},
+                     {"node", node},
+                     {"sent", true},
                      {"confirmed", node != 0 ? nlohmann::json(confirmed) : nlohmann::json()}};
     ctx.out << j.dump(2) << "\n";
   } else if (node == 0) {

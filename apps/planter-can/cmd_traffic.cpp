@@ -41,8 +41,12 @@ void print_summary(ToolContext& ctx, const BusWatch& watch, const FrameDecoder& 
       f.dlc = s.last_dlc;
       f.data = s.last_data;
       const DecodedFrame d = decoder.decode(f);
-      j["cobs"].push_back({{"cob_id", cob}, {"service", service_name(d.service)}, {"node", d.node},
-                           {"count", s.count}, {"rate_hz", s.rate_hz()}, {"last", d.text}});
+      j["cobs"].push_back({{"cob_id", cob},
+                           {"service", service_name(d.service)},
+                           {"node", d.node},
+                           {"count", s.count},
+                           {"rate_hz", s.rate_hz()},
+                           {"last", d.text}});
     }
     ctx.out << j.dump() << "\n";
     return;
@@ -58,8 +62,9 @@ void print_summary(ToolContext& ctx, const BusWatch& watch, const FrameDecoder& 
     f.data = s.last_data;
     const DecodedFrame d = decoder.decode(f);
     const std::string node = d.node == 0 ? "-"
-                             : d.node_name.empty() ? std::to_string(d.node)
-                                                   : d.node_name + " (" + std::to_string(d.node) + ")";
+                             : d.node_name.empty()
+                                 ? std::to_string(d.node)
+                                 : d.node_name + " (" + std::to_string(d.node) + ")";
     std::snprintf(line, sizeof line, "0x%03X %-7s %-18s %8llu %9.1f  %s\n", cob,
                   service_name(d.service), node.c_str(), static_cast<unsigned long long>(s.count),
                   s.rate_hz(), d.text.c_str());
@@ -67,8 +72,9 @@ void print_summary(ToolContext& ctx, const BusWatch& watch, const FrameDecoder& 
   }
   std::snprintf(line, sizeof line,
                 "%llu frames, bus load %.1f %% at %u bit/s, %llu error frames, %u rx overflows%s\n",
-                static_cast<unsigned long long>(watch.frames()), watch.bus_load_pct(bitrate, now_ns),
-                bitrate, static_cast<unsigned long long>(watch.error_frames() + c.error_frames),
+                static_cast<unsigned long long>(watch.frames()),
+                watch.bus_load_pct(bitrate, now_ns), bitrate,
+                static_cast<unsigned long long>(watch.error_frames() + c.error_frames),
                 c.rx_overflow, c.bus_off ? ", BUS-OFF" : "");
   ctx.out << line;
 }
@@ -81,8 +87,9 @@ int run_monitor(ToolContext& ctx, const TrafficOptions& opt) {
   const std::int64_t t0 = ctx.link.now_ns();
   watch.start(t0);
   const std::int64_t end = end_of(ctx.link, opt.duration_s);
-  std::int64_t next_summary =
-      opt.summary_every_s > 0 ? t0 + static_cast<std::int64_t>(opt.summary_every_s * 1e9) : INT64_MAX;
+  std::int64_t next_summary = opt.summary_every_s > 0
+                                  ? t0 + static_cast<std::int64_t>(opt.summary_every_s * 1e9)
+                                  : INT64_MAX;
   hal::CanFrame f;
   while (!stopped(opt) && ctx.link.now_ns() < end) {
     const std::int64_t wake = std::min({end, next_summary, ctx.link.now_ns() + 100'000'000});
@@ -93,17 +100,20 @@ int run_monitor(ToolContext& ctx, const TrafficOptions& opt) {
         const DecodedFrame d = decoder.decode(f);
         const double t = static_cast<double>(now - t0) * 1e-9;
         if (ctx.json) {
-          nlohmann::json j{{"t", t}, {"cob_id", f.cob_id()}, {"service", service_name(d.service)},
-                           {"node", d.node}, {"text", d.text}, {"malformed", d.malformed}};
+          nlohmann::json j{
+              {"t", t},         {"cob_id", f.cob_id()}, {"service", service_name(d.service)},
+              {"node", d.node}, {"text", d.text},       {"malformed", d.malformed}};
           if (!d.node_name.empty()) j["role"] = d.node_name;
           for (const auto& v : d.values)
-            j["values"].push_back({{"name", v.name}, {"value", v.value}, {"unit", v.unit}, {"raw", v.raw}});
+            j["values"].push_back(
+                {{"name", v.name}, {"value", v.value}, {"unit", v.unit}, {"raw", v.raw}});
           ctx.out << j.dump() << "\n";
         } else {
           char line[512];
           const std::string node = d.node == 0 ? ""
-                                   : d.node_name.empty() ? std::to_string(d.node)
-                                                         : d.node_name + "(" + std::to_string(d.node) + ")";
+                                   : d.node_name.empty()
+                                       ? std::to_string(d.node)
+                                       : d.node_name + "(" + std::to_string(d.node) + ")";
           std::snprintf(line, sizeof line, "%10.4f  %-20s %-7s %s%s%s\n", t, node.c_str(),
                         service_name(d.service), d.text.c_str(), opt.raw ? "   | " : "",
                         opt.raw ? raw_frame_text(f).c_str() : "");
@@ -124,7 +134,8 @@ namespace {
 
 class LogWriter final : public FrameTap {
  public:
-  LogWriter(std::ofstream& out, std::string interface) : out_(out), interface_(std::move(interface)) {}
+  LogWriter(std::ofstream& out, std::string interface)
+      : out_(out), interface_(std::move(interface)) {}
   void on_frame(std::int64_t time_ns, const hal::CanFrame& frame, bool transmitted) override {
     (void)transmitted;  // candump -L has no direction; own frames are logged like the rest
     out_ << format_log_line(time_ns, interface_, frame) << '\n';
@@ -219,9 +230,10 @@ int run_replay(ToolContext& ctx, const std::string& path, const TrafficOptions& 
   Progress progress(ctx.err, ctx.progress);
   for (const auto& r : records) {
     if (stopped(opt)) break;
-    const auto at = t0 + static_cast<std::int64_t>(static_cast<double>(r.time_ns - log0) / opt.speed);
+    const auto at =
+        t0 + static_cast<std::int64_t>(static_cast<double>(r.time_ns - log0) / opt.speed);
     while (ctx.link.now_ns() < at) ctx.link.receive_until(f, at);  // keep the rx queue drained
-    if (r.frame.id & hal::CanFrame::kErrorFlag) continue;  // error frames are not sendable
+    if (r.frame.id & hal::CanFrame::kErrorFlag) continue;          // error frames are not sendable
     if (ctx.link.send(r.frame)) {
       ++sent;
     } else {
@@ -231,7 +243,11 @@ int run_replay(ToolContext& ctx, const std::string& path, const TrafficOptions& 
   }
   progress.done();
   if (ctx.json) {
-    ctx.out << nlohmann::json{{"file", path}, {"frames", records.size()}, {"sent", sent}, {"refused", refused}}.dump(2)
+    ctx.out << nlohmann::json{{"file", path},
+                              {"frames", records.size()},
+                              {"sent", sent},
+                              {"refused", refused}}
+                   .dump(2)
             << "\n";
   } else {
     ctx.out << sent << " of " << records.size() << " frames replayed from " << path
@@ -281,7 +297,8 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
   std::ostream& csv = out_path.empty() ? out : file;
   // One row per SYNC: the values the controller had for that cycle.
   std::size_t syncs = 0;
-  for (const auto& r : records) syncs += r.frame.is_standard_data() && r.frame.cob_id() == canopen::kSyncCobId;
+  for (const auto& r : records)
+    syncs += r.frame.is_standard_data() && r.frame.cob_id() == canopen::kSyncCobId;
   if (syncs == 0) {
     err << "planter-can: decode: " << log_path << " has no SYNC frames to sample the signals on\n";
     return kExitFailed;
@@ -303,7 +320,8 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
   };
   std::array<bool, kCount> present{};
   for (const auto& r : records) {
-    if (r.frame.is_standard_data()) for_each_value(r, [&](std::size_t i, double) { present[i] = true; });
+    if (r.frame.is_standard_data())
+      for_each_value(r, [&](std::size_t i, double) { present[i] = true; });
   }
   csv << "# source: " << log_path << "\n# board: " << board->name << "\nt";
   for (std::size_t i = 0; i < kCount; ++i) {
@@ -336,7 +354,8 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
     ++rows;
   }
   if (!out_path.empty()) {
-    out << rows << " rows (one per SYNC) from " << records.size() << " frames written to " << out_path << "\n";
+    out << rows << " rows (one per SYNC) from " << records.size() << " frames written to "
+        << out_path << "\n";
   }
   return kExitOk;
 }

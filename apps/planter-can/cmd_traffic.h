@@ -13,8 +13,8 @@ struct TrafficOptions {
   double duration_s = 0.0;  // 0 = until interrupted
   bool raw = false;         // monitor: raw bytes beside the decode
   bool summary_only = false;
-  double summary_every_s = 0.0;  // monitor: rate table this often (0 = at the end only)
-  double speed = 1.0;            // replay
+  double summary_every_s = 0.0;             // monitor: rate table this often (0 = at the end only)
+  double speed = 1.0;                       // replay
   const std::atomic<bool>* stop = nullptr;  // set by SIGINT/SIGTERM
 };
 

@@ -12,29 +12,41 @@ namespace planter::cantool {
 namespace {
 
 std::uint32_t u32_at(const hal::CanFrame& f, int at) {
-  return static_cast<std::uint32_t>(f.data[at]) | (static_cast<std::uint32_t>(f.data[at + 1]) << 8) |
+  return static_cast<std::uint32_t>(f.data[at]) |
+         (static_cast<std::uint32_t>(f.data[at + 1]) << 8) |
          (static_cast<std::uint32_t>(f.data[at + 2]) << 16) |
          (static_cast<std::uint32_t>(f.data[at + 3]) << 24);
 }
 
 const char* nmt_state_text(std::uint8_t s) {
   switch (s) {
-    case 0x00: return "boot-up";
-    case 0x04: return "stopped";
-    case 0x05: return "operational";
-    case 0x7F: return "pre-operational";
-    default: return "invalid state";
+    case 0x00:
+      return "boot-up";
+    case 0x04:
+      return "stopped";
+    case 0x05:
+      return "operational";
+    case 0x7F:
+      return "pre-operational";
+    default:
+      return "invalid state";
   }
 }
 
 const char* nmt_command_text(std::uint8_t cs) {
   switch (cs) {
-    case 0x01: return "start";
-    case 0x02: return "stop";
-    case 0x80: return "enter pre-operational";
-    case 0x81: return "reset node";
-    case 0x82: return "reset communication";
-    default: return "invalid command";
+    case 0x01:
+      return "start";
+    case 0x02:
+      return "stop";
+    case 0x80:
+      return "enter pre-operational";
+    case 0x81:
+      return "reset node";
+    case 0x82:
+      return "reset communication";
+    default:
+      return "invalid command";
   }
 }
 
@@ -62,30 +74,42 @@ std::string sdo_text(const hal::CanFrame& f, bool request) {
   if (request) {
     switch (ccs) {
       case 1: {
-        if ((cmd & 0x02) == 0) return fmt("write %04X:%02X %.*s (segmented)", index, sub, ll, label.data());
+        if ((cmd & 0x02) == 0)
+          return fmt("write %04X:%02X %.*s (segmented)", index, sub, ll, label.data());
         const int n = (cmd & 0x01) ? 4 - ((cmd >> 2) & 3) : 4;
         std::uint32_t v = 0;
-        for (int i = 0; i < n && 4 + i < f.dlc; ++i) v |= static_cast<std::uint32_t>(f.data[4 + i]) << (8 * i);
+        for (int i = 0; i < n && 4 + i < f.dlc; ++i)
+          v |= static_cast<std::uint32_t>(f.data[4 + i]) << (8 * i);
         return fmt("write %04X:%02X %.*s = %u (0x%X)", index, sub, ll, label.data(), v, v);
       }
-      case 2: return fmt("read %04X:%02X %.*s", index, sub, ll, label.data());
-      case 0: return "download segment";
-      case 3: return "upload segment request";
-      default: return fmt("SDO request 0x%02X", cmd);
+      case 2:
+        return fmt("read %04X:%02X %.*s", index, sub, ll, label.data());
+      case 0:
+        return "download segment";
+      case 3:
+        return "upload segment request";
+      default:
+        return fmt("SDO request 0x%02X", cmd);
     }
   }
   switch (ccs) {
     case 2: {
-      if ((cmd & 0x02) == 0) return fmt("%04X:%02X %.*s (segmented upload)", index, sub, ll, label.data());
+      if ((cmd & 0x02) == 0)
+        return fmt("%04X:%02X %.*s (segmented upload)", index, sub, ll, label.data());
       const int n = (cmd & 0x01) ? 4 - ((cmd >> 2) & 3) : 4;
       std::uint32_t v = 0;
-      for (int i = 0; i < n && 4 + i < f.dlc; ++i) v |= static_cast<std::uint32_t>(f.data[4 + i]) << (8 * i);
+      for (int i = 0; i < n && 4 + i < f.dlc; ++i)
+        v |= static_cast<std::uint32_t>(f.data[4 + i]) << (8 * i);
       return fmt("%04X:%02X %.*s = %u (0x%X)", index, sub, ll, label.data(), v, v);
     }
-    case 3: return fmt("write %04X:%02X %.*s ok", index, sub, ll, label.data());
-    case 0: return "upload segment";
-    case 1: return "download segment ok";
-    default: return fmt("SDO response 0x%02X", cmd);
+    case 3:
+      return fmt("write %04X:%02X %.*s ok", index, sub, ll, label.data());
+    case 0:
+      return "upload segment";
+    case 1:
+      return "download segment ok";
+    default:
+      return fmt("SDO response 0x%02X", cmd);
   }
 }
 
@@ -93,20 +117,34 @@ std::string sdo_text(const hal::CanFrame& f, bool request) {
 
 const char* service_name(Service s) {
   switch (s) {
-    case Service::kNmt: return "NMT";
-    case Service::kSync: return "SYNC";
-    case Service::kEmcy: return "EMCY";
-    case Service::kTpdo: return "TPDO";
-    case Service::kRpdo: return "RPDO";
-    case Service::kSdoRequest: return "SDO-rx";
-    case Service::kSdoResponse: return "SDO-tx";
-    case Service::kHeartbeat: return "HB";
-    case Service::kLssMaster: return "LSS-m";
-    case Service::kLssSlave: return "LSS-s";
-    case Service::kOther: return "other";
-    case Service::kErrorFrame: return "ERROR";
-    case Service::kExtended: return "EXT";
-    case Service::kRemote: return "RTR";
+    case Service::kNmt:
+      return "NMT";
+    case Service::kSync:
+      return "SYNC";
+    case Service::kEmcy:
+      return "EMCY";
+    case Service::kTpdo:
+      return "TPDO";
+    case Service::kRpdo:
+      return "RPDO";
+    case Service::kSdoRequest:
+      return "SDO-rx";
+    case Service::kSdoResponse:
+      return "SDO-tx";
+    case Service::kHeartbeat:
+      return "HB";
+    case Service::kLssMaster:
+      return "LSS-m";
+    case Service::kLssSlave:
+      return "LSS-s";
+    case Service::kOther:
+      return "other";
+    case Service::kErrorFrame:
+      return "ERROR";
+    case Service::kExtended:
+      return "EXT";
+    case Service::kRemote:
+      return "RTR";
   }
   return "?";
 }
@@ -201,8 +239,8 @@ void FrameDecoder::decode_pdo(const hal::CanFrame& f, DecodedFrame& out, bool tr
       if (e.index == canopen::cia402::kStatusword) {
         out.text += fmt("%s%s 0x%04llX (%s)", i ? ", " : "", pv.name.c_str(),
                         static_cast<unsigned long long>(raw[i]),
-                        canopen::cia402::state_name(canopen::cia402::decode_state(
-                            static_cast<std::uint16_t>(raw[i]))));
+                        canopen::cia402::state_name(
+                            canopen::cia402::decode_state(static_cast<std::uint16_t>(raw[i]))));
       } else {
         out.text += fmt("%s%s 0x%llX", i ? ", " : "", pv.name.c_str(),
                         static_cast<unsigned long long>(raw[i]));
@@ -245,7 +283,8 @@ DecodedFrame FrameDecoder::decode(const hal::CanFrame& f) const {
       return out;
     }
     out.node = f.data[1];
-    out.text = fmt("%s %s", nmt_command_text(f.data[0]), f.data[1] ? fmt("node %u", f.data[1]).c_str() : "all nodes");
+    out.text = fmt("%s %s", nmt_command_text(f.data[0]),
+                   f.data[1] ? fmt("node %u", f.data[1]).c_str() : "all nodes");
     return out;
   }
   if (cob == canopen::kSyncCobId) {

@@ -37,16 +37,16 @@ struct ProcessValue {
   std::uint8_t sub = 0;
   std::string name;  // object name, e.g. "velocity actual"
   std::int64_t raw = 0;
-  double value = 0.0;  // in `unit` (raw when no scaling is known)
+  double value = 0.0;     // in `unit` (raw when no scaling is known)
   std::string_view unit;  // static text
 };
 
 struct DecodedFrame {
   Service service = Service::kOther;
-  std::uint8_t node = 0;  // 0 when the service has none
-  int pdo = 0;            // 1-4 for PDOs
-  std::string node_name;  // board role ("disc_drive") when known
-  std::string text;       // one line
+  std::uint8_t node = 0;             // 0 when the service has none
+  int pdo = 0;                       // 1-4 for PDOs
+  std::string node_name;             // board role ("disc_drive") when known
+  std::string text;                  // one line
   std::vector<ProcessValue> values;  // PDOs decoded with the board's maps
   bool malformed = false;            // wrong length for its service
 };

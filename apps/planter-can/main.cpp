@@ -56,17 +56,20 @@ int main(int argc, char** argv) {
   ScanOptions scan;
   int listen_ms = 300;
   auto* c_scan = app.add_subcommand("scan", "list the nodes: listen, then probe IDs 1-127");
-  c_scan->add_option("--listen-ms", listen_ms, "passive listening first")->check(CLI::Range(0, 60000));
+  c_scan->add_option("--listen-ms", listen_ms, "passive listening first")
+      ->check(CLI::Range(0, 60000));
   bool no_probe = false;
   c_scan->add_flag("--passive", no_probe, "listen only, send nothing");
 
   std::string info_node;
-  auto* c_info = app.add_subcommand("info", "identity, versions, errors, heartbeat, PDOs of a node");
+  auto* c_info =
+      app.add_subcommand("info", "identity, versions, errors, heartbeat, PDOs of a node");
   c_info->add_option("node", info_node, "node-ID or board role")->required();
 
   std::vector<std::string> sdo_words;
   std::string sdo_file;
-  auto* c_sdo = app.add_subcommand("sdo", "CiA 309-3: NODE r IDX SUB [TYPE] | NODE w IDX SUB TYPE VALUE");
+  auto* c_sdo =
+      app.add_subcommand("sdo", "CiA 309-3: NODE r IDX SUB [TYPE] | NODE w IDX SUB TYPE VALUE");
   c_sdo->add_option("command", sdo_words, "one command line");
   c_sdo->add_option("-f,--file", sdo_file, "batch file, one command per line");
   c_sdo->allow_extras(false);
@@ -83,13 +86,17 @@ int main(int argc, char** argv) {
   auto* c_lss = app.add_subcommand("lss", "fastscan | assign NEW_ID | inquire (CiA 305)");
   c_lss->add_option("action", lss.action)->required();
   c_lss->add_option("new_id", lss.new_id, "assign: the node-ID to give");
-  c_lss->add_option("--identity", lss_identity, "VENDOR PRODUCT REVISION SERIAL instead of a fastscan")
+  c_lss
+      ->add_option("--identity", lss_identity,
+                   "VENDOR PRODUCT REVISION SERIAL instead of a fastscan")
       ->expected(4);
-  c_lss->add_option("--lss-timeout-ms", lss_timeout_ms, "silence this long means no")->check(CLI::Range(1, 10000));
+  c_lss->add_option("--lss-timeout-ms", lss_timeout_ms, "silence this long means no")
+      ->check(CLI::Range(1, 10000));
 
   ConfigureOptions configure;
   bool no_store = false;
-  auto* c_configure = app.add_subcommand("configure", "apply the board's node configuration, verify, store");
+  auto* c_configure =
+      app.add_subcommand("configure", "apply the board's node configuration, verify, store");
   c_configure->add_option("--node", configure.node, "only this node (ID or role)");
   c_configure->add_flag("--dry-run", configure.dry_run, "print the SDO writes (CiA 309-3 lines)");
   c_configure->add_flag("--no-store", no_store, "do not store (0x1010) after verifying");
@@ -97,20 +104,24 @@ int main(int argc, char** argv) {
   TrafficOptions traffic;
   traffic.stop = &g_stop;
   auto* c_monitor = app.add_subcommand("monitor", "live decode with names, units and rates");
-  c_monitor->add_option("--duration", traffic.duration_s, "seconds (default: until Ctrl-C)")->check(CLI::Range(0.0, 1e7));
+  c_monitor->add_option("--duration", traffic.duration_s, "seconds (default: until Ctrl-C)")
+      ->check(CLI::Range(0.0, 1e7));
   c_monitor->add_flag("--raw", traffic.raw, "raw bytes beside the decode");
   c_monitor->add_flag("--summary-only", traffic.summary_only, "the rate table only");
-  c_monitor->add_option("--summary-every", traffic.summary_every_s, "rate table every N seconds")->check(CLI::Range(0.0, 3600.0));
+  c_monitor->add_option("--summary-every", traffic.summary_every_s, "rate table every N seconds")
+      ->check(CLI::Range(0.0, 3600.0));
 
   std::string record_path;
   auto* c_record = app.add_subcommand("record", "candump -L log of the bus, own frames included");
   c_record->add_option("file", record_path)->required();
-  c_record->add_option("--duration", traffic.duration_s, "seconds (default: until Ctrl-C)")->check(CLI::Range(0.0, 1e7));
+  c_record->add_option("--duration", traffic.duration_s, "seconds (default: until Ctrl-C)")
+      ->check(CLI::Range(0.0, 1e7));
 
   std::string replay_path;
   auto* c_replay = app.add_subcommand("replay", "send a candump log back onto the bus, timed");
   c_replay->add_option("file", replay_path)->required();
-  c_replay->add_option("--speed", traffic.speed, "time factor (2 = twice as fast)")->check(CLI::Range(0.001, 1000.0));
+  c_replay->add_option("--speed", traffic.speed, "time factor (2 = twice as fast)")
+      ->check(CLI::Range(0.001, 1000.0));
 
   std::string decode_log, decode_out;
   auto* c_decode = app.add_subcommand("decode", "candump log -> recording CSV (PRODUCT.md)");
@@ -119,12 +130,18 @@ int main(int argc, char** argv) {
 
   CalibrateOptions calibrate;
   bool no_write = false;
-  auto* c_cal = app.add_subcommand("calibrate", "force | soil-wheel | depth; results into the board file");
+  auto* c_cal =
+      app.add_subcommand("calibrate", "force | soil-wheel | depth; results into the board file");
   c_cal->add_option("what", calibrate.what)->required();
-  c_cal->add_option("--known-N", calibrate.known_N, "force: the weight, in newtons")->check(CLI::Range(0.001, 1e5));
-  c_cal->add_option("--distance-m", calibrate.distance_m, "soil-wheel: the measured distance")->check(CLI::Range(0.01, 1e4));
-  c_cal->add_option("--samples", calibrate.samples, "force: readings per step")->check(CLI::Range(1, 10000));
-  c_cal->add_option("--ready-after-s", calibrate.ready_after_s, "scripts: wait this long instead of asking for Enter")
+  c_cal->add_option("--known-N", calibrate.known_N, "force: the weight, in newtons")
+      ->check(CLI::Range(0.001, 1e5));
+  c_cal->add_option("--distance-m", calibrate.distance_m, "soil-wheel: the measured distance")
+      ->check(CLI::Range(0.01, 1e4));
+  c_cal->add_option("--samples", calibrate.samples, "force: readings per step")
+      ->check(CLI::Range(1, 10000));
+  c_cal
+      ->add_option("--ready-after-s", calibrate.ready_after_s,
+                   "scripts: wait this long instead of asking for Enter")
       ->check(CLI::Range(0.0, 3600.0));
   c_cal->add_flag("--no-write", no_write, "show the result, leave the board file alone");
 
@@ -132,10 +149,14 @@ int main(int argc, char** argv) {
   double check_listen_s = 2.0;
   bool skip_encoder = false;
   auto* c_check = app.add_subcommand("check", "the commissioning checklist; exit 1 on any fail");
-  c_check->add_option("--listen-s", check_listen_s, "how long to watch the bus")->check(CLI::Range(0.1, 600.0));
-  c_check->add_option("--max-bus-load", check.max_bus_load_pct, "percent")->check(CLI::Range(1.0, 100.0));
+  c_check->add_option("--listen-s", check_listen_s, "how long to watch the bus")
+      ->check(CLI::Range(0.1, 600.0));
+  c_check->add_option("--max-bus-load", check.max_bus_load_pct, "percent")
+      ->check(CLI::Range(1.0, 100.0));
   c_check->add_flag("--skip-encoder", skip_encoder, "do not check the encoder direction");
-  c_check->add_option("--ready-after-s", check.ready_after_s, "scripts: wait instead of asking for Enter")
+  c_check
+      ->add_option("--ready-after-s", check.ready_after_s,
+                   "scripts: wait instead of asking for Enter")
       ->check(CLI::Range(0.0, 3600.0));
 
   try {
@@ -164,13 +185,16 @@ int main(int argc, char** argv) {
       if (have_board) {
         scenario.board = board;
       } else if (scenario_path.empty()) {
-        return fail(kExitBadInput, "--iface sim needs --board or --sim-scenario (the simulated machine is built from it)");
+        return fail(
+            kExitBadInput,
+            "--iface sim needs --board or --sim-scenario (the simulated machine is built from it)");
       } else {
         board = scenario.board;
       }
       SimLinkOptions so;
       so.with_controller = sim_controller;
-      so.push_distance_m = c_cal->parsed() && calibrate.distance_m > 0 ? calibrate.distance_m : push_m;
+      so.push_distance_m =
+          c_cal->parsed() && calibrate.distance_m > 0 ? calibrate.distance_m : push_m;
       link = std::make_unique<SimLink>(scenario, so);
     } else {
       auto socket = std::make_unique<SocketLink>(iface);
@@ -186,8 +210,8 @@ int main(int argc, char** argv) {
     return fail(kExitBadInput, iface + ": " + e.what());
   }
   const bool board_known = have_board || !scenario_path.empty();
-  ToolContext ctx{*link, board_known ? &board : nullptr, json, std::cout, std::cerr,
-                  std::int64_t{timeout_ms} * 1'000'000, !no_progress};
+  ToolContext ctx{*link,     board_known ? &board : nullptr,       json,        std::cout,
+                  std::cerr, std::int64_t{timeout_ms} * 1'000'000, !no_progress};
 
   struct sigaction sa {};
   sa.sa_handler = on_signal;
@@ -211,7 +235,8 @@ int main(int argc, char** argv) {
       for (const auto& w : sdo_words) text += (text.empty() ? "" : " ") + w;
       lines.push_back({"command line", text});
     }
-    if (lines.empty()) return fail(kExitBadInput, "sdo: give a command (NODE r IDX SUB [TYPE]) or -f FILE");
+    if (lines.empty())
+      return fail(kExitBadInput, "sdo: give a command (NODE r IDX SUB [TYPE]) or -f FILE");
     return run_sdo(ctx, lines);
   }
   if (c_nmt->parsed()) return run_nmt(ctx, nmt_command, nmt_node);
@@ -221,7 +246,8 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < 4; ++i) {
         const auto v = parse_integer(lss_identity[i]);
         if (!v || *v < 0 || *v > 0xFFFFFFFF)
-          return fail(kExitBadInput, "lss: --identity value '" + lss_identity[i] + "' is not a 32-bit number");
+          return fail(kExitBadInput,
+                      "lss: --identity value '" + lss_identity[i] + "' is not a 32-bit number");
         id[i] = static_cast<std::uint32_t>(*v);
       }
       lss.identity = id;

@@ -78,7 +78,8 @@ std::string_view object_label(std::uint16_t index, std::uint8_t sub, char* buf, 
   const int n = o ? std::snprintf(buf, size, "%.*s %04X:%02X", static_cast<int>(o->name.size()),
                                   o->name.data(), index, sub)
                   : std::snprintf(buf, size, "%04X:%02X", index, sub);
-  return std::string_view(buf, n > 0 ? std::min<std::size_t>(static_cast<std::size_t>(n), size - 1) : 0);
+  return std::string_view(buf,
+                          n > 0 ? std::min<std::size_t>(static_cast<std::size_t>(n), size - 1) : 0);
 }
 
 const char* emcy_code_text(std::uint16_t code) {
@@ -91,41 +92,79 @@ const char* emcy_code_text(std::uint16_t code) {
   if (code == 0x8210) return "PDO not processed due to length error";
   if (code == 0x8611) return "following error";
   switch (code & 0xFF00) {
-    case 0x2100: return "current, device input side";
-    case 0x2200: return "current inside the device";
-    case 0x2300: return "current, device output side (overcurrent)";
-    case 0x3100: return "mains voltage";
-    case 0x3200: return "voltage inside the device";
-    case 0x3300: return "output voltage";
-    case 0x4200: return "device temperature";
-    case 0x4300: return "drive temperature";
-    case 0x5000: case 0x5100: case 0x5200: case 0x5300: case 0x5400: case 0x5500:
+    case 0x2100:
+      return "current, device input side";
+    case 0x2200:
+      return "current inside the device";
+    case 0x2300:
+      return "current, device output side (overcurrent)";
+    case 0x3100:
+      return "mains voltage";
+    case 0x3200:
+      return "voltage inside the device";
+    case 0x3300:
+      return "output voltage";
+    case 0x4200:
+      return "device temperature";
+    case 0x4300:
+      return "drive temperature";
+    case 0x5000:
+    case 0x5100:
+    case 0x5200:
+    case 0x5300:
+    case 0x5400:
+    case 0x5500:
       return "device hardware";
-    case 0x6000: case 0x6100: case 0x6200: case 0x6300: return "device software";
-    case 0x7000: case 0x7100: return "additional modules / motor";
-    case 0x7300: return "sensor";
-    case 0x8000: case 0x8100: return "monitoring / communication";
-    case 0x8200: return "protocol error";
-    case 0x8300: return "torque control";
-    case 0x8400: return "velocity speed controller";
-    case 0x8500: return "position controller";
-    case 0x8600: return "positioning controller";
-    case 0x9000: return "external error";
-    case 0xF000: return "additional functions";
-    case 0xFF00: return "device specific";
-    default: return "unknown error class";
+    case 0x6000:
+    case 0x6100:
+    case 0x6200:
+    case 0x6300:
+      return "device software";
+    case 0x7000:
+    case 0x7100:
+      return "additional modules / motor";
+    case 0x7300:
+      return "sensor";
+    case 0x8000:
+    case 0x8100:
+      return "monitoring / communication";
+    case 0x8200:
+      return "protocol error";
+    case 0x8300:
+      return "torque control";
+    case 0x8400:
+      return "velocity speed controller";
+    case 0x8500:
+      return "position controller";
+    case 0x8600:
+      return "positioning controller";
+    case 0x9000:
+      return "external error";
+    case 0xF000:
+      return "additional functions";
+    case 0xFF00:
+      return "device specific";
+    default:
+      return "unknown error class";
   }
 }
 
 const char* device_profile_text(std::uint32_t device_type) {
   switch (device_type & 0xFFFF) {
-    case 0: return "no profile";
-    case 401: return "CiA 401 generic I/O";
-    case 402: return "CiA 402 drive";
-    case 404: return "CiA 404 measuring device";
-    case 406: return "CiA 406 encoder";
-    case 418: return "CiA 418 battery";
-    default: return "other profile";
+    case 0:
+      return "no profile";
+    case 401:
+      return "CiA 401 generic I/O";
+    case 402:
+      return "CiA 402 drive";
+    case 404:
+      return "CiA 404 measuring device";
+    case 406:
+      return "CiA 406 encoder";
+    case 418:
+      return "CiA 418 battery";
+    default:
+      return "other profile";
   }
 }
 

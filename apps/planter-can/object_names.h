@@ -8,10 +8,10 @@ namespace planter::cantool {
 
 struct ObjectInfo {
   std::uint16_t index = 0;
-  std::uint8_t sub = 0;          // kAnySub: the name holds for every sub-index
+  std::uint8_t sub = 0;  // kAnySub: the name holds for every sub-index
   std::string_view name;
   std::string_view type = "u32";  // CiA 309-3 type name
-  std::string_view unit;         // "" when it has none or it depends on the node
+  std::string_view unit;          // "" when it has none or it depends on the node
 };
 constexpr std::uint8_t kAnySub = 0xFF;
 

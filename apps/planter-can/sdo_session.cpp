@@ -52,8 +52,8 @@ SdoResult SdoSession::run(std::uint8_t node_id, Start start, std::span<std::uint
   }
   switch (client.status()) {
     case canopen::SdoStatus::kDone:
-      result.data.assign(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(
-                                                               client.bytes_read()));
+      result.data.assign(buffer.begin(),
+                         buffer.begin() + static_cast<std::ptrdiff_t>(client.bytes_read()));
       break;
     case canopen::SdoStatus::kTimedOut:
       result.status = SdoResult::Status::kTimedOut;
@@ -71,7 +71,9 @@ SdoResult SdoSession::read(std::uint8_t node_id, std::uint16_t index, std::uint8
   std::array<std::uint8_t, kMaxUploadBytes> buffer{};
   return run(
       node_id,
-      [&](canopen::SdoClient& c) { return c.start_read(index, sub, buffer, link_.now_ns(), link_); },
+      [&](canopen::SdoClient& c) {
+        return c.start_read(index, sub, buffer, link_.now_ns(), link_);
+      },
       buffer);
 }
 

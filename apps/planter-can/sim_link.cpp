@@ -51,7 +51,8 @@ void SimLink::advance() {
   rig_->step_plant(now, kStepNs, plant_edges_);
   hal::GpioEdge e;
   while (plant_edges_.next_edge(e)) {
-    if (options_.encoder_wires_swapped && e.line <= 1) e.line = static_cast<std::uint8_t>(1 - e.line);
+    if (options_.encoder_wires_swapped && e.line <= 1)
+      e.line = static_cast<std::uint8_t>(1 - e.line);
     tool_edges_.push(e);
     if (controller_) controller_edges_.push(e);
   }

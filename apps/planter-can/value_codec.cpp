@@ -16,15 +16,24 @@ struct TypeRow {
 };
 
 constexpr std::array<TypeRow, 18> kTypes{{
-    {"b", ValueKind::kBool, 1},      {"i8", ValueKind::kSigned, 1},
-    {"i16", ValueKind::kSigned, 2},  {"i32", ValueKind::kSigned, 4},
-    {"i64", ValueKind::kSigned, 8},  {"u8", ValueKind::kUnsigned, 1},
-    {"u16", ValueKind::kUnsigned, 2}, {"u32", ValueKind::kUnsigned, 4},
-    {"u64", ValueKind::kUnsigned, 8}, {"x8", ValueKind::kHex, 1},
-    {"x16", ValueKind::kHex, 2},     {"x32", ValueKind::kHex, 4},
-    {"x64", ValueKind::kHex, 8},     {"r32", ValueKind::kReal, 4},
-    {"r64", ValueKind::kReal, 8},    {"vs", ValueKind::kString, 0},
-    {"os", ValueKind::kOctets, 0},   {"d", ValueKind::kOctets, 0},
+    {"b", ValueKind::kBool, 1},
+    {"i8", ValueKind::kSigned, 1},
+    {"i16", ValueKind::kSigned, 2},
+    {"i32", ValueKind::kSigned, 4},
+    {"i64", ValueKind::kSigned, 8},
+    {"u8", ValueKind::kUnsigned, 1},
+    {"u16", ValueKind::kUnsigned, 2},
+    {"u32", ValueKind::kUnsigned, 4},
+    {"u64", ValueKind::kUnsigned, 8},
+    {"x8", ValueKind::kHex, 1},
+    {"x16", ValueKind::kHex, 2},
+    {"x32", ValueKind::kHex, 4},
+    {"x64", ValueKind::kHex, 8},
+    {"r32", ValueKind::kReal, 4},
+    {"r64", ValueKind::kReal, 8},
+    {"vs", ValueKind::kString, 0},
+    {"os", ValueKind::kOctets, 0},
+    {"d", ValueKind::kOctets, 0},
 }};
 
 int hex_digit(char c) {
@@ -93,8 +102,8 @@ std::optional<std::vector<std::uint8_t>> encode_value(const ValueType& type, std
     }
     case ValueKind::kSigned: {
       const auto v = parse_integer(text);
-      const std::int64_t lo = bits == 64 ? std::numeric_limits<std::int64_t>::min()
-                                         : -(std::int64_t{1} << (bits - 1));
+      const std::int64_t lo =
+          bits == 64 ? std::numeric_limits<std::int64_t>::min() : -(std::int64_t{1} << (bits - 1));
       const std::int64_t hi = bits == 64 ? std::numeric_limits<std::int64_t>::max()
                                          : (std::int64_t{1} << (bits - 1)) - 1;
       if (!v || *v < lo || *v > hi || (text.size() > 0 && text[0] != '-' && *v < 0)) {

@@ -28,10 +28,9 @@ void build_node_config_script(const NodeConfig& cfg, std::uint16_t heartbeat_ms,
                                                  : canopen::cia402::kModeProfilePosition),
              0, 'J'});
     if (!velocity && cfg.profile_velocity_units_per_s > 0) {
-      out.add(
-          {true, canopen::cia402::kProfileVelocity, 0, 4,
-           static_cast<std::uint32_t>(cfg.profile_velocity_units_per_s * cfg.counts_per_unit), 0,
-           'J'});
+      out.add({true, canopen::cia402::kProfileVelocity, 0, 4,
+               static_cast<std::uint32_t>(cfg.profile_velocity_units_per_s * cfg.counts_per_unit),
+               0, 'J'});
     }
   }
   auto configure = [&out](std::uint16_t comm, std::uint16_t map, std::uint16_t cob,

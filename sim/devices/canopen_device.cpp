@@ -119,7 +119,8 @@ void CanopenDevice::send_emcy(std::uint16_t code, std::uint8_t error_register) {
   od_.set(0x1001, 0, error_register);
   if (code != 0) {
     // Newest first in 0x1003:1.
-    for (std::uint8_t s = kErrorHistoryDepth; s > 1; --s) od_.set(0x1003, s, od_.get(0x1003, s - 1));
+    for (std::uint8_t s = kErrorHistoryDepth; s > 1; --s)
+      od_.set(0x1003, s, od_.get(0x1003, s - 1));
     od_.set(0x1003, 1, code);
     if (error_count_ < kErrorHistoryDepth) ++error_count_;
     od_.set(0x1003, 0, error_count_);

@@ -15,7 +15,7 @@
 namespace planter::sim {
 
 struct DeviceIdentity {
-  std::uint8_t node_id = 1;  // 0xFF: unconfigured, waits for an ID over LSS
+  std::uint8_t node_id = 1;       // 0xFF: unconfigured, waits for an ID over LSS
   std::uint32_t device_type = 0;  // 0x1000
   std::uint32_t vendor_id = 0;
   std::uint32_t product_code = 0;

@@ -65,9 +65,8 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   std::normal_distribution<double> noise(0.0, 1.0);
   const double vibration = fx.vibration_hz > 0.0 ? std::sin(kTwoPi * fx.vibration_hz * t) : 0.0;
   const double measured = (clamp_force + fixture_load_N_) * (1.0 + 0.01 * fx.force_gain_pct) +
-                          cfg_.drive.force_noise_N * noise(noise_rng_) +
-                          fx.force_offset_N + fx.force_drift_N_per_min * t / 60.0 +
-                          fx.vibration_force_N * vibration;
+                          cfg_.drive.force_noise_N * noise(noise_rng_) + fx.force_offset_N +
+                          fx.force_drift_N_per_min * t / 60.0 + fx.vibration_force_N * vibration;
   dev.force.set_force_N(measured);
 
   // Furrow opener depth actuator (profile position) against soil draft.

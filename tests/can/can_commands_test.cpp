@@ -34,7 +34,8 @@ TEST_F(CanToolTest, ScanFindsEveryNodeWithItsIdentityInUnderTwoSeconds) {
 
 TEST_F(CanToolTest, ScanOfASilentBusEndsAtTheTimeout) {
   start({false, false, 5.0});
-  for (std::size_t i = 0; i < kNodeCount; ++i) link_->rig().endpoint(static_cast<NodeRole>(i)).set_unplugged(true);
+  for (std::size_t i = 0; i < kNodeCount; ++i)
+    link_->rig().endpoint(static_cast<NodeRole>(i)).set_unplugged(true);
   const ScanResult r = scan_bus(*ctx_, {});
   // Their boot-up frames were heard before they went silent; no SDO answer came.
   for (const auto& n : r.nodes) EXPECT_FALSE(n.answered_sdo);
@@ -130,12 +131,9 @@ TEST_F(CanToolTest, InfoDecodesIdentityHeartbeatAndPdoMaps) {
 
 TEST_F(CanToolTest, SdoReadsWritesAndExplainsAborts) {
   start();
-  std::vector<SdoLine> lines{{"t", "[1] 2 r 0x1018 1"},
-                             {"t", "[2] 2 w 0x1017 0 u16 250"},
-                             {"t", "[3] 2 r 0x1017 0"},
-                             {"t", "[4] 2 r 0x1008 0 vs"},
-                             {"t", "[5] 2 r 0x2000 0 u32"},
-                             {"t", "[6] 2 w 0x1000 0 u32 1"}};
+  std::vector<SdoLine> lines{{"t", "[1] 2 r 0x1018 1"},     {"t", "[2] 2 w 0x1017 0 u16 250"},
+                             {"t", "[3] 2 r 0x1017 0"},     {"t", "[4] 2 r 0x1008 0 vs"},
+                             {"t", "[5] 2 r 0x2000 0 u32"}, {"t", "[6] 2 w 0x1000 0 u32 1"}};
   EXPECT_EQ(run_sdo(*ctx_, lines), kExitFailed);
   EXPECT_EQ(out(),
             "[1] 0x000000AB\n[2] OK\n[3] 250\n[4] \"sim disc drive\"\n"
@@ -156,7 +154,8 @@ TEST_F(CanToolTest, SdoBatchWithATypoIsNotHalfApplied) {
   ASSERT_TRUE(read_batch_file((dir_ / "batch.txt").string(), lines, error));
   start();
   EXPECT_EQ(run_sdo(*ctx_, lines), kExitBadInput);
-  EXPECT_NE(err().find("batch.txt:3: token 5 'u17': expected a data type"), std::string::npos) << err();
+  EXPECT_NE(err().find("batch.txt:3: token 5 'u17': expected a data type"), std::string::npos)
+      << err();
   SdoSession sdo(*link_, ctx_->sdo_timeout_ns);
   EXPECT_EQ(sdo.read(2, 0x1017, 0).value(), 0u);
 }
@@ -210,10 +209,13 @@ TEST_F(CanToolTest, CalibrateForceFindsHiddenOffsetAndSpanAndWritesTheBoard) {
   ASSERT_EQ(run_calibrate(*ctx_, o, in), kExitOk) << err();
   const config::BoardConfig after = config::load_board(board_path_);
   const NodeConfig& f = after.controller.node(NodeRole::kForceSensor);
-  EXPECT_NEAR(f.zero_counts, 30.0, 3.0);        // 3 N at 10 counts/N
+  EXPECT_NEAR(f.zero_counts, 30.0, 3.0);                // 3 N at 10 counts/N
   EXPECT_NEAR(f.counts_per_unit, 10.8, 0.15) << out();  // +8 % span
   EXPECT_TRUE(std::filesystem::exists(board_path_ + ".bak"));
-  EXPECT_EQ(config::load_board(board_path_ + ".bak").controller.node(NodeRole::kForceSensor).counts_per_unit, 10.0);
+  EXPECT_EQ(config::load_board(board_path_ + ".bak")
+                .controller.node(NodeRole::kForceSensor)
+                .counts_per_unit,
+            10.0);
   EXPECT_NE(out().find("nodes.force_sensor.counts_per_unit"), std::string::npos) << out();
 }
 
@@ -324,7 +326,9 @@ TEST_F(CanToolTest, RecordKeepsTheToolsOwnFramesAndDecodeMakesTheRecordingCsv) {
   std::string header;
   while (std::getline(c, header) && header[0] == '#') {
   }
-  EXPECT_EQ(header, "t,omega_cmd,omega,disc_angle,disc_torque,clamp_pos_mm,clamp_force,depth_cmd_mm,depth_mm,depth_force");
+  EXPECT_EQ(header,
+            "t,omega_cmd,omega,disc_angle,disc_torque,clamp_pos_mm,clamp_force,depth_cmd_mm,depth_"
+            "mm,depth_force");
   int rows = 0;
   while (std::getline(c, line)) ++rows;
   EXPECT_GT(rows, 50);

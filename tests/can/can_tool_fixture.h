@@ -13,7 +13,9 @@
 
 namespace planter::cantool::test {
 
-inline std::string source_path(const std::string& rel) { return std::string(PLANTER_SOURCE_DIR) + "/" + rel; }
+inline std::string source_path(const std::string& rel) {
+  return std::string(PLANTER_SOURCE_DIR) + "/" + rel;
+}
 
 class CanToolTest : public ::testing::Test {
  protected:
@@ -33,7 +35,8 @@ class CanToolTest : public ::testing::Test {
 
   void start(SimLinkOptions options = {}) {
     link_ = std::make_unique<SimLink>(scenario_, options);
-    ctx_ = std::make_unique<ToolContext>(ToolContext{*link_, &board_, false, out_, err_, 100'000'000, false});
+    ctx_ = std::make_unique<ToolContext>(
+        ToolContext{*link_, &board_, false, out_, err_, 100'000'000, false});
   }
   std::string out() { return out_.str(); }
   std::string err() { return err_.str(); }

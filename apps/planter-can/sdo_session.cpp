@@ -35,6 +35,11 @@ template <typename Start>
 SdoResult SdoSession::run(std::uint8_t node_id, Start start, std::span<std::uint8_t> buffer) {
   canopen::SdoClient client(node_id, timeout_ns_);
   SdoResult result;
+  // A late answer to an earlier, aborted transfer must not be taken for this one's.
+  hal::CanFrame stale;
+  while (link_.receive(stale)) {
+    if (observer_) observer_(stale, link_.now_ns());
+  }
   if (!start(client)) {
     result.status = SdoResult::Status::kAborted;
     result.abort_code = canopen::abort_code::kLength;

@@ -97,7 +97,7 @@ std::optional<std::vector<std::uint8_t>> encode_value(const ValueType& type, std
     case ValueKind::kBool: {
       if (text == "1" || text == "true") return std::vector<std::uint8_t>{1};
       if (text == "0" || text == "false") return std::vector<std::uint8_t>{0};
-      why = "expected 0, 1, true or false";
+      why = "0, 1, true or false";
       return std::nullopt;
     }
     case ValueKind::kSigned: {
@@ -107,7 +107,7 @@ std::optional<std::vector<std::uint8_t>> encode_value(const ValueType& type, std
       const std::int64_t hi = bits == 64 ? std::numeric_limits<std::int64_t>::max()
                                          : (std::int64_t{1} << (bits - 1)) - 1;
       if (!v || *v < lo || *v > hi || (text.size() > 0 && text[0] != '-' && *v < 0)) {
-        why = "expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi);
+        why = "an integer from " + std::to_string(lo) + " to " + std::to_string(hi);
         return std::nullopt;
       }
       put_le(out, static_cast<std::uint64_t>(*v), type.bytes);
@@ -116,13 +116,13 @@ std::optional<std::vector<std::uint8_t>> encode_value(const ValueType& type, std
     case ValueKind::kUnsigned:
     case ValueKind::kHex: {
       if (!text.empty() && text[0] == '-') {
-        why = "expected an unsigned integer (decimal or 0x hex)";
+        why = "an unsigned integer (decimal or 0x hex)";
         return std::nullopt;
       }
       const auto v = parse_integer(text);
       const std::uint64_t max = bits == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;
       if (!v || static_cast<std::uint64_t>(*v) > max) {
-        why = "expected an unsigned integer from 0 to " + std::to_string(max);
+        why = "an unsigned integer from 0 to " + std::to_string(max);
         return std::nullopt;
       }
       put_le(out, static_cast<std::uint64_t>(*v), type.bytes);
@@ -133,7 +133,7 @@ std::optional<std::vector<std::uint8_t>> encode_value(const ValueType& type, std
       char* end = nullptr;
       const double d = std::strtod(s.c_str(), &end);
       if (s.empty() || end != s.c_str() + s.size()) {
-        why = "expected a real number";
+        why = "a real number";
         return std::nullopt;
       }
       if (type.bytes == 4) {
@@ -160,14 +160,14 @@ std::optional<std::vector<std::uint8_t>> encode_value(const ValueType& type, std
         if (c != ' ' && c != ':') hex.push_back(c);
       }
       if (hex.size() % 2 != 0) {
-        why = "expected hex bytes (an even number of hex digits)";
+        why = "hex bytes (an even number of hex digits)";
         return std::nullopt;
       }
       for (std::size_t i = 0; i < hex.size(); i += 2) {
         const int hi = hex_digit(hex[i]);
         const int lo = hex_digit(hex[i + 1]);
         if (hi < 0 || lo < 0) {
-          why = "expected hex bytes, found '" + hex.substr(i, 2) + "'";
+          why = "hex bytes, found '" + hex.substr(i, 2) + "'";
           return std::nullopt;
         }
         out.push_back(static_cast<std::uint8_t>(hi * 16 + lo));

@@ -19,5 +19,7 @@ echo "== benchmarks"
 "$root/build/bench/planter_bench_latency" "$root/scenarios/zhangqiu-field.toml" 60
 echo "== tests (release build)"
 (cd "$root/build" && ctest -j "$(nproc)" --output-on-failure)
+echo "== fuzzing (libFuzzer, bounded): CAN frames, command and log lines, board files"
+scripts/fuzz.sh 60 "$root/build-fuzz"
 echo "== host-in-the-loop on a real kernel (qemu VM: vcan0, gpio-sim)"
 scripts/vm-hil-test.sh "$root/build"

@@ -130,27 +130,6 @@ int run_monitor(ToolContext& ctx, const TrafficOptions& opt) {
   return kExitOk;
 }
 
-namespace {
-
-class LogWriter final : public FrameTap {
- public:
-  LogWriter(std::ofstream& out, std::string interface)
-      : out_(out), interface_(std::move(interface)) {}
-  void on_frame(std::int64_t time_ns, const hal::CanFrame& frame, bool transmitted) override {
-    (void)transmitted;  // candump -L has no direction; own frames are logged like the rest
-    out_ << format_log_line(time_ns, interface_, frame) << '\n';
-    ++frames_;
-  }
-  [[nodiscard]] std::uint64_t frames() const { return frames_; }
-
- private:
-  std::ofstream& out_;
-  std::string interface_;
-  std::uint64_t frames_ = 0;
-};
-
-}  // namespace
-
 int run_record(ToolContext& ctx, const std::string& path, const TrafficOptions& opt) {
   std::ofstream out(path, std::ios::trunc);
   if (!out) {
@@ -158,7 +137,9 @@ int run_record(ToolContext& ctx, const std::string& path, const TrafficOptions& 
     return kExitBadInput;
   }
   LogWriter writer(out, ctx.link.name());
-  ctx.link.set_tap(&writer);
+  FrameTap* outer = ctx.link.tap();  // a session log (--record) keeps running alongside
+  TapPair both(writer, outer);
+  ctx.link.set_tap(&both);
   const std::int64_t end = end_of(ctx.link, opt.duration_s);
   hal::CanFrame f;
   std::int64_t next_flush = ctx.link.now_ns() + 1'000'000'000;
@@ -171,7 +152,7 @@ int run_record(ToolContext& ctx, const std::string& path, const TrafficOptions& 
       progress.update("recorded " + std::to_string(writer.frames()) + " frames");
     }
   }
-  ctx.link.set_tap(nullptr);
+  ctx.link.set_tap(outer);
   out.flush();
   progress.done();
   if (!out) {

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
+#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -50,6 +51,9 @@ int main(int argc, char** argv) {
   app.add_option("--sim-scenario", scenario_path, "sim: the machine and field to simulate");
   app.add_flag("--sim-controller", sim_controller,
                "sim: planterd runs on the bus too (SYNC, PDOs, heartbeats)");
+  std::string session_log;
+  app.add_option("--record", session_log,
+                 "log the whole session (every frame seen and sent) to this candump -L file");
   app.add_option("--sim-push-m", push_m, "sim: how far the fixture pushes the machine")
       ->check(CLI::Range(0.1, 1000.0));
 
@@ -213,6 +217,14 @@ int main(int argc, char** argv) {
   ToolContext ctx{*link,     board_known ? &board : nullptr,       json,        std::cout,
                   std::cerr, std::int64_t{timeout_ms} * 1'000'000, !no_progress};
 
+  std::ofstream session_file;
+  std::unique_ptr<LogWriter> session_writer;
+  if (!session_log.empty()) {
+    session_file.open(session_log, std::ios::trunc);
+    if (!session_file) return fail(kExitBadInput, "--record: " + session_log + ": cannot be written");
+    session_writer = std::make_unique<LogWriter>(session_file, link->name());
+    link->set_tap(session_writer.get());
+  }
   struct sigaction sa {};
   sa.sa_handler = on_signal;
   sigaction(SIGINT, &sa, nullptr);

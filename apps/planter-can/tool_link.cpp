@@ -1,6 +1,15 @@
 #include "apps/planter-can/tool_link.h"
 
+#include <ostream>
+
+#include "apps/planter-can/candump_log.h"
+
 namespace planter::cantool {
+
+void LogWriter::on_frame(std::int64_t time_ns, const hal::CanFrame& frame, bool) {
+  out_ << format_log_line(time_ns, interface_, frame) << '\n';
+  ++frames_;
+}
 
 bool ToolLink::send(const hal::CanFrame& frame) {
   // About 20 ms of retries: enough for a 10-frame queue to drain at 125 kbit/s.

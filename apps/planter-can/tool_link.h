@@ -5,6 +5,7 @@
 // sent and received (the recorder). Sends are paced: a full transmit queue is retried for a
 // bounded time instead of dropping the frame (127 back-to-back SDO requests overflow it).
 #include <cstdint>
+#include <iosfwd>
 #include <string>
 
 #include "planter/hal/can_bus.h"
@@ -25,6 +26,35 @@ class SimFixture {
   virtual ~SimFixture() = default;
   virtual void set_load_N(double load_N) = 0;
   virtual void push_machine() = 0;  // rolls the machine over the sim's calibration distance
+};
+
+// candump -L lines into a stream (frames the tool sends are logged like the rest: the log has
+// no direction column).
+class LogWriter final : public FrameTap {
+ public:
+  LogWriter(std::ostream& out, std::string interface)
+      : out_(out), interface_(std::move(interface)) {}
+  void on_frame(std::int64_t time_ns, const hal::CanFrame& frame, bool transmitted) override;
+  [[nodiscard]] std::uint64_t frames() const { return frames_; }
+
+ private:
+  std::ostream& out_;
+  std::string interface_;
+  std::uint64_t frames_ = 0;
+};
+
+// Two taps at once (a `record` inside a session that is logged as a whole).
+class TapPair final : public FrameTap {
+ public:
+  TapPair(FrameTap& first, FrameTap* second) : first_(first), second_(second) {}
+  void on_frame(std::int64_t time_ns, const hal::CanFrame& frame, bool transmitted) override {
+    first_.on_frame(time_ns, frame, transmitted);
+    if (second_ != nullptr) second_->on_frame(time_ns, frame, transmitted);
+  }
+
+ private:
+  FrameTap& first_;
+  FrameTap* second_;
 };
 
 class ToolLink : public hal::CanBus {
@@ -49,6 +79,7 @@ class ToolLink : public hal::CanBus {
   [[nodiscard]] std::uint32_t lost_sends() const { return lost_; }
 
   void set_tap(FrameTap* tap) { tap_ = tap; }
+  [[nodiscard]] FrameTap* tap() const { return tap_; }
   // Receives one frame, waiting up to the deadline.
   bool receive_until(hal::CanFrame& frame, std::int64_t deadline_ns);
 

@@ -18,6 +18,9 @@ struct RouteConfig {
   double speed_variation_pct = 0.0;  // slow sinusoidal variation of the driver's speed
   double speed_variation_period_s = 20.0;
   std::vector<StopEvent> stops;
+  // Commissioning: someone pushes the machine along the route at this time, controller or
+  // not (-1 = it moves only when the controller has started planting).
+  double push_at_s = -1.0;
 };
 
 struct TerrainConfig {

@@ -39,8 +39,10 @@ void LockstepRunner::apply_events() {
   }
   if (controller_->state() == SupervisorState::kRunning && running_since_s_ < 0.0)
     running_since_s_ = t;
-  if (!moving_ && running_since_s_ >= 0.0 &&
-      t >= running_since_s_ + scenario_.plant.start_delay_s) {
+  const double push_at_s = scenario_.plant.route.push_at_s;
+  const bool pushed = push_at_s >= 0.0 && t >= push_at_s;
+  if (!moving_ && (pushed || (running_since_s_ >= 0.0 &&
+                              t >= running_since_s_ + scenario_.plant.start_delay_s))) {
     rig_->plant().start_moving();
     moving_ = true;
   }

@@ -47,6 +47,7 @@ Scenario load_scenario(const std::string& path) {
       p.route.stops.push_back(e);
     }
     if (p.route.stops.size() > 32) r->fail("stops", "at most 32 stops");
+    p.route.push_at_s = r->number("push_at_s", -1.0, -1.0, 1e6, "s");
     r->reject_unknown_keys();
   }
   if (auto t = root.table("terrain")) {

@@ -79,4 +79,7 @@ timeout 10 "$PLANTERD" --board "$BOARD" --record c.csv --duration 1 --log-period
 echo $? > c-restart.rc
 
 python3 "$R/tests/hil/check_hil.py" "$BOARD" . || fail=1
+
+# 5. planter-can over vcan0: scan, configure, calibrate, check, record, replay.
+sh "$R/tests/hil/guest_can_test.sh" "$R" "$B" || fail=1
 exit $fail

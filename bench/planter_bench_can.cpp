@@ -56,8 +56,8 @@ void BM_SdoRoundTrip(benchmark::State& state) {
     benchmark::DoNotOptimize(r);
   }
   state.SetItemsProcessed(state.iterations());
-  g_sdo_bus_per_s = static_cast<double>(state.iterations()) /
-                    (static_cast<double>(link.now_ns() - bus0) * 1e-9);
+  g_sdo_bus_per_s =
+      static_cast<double>(state.iterations()) / (static_cast<double>(link.now_ns() - bus0) * 1e-9);
 }
 BENCHMARK(BM_SdoRoundTrip)->UseRealTime();
 
@@ -83,11 +83,13 @@ int main(int argc, char** argv) {
   Collector reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
-  std::printf("sdo round trips: %.0f per second of wall time (the sim bus answers in one 1 ms "
-              "step: %.0f per second of bus time)\n",
-              g_sdo_per_s, g_sdo_bus_per_s);
-  std::printf("scan of IDs 1-127 on the sim bus: %.3f s of bus time (goal < 2 s: %.2fx under), "
-              "%.1f ms of wall time\n",
-              g_scan_bus_s, g_scan_bus_s > 0 ? 2.0 / g_scan_bus_s : 0.0, g_scan_wall_s * 1e3);
+  std::printf(
+      "sdo round trips: %.0f per second of wall time (the sim bus answers in one 1 ms "
+      "step: %.0f per second of bus time)\n",
+      g_sdo_per_s, g_sdo_bus_per_s);
+  std::printf(
+      "scan of IDs 1-127 on the sim bus: %.3f s of bus time (goal < 2 s: %.2fx under), "
+      "%.1f ms of wall time\n",
+      g_scan_bus_s, g_scan_bus_s > 0 ? 2.0 / g_scan_bus_s : 0.0, g_scan_wall_s * 1e3);
   return g_scan_bus_s > 0.0 && g_scan_bus_s < 2.0 ? 0 : 1;
 }

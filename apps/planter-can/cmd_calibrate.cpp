@@ -182,6 +182,16 @@ int calibrate_soil_wheel(ToolContext& ctx, const CalibrateOptions& opt, Operator
   }
   progress.done();
   const double counts = static_cast<double>(decoder.count());
+  // Each invalid A/B transition is at least one lost edge: past 0.2 % the figure is not
+  // trustworthy, so nothing is written.
+  const double lost_share = 2.0 * decoder.invalid_transitions() / std::max(1.0, std::fabs(counts));
+  if (lost_share > 0.002) {
+    ctx.err << "planter-can: calibrate soil-wheel: " << decoder.invalid_transitions()
+            << " invalid A/B transitions in " << decoder.count()
+            << " counts: encoder edges were lost (push slower, or check the wiring and the "
+               "glitch filter); nothing written\n";
+    return kExitFailed;
+  }
   const double counts_per_m = std::fabs(counts) / opt.distance_m;
   const double radius = static_cast<double>(enc.counts_per_rev) / (2.0 * M_PI * counts_per_m);
   const double before_counts_per_m =

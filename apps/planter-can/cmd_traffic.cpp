@@ -185,8 +185,10 @@ bool read_log(const std::string& path, std::vector<LogRecord>& records, std::ost
       return false;
     }
     if (p.kind == LogLineKind::kFrame) {
-      if (!records.empty() && p.record.time_ns < records.back().time_ns) {
-        err << "planter-can: " << path << ":" << number << ": time goes backwards\n";
+      // Kernel stamps of frames from different senders may step back a little (candump
+      // shows the same); a step back of more than a second is a spliced or damaged log.
+      if (!records.empty() && p.record.time_ns < records.back().time_ns - 1'000'000'000) {
+        err << "planter-can: " << path << ":" << number << ": time goes back by more than 1 s\n";
         return false;
       }
       records.push_back(std::move(p.record));
@@ -211,8 +213,10 @@ int run_replay(ToolContext& ctx, const std::string& path, const TrafficOptions& 
   Progress progress(ctx.err, ctx.progress);
   for (const auto& r : records) {
     if (stopped(opt)) break;
+    // In file order; a frame stamped a little before its predecessor goes right after it.
     const auto at =
-        t0 + static_cast<std::int64_t>(static_cast<double>(r.time_ns - log0) / opt.speed);
+        t0 + static_cast<std::int64_t>(
+                 static_cast<double>(std::max<std::int64_t>(0, r.time_ns - log0)) / opt.speed);
     while (ctx.link.now_ns() < at) ctx.link.receive_until(f, at);  // keep the rx queue drained
     if (r.frame.id & hal::CanFrame::kErrorFlag) continue;          // error frames are not sendable
     if (ctx.link.send(r.frame)) {
@@ -311,6 +315,7 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
   csv << "\n";
   const std::int64_t t0 = records.front().time_ns;
   std::size_t rows = 0;
+  std::int64_t last_row_ns = 0;
   for (const auto& r : records) {
     if (!r.frame.is_standard_data()) continue;
     if (r.frame.cob_id() != canopen::kSyncCobId) {
@@ -320,6 +325,7 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
       });
       continue;
     }
+    if (rows > 0 && r.time_ns <= last_row_ns) continue;  // the CSV's time strictly increases
     bool complete = true;
     for (std::size_t i = 0; i < kCount; ++i) complete = complete && (seen[i] || !present[i]);
     if (!complete) continue;
@@ -333,6 +339,7 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
     }
     csv << "\n";
     ++rows;
+    last_row_ns = r.time_ns;
   }
   if (!out_path.empty()) {
     out << rows << " rows (one per SYNC) from " << records.size() << " frames written to "

@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   using namespace planter::cantool;
   CLI::App app{"planter-can: CAN bus commissioning for the scallion transplanter"};
   app.require_subcommand(1);
+  app.fallthrough();  // --json, --board ... may also follow the command
   std::string iface, board_path, scenario_path;
   bool json = false, no_progress = false, sim_controller = false;
   int timeout_ms = 100;
@@ -221,7 +222,8 @@ int main(int argc, char** argv) {
   std::unique_ptr<LogWriter> session_writer;
   if (!session_log.empty()) {
     session_file.open(session_log, std::ios::trunc);
-    if (!session_file) return fail(kExitBadInput, "--record: " + session_log + ": cannot be written");
+    if (!session_file)
+      return fail(kExitBadInput, "--record: " + session_log + ": cannot be written");
     session_writer = std::make_unique<LogWriter>(session_file, link->name());
     link->set_tap(session_writer.get());
   }

@@ -67,8 +67,15 @@ bool GpiodEdgeSource::level(int index) const {
 }
 
 void GpiodEdgeSource::refill() {
-  pending_count_ = 0;
+  // Events held back last time stay, in front.
+  std::copy(pending_.begin() + static_cast<std::ptrdiff_t>(pending_next_),
+            pending_.begin() + static_cast<std::ptrdiff_t>(pending_count_), pending_.begin());
+  pending_count_ -= pending_next_;
   pending_next_ = 0;
+  // A and B come from two queues read one after the other: an A edge can arrive after A was
+  // read but before a later B edge is read. Only edges stamped before both reads began are
+  // handed out now; later ones wait for the next refill, so the order is always right.
+  const std::int64_t cut_ns = monotonic_now_ns();
   for (std::size_t i = 0; i < 2; ++i) {
     gpiod_line_event events[16];
     const std::size_t room = std::min<std::size_t>(16, pending_.size() - pending_count_);
@@ -84,11 +91,15 @@ void GpiodEdgeSource::refill() {
   // A and B come from two queues; the decoder needs them in the order they happened.
   std::stable_sort(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(pending_count_),
                    [](const GpioEdge& x, const GpioEdge& y) { return x.time_ns < y.time_ns; });
+  ready_count_ = 0;
+  while (ready_count_ < pending_count_ && pending_[ready_count_].time_ns <= cut_ns) ++ready_count_;
+  // A full buffer must drain even if its stamps are odd (a clock other than monotonic).
+  if (ready_count_ == 0 && pending_count_ == pending_.size()) ready_count_ = pending_count_;
 }
 
 bool GpiodEdgeSource::next_edge(GpioEdge& edge) {
-  if (pending_next_ >= pending_count_) refill();
-  if (pending_next_ >= pending_count_) return false;
+  if (pending_next_ >= ready_count_) refill();
+  if (pending_next_ >= ready_count_) return false;
   edge = pending_[pending_next_++];
   return true;
 }

@@ -53,6 +53,7 @@ class GpiodEdgeSource final : public GpioEdgeSource {
   std::array<GpioEdge, 64> pending_{};
   std::size_t pending_count_ = 0;
   std::size_t pending_next_ = 0;
+  std::size_t ready_count_ = 0;  // pending_[0, ready_count_) are safe to hand out in order
 };
 
 class GpiodInput final : public DigitalInput {

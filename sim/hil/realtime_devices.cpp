@@ -96,9 +96,10 @@ RealtimeDevicesResult run_realtime_devices(const Scenario& scenario,
         }
         const bool pushed =
             scenario.plant.route.push_at_s >= 0.0 && t >= scenario.plant.route.push_at_s;
-        if (!moving && (pushed || (enabled_since_ns >= 0 &&
-                                   sim_ns - enabled_since_ns >=
-                                       static_cast<std::int64_t>(scenario.plant.start_delay_s * 1e9)))) {
+        if (!moving &&
+            (pushed || (enabled_since_ns >= 0 &&
+                        sim_ns - enabled_since_ns >=
+                            static_cast<std::int64_t>(scenario.plant.start_delay_s * 1e9)))) {
           rig.plant().start_moving();
           moving = true;
         }

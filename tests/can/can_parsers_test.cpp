@@ -93,17 +93,22 @@ TEST(Cia309, ErrorsNameTheBadToken) {
     EXPECT_TRUE(std::holds_alternative<Cia309Error>(p)) << line;
     return std::holds_alternative<Cia309Error>(p) ? std::get<Cia309Error>(p).text() : "";
   };
-  EXPECT_EQ(error("5 r 0x10000 0"), "token 3 '0x10000': expected an object index from 0x0000 to 0xFFFF");
-  EXPECT_EQ(error("5 w 0x1017 0 u16 70000"), "token 6 '70000': expected an unsigned integer from 0 to 65535");
+  EXPECT_EQ(error("5 r 0x10000 0"),
+            "token 3 '0x10000': expected an object index from 0x0000 to 0xFFFF");
+  EXPECT_EQ(error("5 w 0x1017 0 u16 70000"),
+            "token 6 '70000': expected an unsigned integer from 0 to 65535");
   EXPECT_EQ(error("5 w 0x1017 0 u16"), "token 6 '<end of line>': expected a value of type u16");
   EXPECT_EQ(error("5 w 0x1017 0 i8 -129"), "token 6 '-129': expected an integer from -128 to 127");
-  EXPECT_EQ(error("128 r 0x1000 0"), "token 1 '128': expected a node-ID from 1 to 127 (0 = all, NMT only)");
-  EXPECT_EQ(error("0 r 0x1000 0"), "token 1 '0': expected a node-ID from 1 to 127 (SDO needs one node)");
+  EXPECT_EQ(error("128 r 0x1000 0"),
+            "token 1 '128': expected a node-ID from 1 to 127 (0 = all, NMT only)");
+  EXPECT_EQ(error("0 r 0x1000 0"),
+            "token 1 '0': expected a node-ID from 1 to 127 (SDO needs one node)");
   EXPECT_EQ(error("5 reset all"), "token 3 'all': expected 'node' or 'comm' after reset");
   EXPECT_EQ(error("5 start now"), "token 3 'now': expected the end of the line");
   EXPECT_EQ(error("[x] 5 start"), "token 1 '[x]': expected a sequence number [0-4294967295]");
   EXPECT_EQ(error("5 w 0x1008 0 os 0G"), "token 6 '0G': expected hex bytes, found '0G'");
-  EXPECT_EQ(error("5 r 0x1000 0 f32"), std::string("token 5 'f32': expected a data type: ") + value_type_names());
+  EXPECT_EQ(error("5 r 0x1000 0 f32"),
+            std::string("token 5 'f32': expected a data type: ") + value_type_names());
   EXPECT_NE(error("").find("empty command"), std::string::npos);
 }
 
@@ -115,7 +120,8 @@ TEST(ValueCodec, FormatsWhatItEncodes) {
   }
   const auto u64 = *parse_value_type("u64");
   std::string why;
-  EXPECT_EQ(format_value(u64, *encode_value(u64, "18446744073709551615", why)), "18446744073709551615");
+  EXPECT_EQ(format_value(u64, *encode_value(u64, "18446744073709551615", why)),
+            "18446744073709551615");
   EXPECT_FALSE(encode_value(u64, "-1", why).has_value());
   EXPECT_EQ(format_value(*parse_value_type("x16"), {0x34, 0x12}), "0x1234");
   EXPECT_EQ(format_value(*parse_value_type("os"), {0xDE, 0xAD}), "DE AD");
@@ -137,15 +143,17 @@ TEST(CandumpLog, RoundTripsEveryKindOfFrame) {
     EXPECT_EQ(p.record.time_ns, 1'700'000'000'123'456'000) << line;
     EXPECT_EQ(p.record.interface, "can0");
   }
-  EXPECT_EQ(format_log_line(1'000'000, "vcan0", make(0x702, {0x05})), "(0000000000.001000) vcan0 702#05");
+  EXPECT_EQ(format_log_line(1'000'000, "vcan0", make(0x702, {0x05})),
+            "(0000000000.001000) vcan0 702#05");
 }
 
 TEST(CandumpLog, RejectsMalformedLinesWithAReason) {
   EXPECT_EQ(parse_log_line("# a comment").kind, LogLineKind::kSkip);
   EXPECT_EQ(parse_log_line("").kind, LogLineKind::kSkip);
-  for (const char* bad : {"(12.5 can0 123#00", "(1.000001) can0", "(1.000001) can0 123", "(1.000001) can0 1234#00",
-                          "(1.000001) can0 123#0", "(1.000001) can0 123#001122334455667788",
-                          "(1.000001) can0 123##100", "(x.1) can0 123#00", "(1.000001) can0 80000123#00"}) {
+  for (const char* bad :
+       {"(12.5 can0 123#00", "(1.000001) can0", "(1.000001) can0 123", "(1.000001) can0 1234#00",
+        "(1.000001) can0 123#0", "(1.000001) can0 123#001122334455667788",
+        "(1.000001) can0 123##100", "(x.1) can0 123#00", "(1.000001) can0 80000123#00"}) {
     const LogParse p = parse_log_line(bad);
     EXPECT_EQ(p.kind, LogLineKind::kError) << bad;
     EXPECT_FALSE(p.error.empty()) << bad;
@@ -163,7 +171,8 @@ TEST(FrameDecoder, NamesEveryServiceAndFlagsShortFrames) {
             "EMCY 0x2310 current, device output side (overcurrent), error register 0x01");
   EXPECT_EQ(d.decode(make(0x582, {0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x02, 0x06})).text,
             "abort 2000:00 2000:00: 0x06020000 object does not exist in the object dictionary");
-  EXPECT_EQ(d.decode(make(0x602, {0x40, 0x18, 0x10, 0x01, 0, 0, 0, 0})).text, "read 1018:01 vendor-ID");
+  EXPECT_EQ(d.decode(make(0x602, {0x40, 0x18, 0x10, 0x01, 0, 0, 0, 0})).text,
+            "read 1018:01 vendor-ID");
   // The force sensor's TPDO1: 7130:01 in 0.1 N -> newtons.
   const DecodedFrame f = d.decode(make(0x185, {0x84, 0x03}));
   ASSERT_EQ(f.values.size(), 1u);
@@ -234,10 +243,9 @@ TEST(BoardFileEdit, ChangesOnlyTheKeysAndKeepsComments) {
       "[encoder]\ncounts_per_rev = 4096   # x4\nwheel_radius_m = 0.15  # calibrated\n\n"
       "[nodes.force_sensor]\nid = 5\n";
   std::string error;
-  ASSERT_TRUE(edit_board_text(text,
-                              {{"encoder", "wheel_radius_m", "0.1546"},
-                               {"nodes.force_sensor", "zero_counts", "31"}},
-                              error));
+  ASSERT_TRUE(edit_board_text(
+      text, {{"encoder", "wheel_radius_m", "0.1546"}, {"nodes.force_sensor", "zero_counts", "31"}},
+      error));
   EXPECT_EQ(text,
             "[encoder]\ncounts_per_rev = 4096   # x4\nwheel_radius_m = 0.1546  # calibrated\n\n"
             "[nodes.force_sensor]\nid = 5\nzero_counts = 31\n");

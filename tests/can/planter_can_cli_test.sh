@@ -31,8 +31,8 @@ expect 2 "needs --board or --sim-scenario" -- --iface sim scan
 expect 2 "nosuch0" -- --iface nosuch0 scan
 expect 2 "cannot be read" -- --iface sim --board "$board" sdo -f "$work/missing.txt"
 expect 2 "cannot be read" -- --board "$board" decode "$work/missing.log"
-printf '(1.000000) can0 702#05\n(0.500000) can0 702#05\n' >"$work/backwards.log"
-expect 2 "backwards.log:2: time goes backwards" -- --board "$board" decode "$work/backwards.log"
+printf '(9.000000) can0 702#05\n(8.999000) can0 702#05\n(2.500000) can0 702#05\n' >"$work/backwards.log"
+expect 2 "backwards.log:3: time goes back by more than 1 s" -- --board "$board" decode "$work/backwards.log"
 printf '(1.000000) can0 702#05\n(2.000000) can0 7020#05\n' >"$work/badid.log"
 expect 2 "badid.log:2: frame ID '7020' is not 3 or 8 hex digits" -- --iface sim --board "$board" replay "$work/badid.log"
 printf '[can]\nbitrate = 5\n' >"$work/bad.toml"

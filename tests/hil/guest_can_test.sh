@@ -24,7 +24,7 @@ $CAN --record d-configure.log configure > d-configure.out 2>&1; echo $? > d-conf
 note "configure: exit $(cat d-configure.rc)"; sed 's/^/    /' d-configure.out
 # The push comes at 12 s of the devices' time: the calibration waits for it, counts, and
 # ends when the wheel has been still for 2 s.
-$CAN calibrate soil-wheel --distance-m 3 --ready-after-s 0 --json > d-wheel.json 2> d-wheel.err
+$CAN calibrate soil-wheel --distance-m 0.6 --ready-after-s 0 --json > d-wheel.json 2> d-wheel.err
 echo $? > d-wheel.rc
 note "calibrate soil-wheel: exit $(cat d-wheel.rc)"
 $CAN calibrate depth --json > d-depth.json 2> d-depth.err; echo $? > d-depth.rc
@@ -50,7 +50,7 @@ canplayer -I d-record.log; echo $? > d-canplayer.rc
 sleep 0.3; kill $C; wait $C 2>/dev/null
 candump -L vcan0 > d-replay.candump & C=$!
 sleep 0.3
-$CAN replay d-record.log --speed 4 > d-replay.out 2>&1; echo $? > d-replay.rc
+$CAN replay d-record.log > d-replay.out 2>&1; echo $? > d-replay.rc
 sleep 0.3; kill $C; wait $C 2>/dev/null
 note "canplayer: exit $(cat d-canplayer.rc), replay: exit $(cat d-replay.rc)"
 

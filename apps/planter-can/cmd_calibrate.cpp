@@ -75,10 +75,7 @@ bool read_force_counts(ToolContext& ctx, const NodeConfig& n, int samples, doubl
                        double& sd) {
   SdoSession sdo(ctx.link, ctx.sdo_timeout_ns);
   // Let a freshly hung weight stop swinging (and the sensor's filter settle) first.
-  hal::CanFrame frame;
-  const std::int64_t settled = ctx.link.now_ns() + 500'000'000;
-  while (ctx.link.receive_until(frame, settled)) {
-  }
+  ctx.link.idle_until(ctx.link.now_ns() + 500'000'000);
   double sum = 0, sum2 = 0;
   for (int i = 0; i < samples; ++i) {
     const SdoResult r = sdo.read(n.node_id, 0x7130, 1);
@@ -91,10 +88,7 @@ bool read_force_counts(ToolContext& ctx, const NodeConfig& n, int samples, doubl
     sum += v;
     sum2 += v * v;
     // Spread the samples over time so the sensor's noise averages out.
-    hal::CanFrame f;
-    const std::int64_t until = ctx.link.now_ns() + 10'000'000;
-    while (ctx.link.receive_until(f, until)) {
-    }
+    ctx.link.idle_until(ctx.link.now_ns() + 10'000'000);
   }
   mean = sum / samples;
   sd = std::sqrt(std::max(0.0, sum2 / samples - mean * mean));
@@ -164,7 +158,6 @@ int calibrate_soil_wheel(ToolContext& ctx, const CalibrateOptions& opt, Operator
   const std::int64_t t0 = ctx.link.now_ns();
   const auto still_ns = static_cast<std::int64_t>(opt.still_s * 1e9);
   bool moved = false;
-  hal::CanFrame f;
   for (;;) {
     const std::int64_t now = ctx.link.now_ns();
     while (edges->next_edge(e)) decoder.on_edge(e);
@@ -176,8 +169,7 @@ int calibrate_soil_wheel(ToolContext& ctx, const CalibrateOptions& opt, Operator
               << opt.max_wait_s << " s\n";
       return kExitFailed;
     }
-    while (ctx.link.receive_until(f, now + 10'000'000)) {
-    }
+    ctx.link.idle_until(now + 10'000'000);
     progress.update("counting: " + std::to_string(decoder.count()) + " counts");
   }
   progress.done();
@@ -246,12 +238,7 @@ class SdoDrive {
                      c402::controlword::kChangeImmediately,
                  2);
   }
-  void pause_ms(int ms) {
-    hal::CanFrame f;
-    const std::int64_t until = ctx_.link.now_ns() + std::int64_t{ms} * 1'000'000;
-    while (ctx_.link.receive_until(f, until)) {
-    }
-  }
+  void pause_ms(int ms) { ctx_.link.idle_until(ctx_.link.now_ns() + std::int64_t{ms} * 1'000'000); }
   [[nodiscard]] const std::string& error() const { return error_; }
 
  private:

@@ -6,7 +6,7 @@
 #include <ostream>
 
 #include "apps/planter-can/sdo_session.h"
-#include "firmware/canopen/cob_id.h"
+#include "firmware/canopen/nmt.h"
 #include "firmware/controller/node_config_script.h"
 
 namespace planter::cantool {
@@ -46,12 +46,7 @@ NodeOutcome configure_node(ToolContext& ctx, const NodeConfig& n, const Configur
   build_node_config_script(n, ctx.board->controller.can.heartbeat_producer_ms, script);
   SdoSession sdo(ctx.link, ctx.sdo_timeout_ns);
   // PDO maps may only change outside operational: put the node in pre-operational first.
-  hal::CanFrame nmt{};
-  nmt.id = canopen::kNmtCobId;
-  nmt.dlc = 2;
-  nmt.data[0] = static_cast<std::uint8_t>(canopen::NmtCommand::kPreOperational);
-  nmt.data[1] = n.node_id;
-  ctx.link.send(nmt);
+  ctx.link.send(canopen::nmt_frame(canopen::NmtCommand::kPreOperational, n.node_id));
   std::map<std::pair<std::uint16_t, std::uint8_t>, const ConfigStep*> final_values;
   for (std::size_t i = 0; i < script.count; ++i) {
     const ConfigStep& s = script.steps[i];

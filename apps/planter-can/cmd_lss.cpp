@@ -6,6 +6,7 @@
 
 #include "firmware/canopen/cob_id.h"
 #include "firmware/canopen/lss.h"
+#include "firmware/canopen/nmt.h"
 
 namespace planter::cantool {
 namespace {
@@ -169,12 +170,7 @@ int run_lss(ToolContext& ctx, const LssOptions& opt) {
   const auto stored = await_lss(link, cs::kStore, opt.timeout_ns);
   send_lss(link, cs::kSwitchGlobal, 0);
   if (old_id != canopen::kUnconfiguredNodeId) {
-    hal::CanFrame nmt{};
-    nmt.id = canopen::kNmtCobId;
-    nmt.dlc = 2;
-    nmt.data[0] = static_cast<std::uint8_t>(canopen::NmtCommand::kResetCommunication);
-    nmt.data[1] = old_id;
-    link.send(nmt);
+    link.send(canopen::nmt_frame(canopen::NmtCommand::kResetCommunication, old_id));
   }
   // The node boots with its new ID: its boot-up frame confirms.
   bool booted = false;

@@ -9,6 +9,7 @@
 #include "apps/planter-can/object_names.h"
 #include "apps/planter-can/sdo_session.h"
 #include "firmware/canopen/cob_id.h"
+#include "firmware/canopen/nmt.h"
 
 namespace planter::cantool {
 
@@ -33,12 +34,7 @@ std::string execute_cia309(ToolContext& ctx, const Cia309Command& cmd, bool& ok)
   SdoSession sdo(ctx.link, ctx.sdo_timeout_ns);
   ok = true;
   if (cmd.kind == Cia309Command::Kind::kNmt) {
-    hal::CanFrame f{};
-    f.id = canopen::kNmtCobId;
-    f.dlc = 2;
-    f.data[0] = static_cast<std::uint8_t>(cmd.nmt);
-    f.data[1] = cmd.node;
-    ok = ctx.link.send(f);
+    ok = ctx.link.send(canopen::nmt_frame(cmd.nmt, cmd.node));
     return ok ? "OK" : "ERROR: the frame could not be sent (transmit queue full or bus-off)";
   }
   SdoResult res = cmd.kind == Cia309Command::Kind::kRead
@@ -131,12 +127,7 @@ int run_nmt(ToolContext& ctx, const std::string& command, const std::string& nod
       return kExitBadInput;
     }
   }
-  hal::CanFrame f{};
-  f.id = canopen::kNmtCobId;
-  f.dlc = 2;
-  f.data[0] = static_cast<std::uint8_t>(row->cs);
-  f.data[1] = node;
-  if (!ctx.link.send(f)) {
+  if (!ctx.link.send(canopen::nmt_frame(row->cs, node))) {
     ctx.err << "planter-can: nmt: the frame could not be sent (transmit queue full or bus-off)\n";
     return kExitFailed;
   }

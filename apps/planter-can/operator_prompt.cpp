@@ -28,10 +28,7 @@ bool OperatorPrompt::ask(const std::string& instruction, OperatorAction action, 
   }
   if (ready_after_s_ >= 0.0) {
     // Keep the bus drained while waiting.
-    const std::int64_t until = link_.now_ns() + static_cast<std::int64_t>(ready_after_s_ * 1e9);
-    hal::CanFrame f;
-    while (link_.receive_until(f, until)) {
-    }
+    link_.idle_until(link_.now_ns() + static_cast<std::int64_t>(ready_after_s_ * 1e9));
     return true;
   }
   if (!isatty(STDIN_FILENO)) {

@@ -34,6 +34,12 @@ bool ToolLink::receive(hal::CanFrame& frame) {
   return true;
 }
 
+void ToolLink::idle_until(std::int64_t deadline_ns) {
+  hal::CanFrame f;
+  while (receive_until(f, deadline_ns)) {
+  }
+}
+
 bool ToolLink::receive_until(hal::CanFrame& frame, std::int64_t deadline_ns) {
   for (;;) {
     if (receive(frame)) return true;

@@ -82,6 +82,8 @@ class ToolLink : public hal::CanBus {
   [[nodiscard]] FrameTap* tap() const { return tap_; }
   // Receives one frame, waiting up to the deadline.
   bool receive_until(hal::CanFrame& frame, std::int64_t deadline_ns);
+  // Lets time pass until the deadline, taking (and dropping) what arrives so no queue fills.
+  void idle_until(std::int64_t deadline_ns);
 
  protected:
   virtual bool try_send(const hal::CanFrame& frame) = 0;

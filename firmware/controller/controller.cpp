@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "firmware/canopen/cob_id.h"
+#include "firmware/canopen/nmt.h"
 
 namespace planter {
 
@@ -241,12 +242,7 @@ void Controller::write_outputs(double dt_s) {
 }
 
 void Controller::send_nmt(canopen::NmtCommand command, std::uint8_t node_id) {
-  hal::CanFrame nmt{};
-  nmt.id = canopen::kNmtCobId;
-  nmt.dlc = 2;
-  nmt.data[0] = static_cast<std::uint8_t>(command);
-  nmt.data[1] = node_id;  // 0 = every node
-  hal_.can.send(nmt);
+  hal_.can.send(canopen::nmt_frame(command, node_id));  // node 0 = every node
 }
 
 void Controller::send_sync() {

@@ -33,6 +33,8 @@ void build_node_config_script(const NodeConfig& cfg, std::uint16_t heartbeat_ms,
                0, 'J'});
     }
   }
+  // SYNC consumer: the TPDOs below are sent on every SYNC (COB-ID 0x80, CiA 301).
+  out.add({true, 0x1005, 0, 4, canopen::kSyncCobId, 0, 'J'});
   auto configure = [&out](std::uint16_t comm, std::uint16_t map, std::uint16_t cob,
                           const canopen::PdoMapping& m, std::uint8_t transmission) {
     out.add({true, comm, 1, 4, 0x80000000u | cob, 0, 'J'});

@@ -1,7 +1,8 @@
 #pragma once
 // The SDO steps that bring one node to the board's configuration, in the order CiA 301 and
-// CiA 302-2 ask for: identity checks, drive mode, PDOs (invalidate, clear, map, count,
-// validate), heartbeat last. The controller's boot and planter-can's `configure` both run it.
+// CiA 302-2 ask for: identity checks, drive mode, SYNC consumer, PDOs (invalidate, clear, map,
+// count, validate), heartbeat last. The controller's boot and planter-can's `configure` both run
+// it.
 #include <array>
 #include <cstddef>
 #include <cstdint>

@@ -18,6 +18,7 @@ CanopenDevice::CanopenDevice(const DeviceIdentity& id, hal::CanBus& bus)
   od_.add_string(0x1008, 0, id.name);
   od_.add_string(0x1009, 0, "sim-1");
   od_.add_string(0x100A, 0, "0.1.0");
+  od_.add(0x1005, 0, 4, Access::kReadWrite, canopen::kSyncCobId);
   od_.add(0x1010, 1, 4, Access::kReadWrite, 1);
   od_.add(0x1017, 0, 2, Access::kReadWrite, 0);
   od_.add(0x1018, 0, 1, Access::kConst, 4);

@@ -303,6 +303,26 @@ TEST_F(CanToolTest, MonitorDecodesPdosWithNamesAndUnits) {
   EXPECT_NE(m.find("100.0"), std::string::npos);
 }
 
+TEST_F(CanToolTest, ReplaySendsTheLogInOrderAndOnTime) {
+  const std::string log = (dir_ / "nmt.log").string();
+  std::ofstream(log) << "(1000.000000) can0 000#0102\n(1000.000000) can0 000#0103\n"
+                        "(1000.500000) can0 000#0104\n(1000.499000) can0 000#0105\n";
+  start();
+  // Watch the bus from a second endpoint.
+  auto& watcher = link_->bus().add_endpoint(64);
+  TrafficOptions o;
+  const std::int64_t t0 = link_->now_ns();
+  ASSERT_EQ(run_replay(*ctx_, log, o), kExitOk) << err();
+  EXPECT_NE(out().find("4 of 4 frames replayed"), std::string::npos);
+  EXPECT_GE(link_->now_ns() - t0, 500'000'000);  // the log's half second, not faster
+  hal::CanFrame f;
+  std::vector<int> nodes;
+  while (watcher.receive(f)) {
+    if (f.cob_id() == 0) nodes.push_back(f.data[1]);
+  }
+  EXPECT_EQ(nodes, (std::vector<int>{2, 3, 4, 5}));  // file order, the early stamp too
+}
+
 TEST_F(CanToolTest, RecordKeepsTheToolsOwnFramesAndDecodeMakesTheRecordingCsv) {
   start({true, false, 1.0});
   const std::string log = (dir_ / "bus.log").string();

@@ -62,8 +62,9 @@ std::string sdo_text(const hal::CanFrame& f, bool request) {
   const bool mux = f.dlc >= 4;
   const std::uint16_t index = mux ? static_cast<std::uint16_t>(f.data[1] | (f.data[2] << 8)) : 0;
   const std::uint8_t sub = mux ? f.data[3] : 0;
-  char label_buf[64];
-  const auto label = object_label(index, sub, label_buf, sizeof label_buf);
+  // The object's name beside its index (nothing when it is not a known object).
+  const ObjectInfo* info = find_object(index, sub);
+  const std::string_view label = info ? info->name : std::string_view("?");
   const int ll = static_cast<int>(label.size());
   if (cmd == 0x80) {
     const std::uint32_t code = f.dlc >= 8 ? u32_at(f, 4) : 0;

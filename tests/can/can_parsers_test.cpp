@@ -170,7 +170,7 @@ TEST(FrameDecoder, NamesEveryServiceAndFlagsShortFrames) {
   EXPECT_EQ(d.decode(make(0x082, {0x10, 0x23, 0x01, 0, 0, 0, 0, 0})).text,
             "EMCY 0x2310 current, device output side (overcurrent), error register 0x01");
   EXPECT_EQ(d.decode(make(0x582, {0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x02, 0x06})).text,
-            "abort 2000:00 2000:00: 0x06020000 object does not exist in the object dictionary");
+            "abort 2000:00 ?: 0x06020000 object does not exist in the object dictionary");
   EXPECT_EQ(d.decode(make(0x602, {0x40, 0x18, 0x10, 0x01, 0, 0, 0, 0})).text,
             "read 1018:01 vendor-ID");
   // The force sensor's TPDO1: 7130:01 in 0.1 N -> newtons.

@@ -288,16 +288,19 @@ int calibrate_depth(ToolContext& ctx, const CalibrateOptions& opt) {
                    static_cast<std::uint32_t>(std::llround(depth.max_mm * cpu)), 4) ||
       !drive.trigger())
     return fail(drive.error());
-  std::int64_t pos = 0, last = INT64_MIN;
+  std::int64_t pos = 0;
+  std::int64_t last = 0;
+  bool have_last = false;
   int still = 0;
   const std::int64_t t1 = ctx.link.now_ns();
   for (;;) {
     drive.pause_ms(100);
     if (!drive.read(c402::kPositionActual, pos, 32)) return fail(drive.error());
     if (std::llabs(pos - std::llround(depth.max_mm * cpu)) < 20) break;  // reached
-    still = std::llabs(pos - last) < std::llround(0.05 * cpu) ? still + 1 : 0;
+    still = have_last && std::llabs(pos - last) < std::llround(0.05 * cpu) ? still + 1 : 0;
     if (still >= 5) break;  // 0.5 s without moving: the end stop
     last = pos;
+    have_last = true;
     if (ctx.link.now_ns() - t1 > 120'000'000'000) return fail("travel did not end within 120 s");
     progress.update("travel: " + number_text(static_cast<double>(pos) / cpu) + " mm");
   }

@@ -63,6 +63,7 @@ BENCHMARK(BM_SdoRoundTrip)->UseRealTime();
 
 class Collector : public benchmark::ConsoleReporter {
  public:
+  Collector() : benchmark::ConsoleReporter(OO_Tabular) {}  // plain text: CI logs have no colour
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const auto& r : runs) {
       if (r.benchmark_name().rfind("BM_Scan127", 0) == 0)

@@ -17,7 +17,7 @@ echo "== benchmarks"
 "$root/build/bench/planter_bench_rtf" "$root/scenarios/zhangqiu-field.toml"
 "$root/build/bench/planter_bench_alloc" "$root/scenarios/zhangqiu-field.toml"
 "$root/build/bench/planter_bench_latency" "$root/scenarios/zhangqiu-field.toml" 60
-"$root/build/bench/planter_bench_can" --benchmark_color=false
+"$root/build/bench/planter_bench_can"
 echo "== tests (release build)"
 (cd "$root/build" && ctest -j "$(nproc)" --output-on-failure)
 echo "== fuzzing (libFuzzer, bounded): CAN frames, command and log lines, board files"

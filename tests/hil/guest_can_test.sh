@@ -24,7 +24,7 @@ $CAN --record d-configure.log configure > d-configure.out 2>&1; echo $? > d-conf
 note "configure: exit $(cat d-configure.rc)"; sed 's/^/    /' d-configure.out
 # The push comes at 12 s of the devices' time: the calibration waits for it, counts, and
 # ends when the wheel has been still for 2 s.
-$CAN calibrate soil-wheel --distance-m 0.6 --ready-after-s 0 --json > d-wheel.json 2> d-wheel.err
+$CAN calibrate soil-wheel --distance-m 1 --ready-after-s 0 --json > d-wheel.json 2> d-wheel.err
 echo $? > d-wheel.rc
 note "calibrate soil-wheel: exit $(cat d-wheel.rc)"
 $CAN calibrate depth --json > d-depth.json 2> d-depth.err; echo $? > d-depth.rc

@@ -87,10 +87,19 @@ BoardConfig load_board(const std::string& path) {
     b.gpio.estop = static_cast<int>(gpio->integer("estop_line", 2, 0, 511));
     b.gpio.status = static_cast<int>(gpio->integer("status_line", 3, 0, 511));
     c.estop_active_low = gpio->boolean("estop_active_low", true);
-    const std::set<int> lines{b.gpio.encoder_a, b.gpio.encoder_b, b.gpio.estop, b.gpio.status};
-    if (lines.size() != 4)
-      gpio->fail("encoder_a_line",
-                 "encoder A, encoder B, e-stop and status must be four different lines");
+    // Each line does one job: name the key that reuses an earlier one.
+    const std::pair<const char*, int> lines[] = {{"encoder_a_line", b.gpio.encoder_a},
+                                                 {"encoder_b_line", b.gpio.encoder_b},
+                                                 {"estop_line", b.gpio.estop},
+                                                 {"status_line", b.gpio.status}};
+    for (std::size_t i = 1; i < std::size(lines); ++i) {
+      for (std::size_t k = 0; k < i; ++k) {
+        if (lines[i].second == lines[k].second)
+          gpio->fail(lines[i].first,
+                     "line " + std::to_string(lines[i].second) + " is already " + lines[k].first +
+                         " (encoder A, encoder B, e-stop and status need four lines)");
+      }
+    }
     gpio->reject_unknown_keys();
   }
   if (auto enc = root.table("encoder")) {

@@ -27,4 +27,8 @@ expect "'realtime.priority'" --board "$work/b2.toml"
 expect "no-such-file.toml" --board "$work/no-such-file.toml"
 expect "--board" --record x.csv
 expect "flush-ms" --board "$root/boards/vm-hil/board.toml" --flush-ms 0
+sed 's/^id = 3$/id = 2/' "$root/boards/rpi4-canhat/board.toml" > "$work/b3.toml"
+expect "'nodes.roller_actuator.id': node ID 2 is used by another node" --board "$work/b3.toml"
+sed 's/^estop_line = 22 .*/estop_line = 17/' "$root/boards/rpi4-canhat/board.toml" > "$work/b4.toml"
+expect "'gpio.estop_line': line 17 is already encoder_a_line" --board "$work/b4.toml"
 exit $fail

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <nlohmann/json.hpp>
 #include <ostream>
 
@@ -10,6 +11,7 @@
 #include "apps/planter-can/object_names.h"
 #include "apps/planter-can/operator_prompt.h"
 #include "apps/planter-can/sdo_session.h"
+#include "config/commissioning.h"
 #include "firmware/canopen/cob_id.h"
 #include "firmware/sensing/quadrature_decoder.h"
 
@@ -170,6 +172,11 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
 
   int failed = 0;
   for (const auto& i : items) failed += i.pass ? 0 : 1;
+  std::string stamp_error;
+  const bool stamped =
+      failed == 0 && !opt.mark_commissioned.empty() &&
+      config::write_commissioning_stamp(opt.mark_commissioned, ctx.board->file, ctx.board->name,
+                                        static_cast<std::int64_t>(std::time(nullptr)), stamp_error);
   if (ctx.json) {
     nlohmann::json j{{"board", ctx.board->name},
                      {"interface", ctx.link.name()},
@@ -177,6 +184,8 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
                      {"failed_items", failed}};
     for (const auto& i : items)
       j["items"].push_back({{"item", i.name}, {"pass", i.pass}, {"detail", i.detail}});
+    if (!opt.mark_commissioned.empty())
+      j["commissioned_stamp"] = stamped ? opt.mark_commissioned : "";
     ctx.out << j.dump(2) << "\n";
   } else {
     for (const auto& i : items) {
@@ -188,6 +197,15 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
     ctx.out << (failed == 0 ? "all " + std::to_string(items.size()) + " items passed\n"
                             : std::to_string(failed) + " of " + std::to_string(items.size()) +
                                   " items failed\n");
+    if (stamped)
+      ctx.out << "commissioned: " << opt.mark_commissioned
+              << " written (planterd may start the drives)\n";
+    if (failed > 0 && !opt.mark_commissioned.empty())
+      ctx.out << "not commissioned: " << opt.mark_commissioned << " left as it was\n";
+  }
+  if (!stamp_error.empty()) {
+    ctx.err << "planter-can: check: " << stamp_error << "\n";
+    return kExitFailed;
   }
   return failed == 0 ? kExitOk : kExitFailed;
 }

@@ -10,6 +10,7 @@ struct CheckOptions {
   double max_bus_load_pct = 50.0;
   bool encoder = true;  // check the encoder direction (needs GPIO access and a push)
   double ready_after_s = -1.0;
+  std::string mark_commissioned;  // stamp file written when every item passed
 };
 
 int run_check(ToolContext& ctx, const CheckOptions& options, std::istream& in);

@@ -159,6 +159,8 @@ int main(int argc, char** argv) {
   c_check->add_option("--max-bus-load", check.max_bus_load_pct, "percent")
       ->check(CLI::Range(1.0, 100.0));
   c_check->add_flag("--skip-encoder", skip_encoder, "do not check the encoder direction");
+  c_check->add_option("--mark-commissioned", check.mark_commissioned,
+                      "when every item passes, write this stamp (planterd --commissioned-stamp)");
   c_check
       ->add_option("--ready-after-s", check.ready_after_s,
                    "scripts: wait instead of asking for Enter")

@@ -17,6 +17,7 @@
 #include "apps/planterd/board_hardware.h"
 #include "apps/planterd/crash_safe_recording.h"
 #include "apps/planterd/spsc_queue.h"
+#include "config/commissioning.h"
 #include "config/config_error.h"
 #include "firmware/controller/controller.h"
 #include "hal/linux/hal_error.h"
@@ -35,6 +36,7 @@ struct Options {
   int flush_ms = 200;
   double log_period_s = 5.0;
   bool resume_after_link_loss = false;
+  std::string commissioned_stamp;  // drives stay off until this stamp matches the board
 };
 
 // Faults a lost CAN link causes by itself; anything else needs the operator.
@@ -53,6 +55,7 @@ struct Shared {
   std::atomic<std::uint64_t> ticks{0};
   std::atomic<std::uint64_t> rows_dropped{0};
   std::atomic<std::uint32_t> link_resets{0};
+  std::atomic<bool> commissioned{true};  // false: --run is held back
 
   std::mutex status_mutex;  // the loop only try_locks it: never blocks
   Telemetry status;
@@ -89,6 +92,9 @@ int main(int argc, char** argv) {
   app.add_flag("--resume-after-link-loss", opt.resume_after_link_loss,
                "after the CAN link went down and came back, reset the faults it caused and boot "
                "the nodes again (with --run: plant again)");
+  app.add_option("--commissioned-stamp", opt.commissioned_stamp,
+                 "start the drives (--run) only while this stamp from `planter-can check "
+                 "--mark-commissioned` matches the board file");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -137,6 +143,10 @@ int main(int argc, char** argv) {
   Controller controller(board.controller, hw->controller_hal());
   daemon::SpscQueue<Row> rows(4096);
   Shared shared;
+  if (!opt.commissioned_stamp.empty()) {
+    std::string why;
+    shared.commissioned = config::commissioned(opt.commissioned_stamp, opt.board, why);
+  }
   hal::linux_backend::RtLoopConfig rt_config;
   rt_config.period_ns = board.controller.can.sync_period_ns;
   rt_config.priority = board.realtime.priority;
@@ -207,7 +217,8 @@ int main(int argc, char** argv) {
         stop_at_ns = now;
       }
       if (shared.fault_reset.exchange(false)) controller.request_fault_reset();
-      if (opt.run && !run_requested && controller.state() == SupervisorState::kReady) {
+      if (opt.run && !run_requested && controller.state() == SupervisorState::kReady &&
+          shared.commissioned.load(std::memory_order_relaxed)) {
         controller.request_run();
         run_requested = true;
       }
@@ -249,6 +260,8 @@ int main(int argc, char** argv) {
   std::int64_t next_log_ns = monotonic_now_ns();
   std::int64_t next_kick_ns = monotonic_now_ns();
   SupervisorState logged_state = SupervisorState::kBoot;
+  std::string not_commissioned_logged;
+  std::int64_t next_stamp_check_ns = 0;
   bool recording_ok = true;
   Row row{};
   while (!shared.finished) {
@@ -277,6 +290,21 @@ int main(int argc, char** argv) {
     }
     const std::int64_t now = monotonic_now_ns();
     const std::uint64_t ticks = shared.ticks.load(std::memory_order_acquire);
+    if (!opt.commissioned_stamp.empty() && now >= next_stamp_check_ns) {
+      // Looked at once a second, so a check that passes lets the drives start without a restart.
+      std::string why;
+      const bool ok = config::commissioned(opt.commissioned_stamp, opt.board, why);
+      shared.commissioned = ok;
+      if (!ok && why != not_commissioned_logged) {
+        std::fprintf(stderr, "planterd: drives stay off: %s\n", why.c_str());
+        sd_notifyf(0, "STATUS=not commissioned: %s", why.c_str());
+      } else if (ok && !not_commissioned_logged.empty()) {
+        std::fprintf(stderr, "planterd: commissioning stamp %s matches the board\n",
+                     opt.commissioned_stamp.c_str());
+      }
+      not_commissioned_logged = ok ? "" : why;
+      next_stamp_check_ns = now + 1'000'000'000;
+    }
     // Feed the watchdog only while the control loop makes progress.
     if (watchdog && now >= next_kick_ns && ticks != ticks_at_last_kick) {
       sd_notify(0, "WATCHDOG=1");

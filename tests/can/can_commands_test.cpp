@@ -11,6 +11,7 @@
 #include "apps/planter-can/cmd_sdo.h"
 #include "apps/planter-can/cmd_traffic.h"
 #include "apps/planter-can/sdo_session.h"
+#include "config/commissioning.h"
 #include "tests/can/can_tool_fixture.h"
 
 namespace planter::cantool::test {
@@ -268,6 +269,28 @@ TEST_F(CanToolTest, CheckPassesOnAHealthyRunningMachine) {
   const auto j = nlohmann::json::parse(out());
   EXPECT_TRUE(j["passed"].get<bool>());
   EXPECT_GE(j["items"].size(), 20u);
+}
+
+TEST_F(CanToolTest, OnlyAPassingCheckMarksTheBoardCommissioned) {
+  const std::string stamp = (dir_ / "commissioned").string();
+  std::string why;
+  EXPECT_FALSE(config::commissioned(stamp, board_path_, why));
+  EXPECT_NE(why.find("no commissioning stamp"), std::string::npos);
+  start({false, false, 1.0});  // no planterd: the check fails, no stamp
+  CheckOptions o;
+  o.mark_commissioned = stamp;
+  EXPECT_EQ(run_check(*ctx_, o, std::cin), kExitFailed);
+  EXPECT_FALSE(std::filesystem::exists(stamp));
+  start({true, false, 1.0});
+  link_->idle_until(2'000'000'000);
+  clear();
+  ASSERT_EQ(run_check(*ctx_, o, std::cin), kExitOk) << out();
+  EXPECT_NE(out().find("commissioned: "), std::string::npos);
+  EXPECT_TRUE(config::commissioned(stamp, board_path_, why)) << why;
+  // Editing the board afterwards asks for a new check.
+  std::ofstream(board_path_, std::ios::app) << "# edited\n";
+  EXPECT_FALSE(config::commissioned(stamp, board_path_, why));
+  EXPECT_NE(why.find("changed since it was commissioned"), std::string::npos);
 }
 
 TEST_F(CanToolTest, CheckFailsWithoutTrafficAndOnSwappedEncoderLines) {

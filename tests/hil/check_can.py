@@ -69,6 +69,14 @@ bad = [i for i in items if not i["pass"]]
 check("commissioning check", rc("check") == 0 and report.get("passed") is True,
       f"{len(items)} items, failed: {[i['item'] + ': ' + i['detail'] for i in bad]}")
 
+log = (run / "d-planterd.log").read_text()
+held = "drives stay off: no commissioning stamp" in log
+released = "matches the board" in log and "ready -> running" in log
+check("drives held until commissioned", held and released and
+      log.index("drives stay off") < log.index("ready -> running"),
+      "planterd --run waited in ready for the stamp, then started the drives"
+      if held and released else f"log: {log[-400:]}")
+
 witness = frames(run / "d.candump")
 session = frames(run / "d-sdo-session.log")
 own = [f for f in session if 0x600 < f[0] < 0x680]

@@ -31,10 +31,15 @@ $CAN calibrate depth --json > d-depth.json 2> d-depth.err; echo $? > d-depth.rc
 note "calibrate depth: exit $(cat d-depth.rc)"
 $CAN lss fastscan --json > d-lss.json 2> d-lss.err; echo $? > d-lss.rc
 
-# planterd up (not planting): it boots the nodes with the calibrated board and runs SYNC.
-"$PLANTERD" --board d-board.toml --duration 30 --log-period 0 2> d-planterd.log & PD=$!
+# planterd up with --run, held back by the commissioning gate: it boots the nodes with the
+# calibrated board and runs SYNC, but starts the drives only once the check has passed.
+rm -f d-stamp
+"$PLANTERD" --board d-board.toml --run --commissioned-stamp d-stamp --duration 30 --log-period 0 \
+  2> d-planterd.log & PD=$!
 sleep 8
-$CAN check --skip-encoder --listen-s 3 --json > d-check.json 2> d-check.err; echo $? > d-check.rc
+$CAN check --skip-encoder --listen-s 3 --mark-commissioned d-stamp --json > d-check.json \
+  2> d-check.err; echo $? > d-check.rc
+sleep 2  # planterd looks at the stamp once a second
 note "check: exit $(cat d-check.rc)"
 $CAN record d-record.log --duration 3 > d-record.out 2>&1; echo $? > d-record.rc
 $CAN --record d-sdo-session.log sdo 2 r 0x1018 2 > d-sdo.out 2>&1

@@ -1,0 +1,66 @@
+# What goes onto the controller: planterd, planter-can, the systemd unit, the board files
+# under /etc/planter (this build's board as /etc/planter/board.toml) and a default config
+# that holds the drives until commissioning has passed. `cpack` makes one .deb per target.
+include(GNUInstallDirs)
+install(TARGETS planterd planter-can RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(FILES ${PROJECT_SOURCE_DIR}/apps/planterd/planterd.service DESTINATION /lib/systemd/system)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/boards/ DESTINATION /etc/planter/boards
+        FILES_MATCHING PATTERN "board.toml")
+set(planter_default_board ${PLANTER_BOARD})
+if(NOT planter_default_board)
+  set(planter_default_board host-sim)
+endif()
+install(FILES ${PROJECT_SOURCE_DIR}/boards/${planter_default_board}/board.toml
+        DESTINATION /etc/planter)
+install(FILES ${PROJECT_SOURCE_DIR}/packaging/default-planterd DESTINATION /etc/default
+        RENAME planterd)
+install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/packaging/copyright
+        DESTINATION ${CMAKE_INSTALL_DOCDIR})
+
+# Version from git: the project version plus commits and hash (0.1.0+git123.gabcdef0).
+find_package(Git QUIET)
+set(planter_version ${PROJECT_VERSION})
+if(GIT_FOUND AND EXISTS ${PROJECT_SOURCE_DIR}/.git)
+  execute_process(COMMAND ${GIT_EXECUTABLE} rev-list --count HEAD
+                  WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} OUTPUT_VARIABLE commits
+                  OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+  execute_process(COMMAND ${GIT_EXECUTABLE} rev-parse --short=8 HEAD
+                  WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} OUTPUT_VARIABLE hash
+                  OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+  if(commits AND hash)
+    set(planter_version "${PROJECT_VERSION}+git${commits}.g${hash}")
+  endif()
+endif()
+
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME planter)
+set(CPACK_PACKAGE_VERSION ${planter_version})
+set(CPACK_PACKAGE_CONTACT "planter maintainers <planter@localhost>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
+    "scallion transplanter controller (planterd) and CAN commissioning tool (planter-can)")
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_STRIP_FILES ON)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION misc)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "can-utils")
+if(PLANTER_DEB_ARCH)  # set by a cross toolchain file
+  set(CPACK_DEBIAN_PACKAGE_ARCHITECTURE ${PLANTER_DEB_ARCH})
+else()
+  execute_process(COMMAND dpkg --print-architecture OUTPUT_VARIABLE CPACK_DEBIAN_PACKAGE_ARCHITECTURE
+                  OUTPUT_STRIP_TRAILING_WHITESPACE)
+endif()
+# Files under /etc are the admin's: dpkg keeps their edits on upgrade.
+file(GLOB planter_board_dirs RELATIVE ${PROJECT_SOURCE_DIR}/boards ${PROJECT_SOURCE_DIR}/boards/*)
+set(planter_conffiles "/etc/planter/board.toml\n/etc/default/planterd\n")
+foreach(b ${planter_board_dirs})
+  if(EXISTS ${PROJECT_SOURCE_DIR}/boards/${b}/board.toml)
+    string(APPEND planter_conffiles "/etc/planter/boards/${b}/board.toml\n")
+  endif()
+endforeach()
+file(WRITE ${CMAKE_BINARY_DIR}/debian/conffiles "${planter_conffiles}")
+set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA
+    ${CMAKE_BINARY_DIR}/debian/conffiles ${PROJECT_SOURCE_DIR}/packaging/debian/postinst
+    ${PROJECT_SOURCE_DIR}/packaging/debian/prerm ${PROJECT_SOURCE_DIR}/packaging/debian/postrm)
+set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
+include(CPack)

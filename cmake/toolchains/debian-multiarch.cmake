@@ -1,0 +1,18 @@
+# Shared part of the cross toolchain files: PLANTER_TRIPLE names the target; compilers,
+# pkg-config and the emulator are looked up by name, libraries in the multiarch directory of
+# that triple. No absolute path is written here.
+set(CMAKE_SYSTEM_NAME Linux)
+set(CMAKE_C_COMPILER ${PLANTER_TRIPLE}-gcc)
+set(CMAKE_CXX_COMPILER ${PLANTER_TRIPLE}-g++)
+set(CMAKE_LIBRARY_ARCHITECTURE ${PLANTER_TRIPLE})
+# pkg-config for the target (Debian's pkgconf provides <triple>-pkg-config).
+set(PKG_CONFIG_EXECUTABLE ${PLANTER_TRIPLE}-pkg-config CACHE FILEPATH "pkg-config for the target")
+# Multiarch: the target's libraries and CMake package files live in the triple's lib
+# directory (CMAKE_LIBRARY_ARCHITECTURE), headers are shared; programs are the host's.
+set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
+# Unit tests run under qemu-user; the target's dynamic loader and libraries come from the
+# multiarch packages (libc6:<arch> and friends), which qemu finds at their usual places.
+find_program(PLANTER_QEMU_PATH ${PLANTER_QEMU})
+if(PLANTER_QEMU_PATH)
+  set(CMAKE_CROSSCOMPILING_EMULATOR ${PLANTER_QEMU_PATH})
+endif()

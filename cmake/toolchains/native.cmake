@@ -1,0 +1,1 @@
+# The build machine itself (host-sim, vm-hil): no cross compiler.

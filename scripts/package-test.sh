@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Checks a planter .deb: its control fields (package, architecture, dependencies) and files
+# (dpkg-deb -I, -c), the binaries' machine, and for the build machine's own architecture a
+# real install: the unit verifies under systemd-analyze, planterd and planter-can run, the
+# admin's files are conffiles, then remove and purge leave nothing behind.
+# Usage: scripts/package-test.sh PACKAGE.deb ARCH
+set -euo pipefail
+deb=$1
+arch=$2
+fail() { echo "package: FAIL $*" >&2; exit 1; }
+info=$(dpkg-deb -I "$deb")
+files=$(dpkg-deb -c "$deb")
+field() { dpkg-deb -f "$deb" "$1"; }
+[ "$(field Package)" = planter ] || fail "Package is $(field Package)"
+[ "$(field Architecture)" = "$arch" ] || fail "Architecture is $(field Architecture), want $arch"
+for dep in libgpiod2 libsocketcan2 libsystemd0 libtomlplusplus3 libstdc++6 libc6; do
+  grep -q "$dep" <<<"$(field Depends)" || fail "Depends lacks $dep: $(field Depends)"
+done
+for f in ./usr/bin/planterd ./usr/bin/planter-can ./lib/systemd/system/planterd.service \
+         ./etc/planter/board.toml ./etc/default/planterd ./etc/planter/boards/rpi4-canhat/board.toml \
+         ./etc/planter/boards/bbb-dcan/board.toml ./etc/planter/boards/host-sim/board.toml \
+         ./usr/share/doc/planter/copyright; do
+  grep -q " $f\$" <<<"$files" || fail "$deb lacks $f"
+done
+grep -q "conffiles" <<<"$info" || fail "no conffiles"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+dpkg-deb -x "$deb" "$work/root"
+machine=$(readelf -h "$work/root/usr/bin/planterd" | sed -n 's/ *Machine: *//p')
+case $arch in
+  arm64) want="AArch64" ;;
+  armhf) want="ARM" ;;
+  amd64) want="Advanced Micro Devices X86-64" ;;
+esac
+[ "$machine" = "$want" ] || fail "planterd is built for '$machine', not $want"
+echo "package: $(basename "$deb"): $(field Version) $arch, $(wc -l <<<"$files") entries, planterd for $machine"
+echo "package: Depends: $(field Depends)"
+
+[ "$arch" = "$(dpkg --print-architecture)" ] || exit 0
+# The build machine's own package: install it for real, use it, remove it.
+sudo_cmd=""
+[ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
+if dpkg-query -W -f='${Status}' planter 2>/dev/null | grep -q "install ok installed"; then
+  fail "a planter package is already installed here; not touching it"
+fi
+$sudo_cmd dpkg -i "$deb" >/dev/null
+trap '$sudo_cmd dpkg -P planter >/dev/null 2>&1 || true; rm -rf "$work"' EXIT
+/usr/bin/planterd --help >/dev/null || fail "installed planterd does not run"
+/usr/bin/planter-can --iface sim --board /etc/planter/board.toml scan | tail -1
+systemd-analyze verify /lib/systemd/system/planterd.service || fail "systemd-analyze verify"
+conf=$(dpkg-query -W -f='${Conffiles}' planter)
+grep -q "/etc/planter/board.toml" <<<"$conf" && grep -q "/etc/default/planterd" <<<"$conf" ||
+  fail "conffiles not registered: $conf"
+$sudo_cmd dpkg -r planter >/dev/null
+[ ! -e /usr/bin/planterd ] && [ ! -e /lib/systemd/system/planterd.service ] || fail "remove left binaries"
+[ -e /etc/planter/board.toml ] || fail "remove dropped the admin's board file (it should stay until purge)"
+$sudo_cmd dpkg -P planter >/dev/null
+[ ! -e /etc/planter ] && [ ! -e /etc/default/planterd ] || fail "purge left /etc files"
+echo "package: installed, verified (systemd-analyze), removed and purged cleanly"

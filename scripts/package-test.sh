@@ -13,7 +13,7 @@ files=$(dpkg-deb -c "$deb")
 field() { dpkg-deb -f "$deb" "$1"; }
 [ "$(field Package)" = planter ] || fail "Package is $(field Package)"
 [ "$(field Architecture)" = "$arch" ] || fail "Architecture is $(field Architecture), want $arch"
-for dep in libgpiod2 libsocketcan2 libsystemd0 libtomlplusplus3 libstdc++6 libc6; do
+for dep in libgpiod2 libsocketcan2 libtomlplusplus3 libstdc++6 libc6; do
   grep -q "$dep" <<<"$(field Depends)" || fail "Depends lacks $dep: $(field Depends)"
 done
 for f in ./usr/bin/planterd ./usr/bin/planter-can ./lib/systemd/system/planterd.service \

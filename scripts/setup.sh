@@ -7,7 +7,7 @@ build=${1:-$root/build}
 shift || true
 packages=(g++ cmake ninja-build clang-format libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
           libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
-          pkg-config libgpiod-dev libsocketcan-dev libsystemd-dev rt-tests
+          pkg-config libgpiod-dev libsocketcan-dev systemd rt-tests
           can-utils python3-can clang libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do

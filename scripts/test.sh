@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Every test: set up, format check, the unit and closed-loop tests under address and
-# undefined-behaviour sanitizers, the release build's tests, the benchmarks, and the
-# host-in-the-loop test of planterd in a VM with a real CAN and GPIO kernel.
+# undefined-behaviour sanitizers, the release build's tests, the benchmarks, the host package
+# (installed and removed), the cross builds for the boards with their unit tests under
+# qemu-user and their packages, fuzzing, and the host-in-the-loop test of planterd and
+# planter-can in a VM with a real CAN and GPIO kernel.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -20,6 +22,12 @@ echo "== benchmarks"
 "$root/build/bench/planter_bench_can"
 echo "== tests (release build)"
 (cd "$root/build" && ctest -j "$(nproc)" --output-on-failure)
+echo "== package for this machine: build, inspect, install, verify, remove"
+(cd "$root/build" && cpack -G DEB >/dev/null)
+scripts/package-test.sh "$(ls -t "$root"/build/planter_*_"$(dpkg --print-architecture)".deb | head -1)" \
+  "$(dpkg --print-architecture)"
+echo "== cross builds for the boards (aarch64, armhf), unit tests under qemu-user, packages"
+scripts/cross-test.sh
 echo "== fuzzing (libFuzzer, bounded): CAN frames, command and log lines, board files"
 scripts/fuzz.sh 60 "$root/build-fuzz"
 echo "== host-in-the-loop on a real kernel (qemu VM: vcan0, gpio-sim)"

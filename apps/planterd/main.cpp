@@ -5,7 +5,6 @@
 #include <pthread.h>
 #include <signal.h>
 #include <string.h>
-#include <systemd/sd-daemon.h>
 
 #include <CLI/CLI.hpp>
 #include <atomic>
@@ -16,6 +15,7 @@
 
 #include "apps/planterd/board_hardware.h"
 #include "apps/planterd/crash_safe_recording.h"
+#include "apps/planterd/service_notify.h"
 #include "apps/planterd/spsc_queue.h"
 #include "config/commissioning.h"
 #include "config/config_error.h"
@@ -252,10 +252,11 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "planterd: board %s, CAN %s, GPIO %s, loop %.1f ms\n", board.name.c_str(),
                board.can_interface.c_str(), board.gpio.chip.c_str(),
                static_cast<double>(rt_config.period_ns) * 1e-6);
-  sd_notify(0, "READY=1\nSTATUS=booting CANopen nodes");
+  daemon::ServiceNotifier service;
+  service.notify("READY=1\nSTATUS=booting CANopen nodes");
 
   std::uint64_t watchdog_us = 0;
-  const bool watchdog = sd_watchdog_enabled(0, &watchdog_us) > 0;
+  const bool watchdog = service.watchdog_enabled(watchdog_us);
   std::uint64_t ticks_at_last_kick = 0;
   std::int64_t next_log_ns = monotonic_now_ns();
   std::int64_t next_kick_ns = monotonic_now_ns();
@@ -272,7 +273,7 @@ int main(int argc, char** argv) {
     if (sig == SIGTERM || sig == SIGINT) {
       if (!shared.stop) std::fprintf(stderr, "planterd: %s: stopping safely\n", strsignal(sig));
       shared.stop = true;
-      sd_notify(0, "STOPPING=1");
+      service.notify("STOPPING=1");
     } else if (sig == SIGUSR1) {
       shared.fault_reset = true;
     }
@@ -297,7 +298,7 @@ int main(int argc, char** argv) {
       shared.commissioned = ok;
       if (!ok && why != not_commissioned_logged) {
         std::fprintf(stderr, "planterd: drives stay off: %s\n", why.c_str());
-        sd_notifyf(0, "STATUS=not commissioned: %s", why.c_str());
+        service.notify("STATUS=not commissioned: " + why);
       } else if (ok && !not_commissioned_logged.empty()) {
         std::fprintf(stderr, "planterd: commissioning stamp %s matches the board\n",
                      opt.commissioned_stamp.c_str());
@@ -307,7 +308,7 @@ int main(int argc, char** argv) {
     }
     // Feed the watchdog only while the control loop makes progress.
     if (watchdog && now >= next_kick_ns && ticks != ticks_at_last_kick) {
-      sd_notify(0, "WATCHDOG=1");
+      service.notify("WATCHDOG=1");
       ticks_at_last_kick = ticks;
       next_kick_ns = now + static_cast<std::int64_t>(watchdog_us) * 1000 / 2;
     }
@@ -315,7 +316,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "planterd: %s -> %s (faults 0x%x)\n",
                    supervisor_state_name(logged_state), supervisor_state_name(status.state),
                    status.faults);
-      sd_notifyf(0, "STATUS=%s", supervisor_state_name(status.state));
+      service.notify(std::string("STATUS=") + supervisor_state_name(status.state));
       logged_state = status.state;
     }
     if (opt.log_period_s > 0 && now >= next_log_ns) {

@@ -17,20 +17,11 @@ libs=(libgpiod-dev libsocketcan-dev libtomlplusplus-dev libgtest-dev libgmock-de
 wanted=(qemu-user binutils-multiarch)
 for p in "${presets[@]}"; do
   a=${arch[$p]}
-  dpkg --print-foreign-architectures | grep -qx "$a" || { $sudo_cmd dpkg --add-architecture "$a"; added=1; }
+  dpkg --print-foreign-architectures | grep -qx "$a" || $sudo_cmd dpkg --add-architecture "$a"
   wanted+=("crossbuild-essential-$a")
   for l in "${libs[@]}"; do wanted+=("$l:$a"); done
 done
-missing=()
-for p in "${wanted[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "cross: installing ${missing[*]}"
-  # A mirror may serve one stale index (seen: bookworm-security armhf); the install decides.
-  $sudo_cmd apt-get update -qq || echo "cross: apt-get update reported errors (above); installing anyway"
-  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+scripts/apt-install.sh cross "${wanted[@]}"
 
 for p in "${presets[@]}"; do
   a=${arch[$p]}

@@ -7,8 +7,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:-$root/build}" && pwd)
 [ -x "$build/apps/planterd/planterd" ] && [ -x "$build/sim/planter-sim" ] ||
   { echo "vm-hil-test: build planterd and planter-sim first (scripts/setup.sh)" >&2; exit 1; }
-dpkg-query -W -f='${Status}' python3 2>/dev/null | grep -q "install ok installed" ||
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends python3 >/dev/null
+"$root/scripts/apt-install.sh" vm-hil-test python3 python3-can
 "$root/scripts/vm/prepare.sh" "$build/vm-cache"
 run_dir="$build/vm-hil"
 rm -rf "$run_dir" && mkdir -p "$run_dir"

@@ -16,16 +16,8 @@ step() { echo "vm-prepare: $*"; }
 sudo_cmd=""
 [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
 host_packages=(qemu-system-x86 busybox-static cpio kmod can-utils gpiod iproute2 make gcc)
-missing=()
-for p in "${host_packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  step "installing ${missing[*]}"
-  $sudo_cmd apt-get update -qq || fail "apt-get update failed"
-  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends \
-    "${missing[@]}" >/dev/null || fail "apt-get install ${missing[*]} failed"
-fi
+"$(dirname "$0")/../apt-install.sh" vm-prepare "${host_packages[@]}" ||
+  fail "apt-get install ${host_packages[*]} failed"
 
 # The newest kernel ABI apt offers: the one the linux-image-amd64 meta-package points at.
 if [ ! -f "$cache/abi" ]; then

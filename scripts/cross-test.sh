@@ -28,7 +28,7 @@ for p in "${presets[@]}"; do
   echo "== cross build for board $p ($a, ${triple[$a]})"
   cmake --preset "$p" >/dev/null
   cmake --build --preset "$p" -j "$(nproc)" --target planterd planter-can planter_unit_tests \
-    planter_can_tests planterd_service_tests fuzz_can_frame fuzz_text_inputs fuzz_board_file
+    planter_can_tests planterd_service_tests planter_dem_tests fuzz_can_frame fuzz_text_inputs fuzz_board_file
   echo "== unit tests of $p under qemu-user"
   ctest --preset "$p" -L unit -j "$(nproc)" | tail -3
   (cd "build-$p" && cpack -G DEB >/dev/null)

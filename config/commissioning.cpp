@@ -1,12 +1,13 @@
 #include "config/commissioning.h"
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <cinttypes>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+
+#include "config/durable_file.h"
 
 namespace planter::config {
 
@@ -24,21 +25,14 @@ std::uint64_t board_fingerprint(const std::string& board_path) {
 bool write_commissioning_stamp(const std::string& stamp_path, const std::string& board_path,
                                const std::string& board_name, std::int64_t passed_at_unix_s,
                                std::string& error) {
-  char text[512];
-  const int n = std::snprintf(
-      text, sizeof text,
-      "# planter-can check: every item passed\n"
-      "board: %s\nboard_file: %s\nboard_fingerprint: %016" PRIx64 "\npassed_at: %" PRId64 "\n",
-      board_name.c_str(), board_path.c_str(), board_fingerprint(board_path), passed_at_unix_s);
+  char fingerprint[32];
+  std::snprintf(fingerprint, sizeof fingerprint, "%016" PRIx64, board_fingerprint(board_path));
+  // Built as a string: board names and paths have no length limit here.
+  const std::string text = "# planter-can check: every item passed\nboard: " + board_name +
+                           "\nboard_file: " + board_path + "\nboard_fingerprint: " + fingerprint +
+                           "\npassed_at: " + std::to_string(passed_at_unix_s) + "\n";
   const std::string tmp = stamp_path + ".tmp";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    error = stamp_path + ": cannot be written";
-    return false;
-  }
-  const bool ok = n > 0 && ::write(fd, text, static_cast<std::size_t>(n)) == n && ::fsync(fd) == 0;
-  ::close(fd);
-  if (!ok || ::rename(tmp.c_str(), stamp_path.c_str()) != 0) {
+  if (!write_file_synced(tmp, text) || !replace_file(tmp, stamp_path)) {
     ::unlink(tmp.c_str());
     error = stamp_path + ": cannot be written";
     return false;

@@ -1,6 +1,5 @@
 #include "apps/planter-can/board_file_edit.h"
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -9,6 +8,7 @@
 
 #include "config/board_config.h"
 #include "config/config_error.h"
+#include "config/durable_file.h"
 
 namespace planter::cantool {
 namespace {
@@ -27,16 +27,6 @@ std::string header_name(const std::string& line) {
   const auto close = t.find(']');
   if (close == std::string::npos) return "";
   return trim(t.substr(1, close - 1));
-}
-
-bool write_all(int fd, const std::string& data) {
-  std::size_t off = 0;
-  while (off < data.size()) {
-    const ssize_t n = ::write(fd, data.data() + off, data.size() - off);
-    if (n <= 0) return false;
-    off += static_cast<std::size_t>(n);
-  }
-  return true;
 }
 
 }  // namespace
@@ -103,14 +93,7 @@ bool write_board_edits(const std::string& path, const std::vector<BoardEdit>& ed
   }
   const std::string tmp = path + ".tmp";
   const std::string backup = path + ".bak";
-  auto put = [&](const std::string& file, const std::string& data) {
-    const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) return false;
-    const bool ok = write_all(fd, data) && ::fsync(fd) == 0;
-    ::close(fd);
-    return ok;
-  };
-  if (!put(tmp, text)) {
+  if (!config::write_file_synced(tmp, text)) {
     error = tmp + ": cannot be written";
     ::unlink(tmp.c_str());
     return false;
@@ -122,23 +105,15 @@ bool write_board_edits(const std::string& path, const std::vector<BoardEdit>& ed
     ::unlink(tmp.c_str());
     return false;
   }
-  if (!put(backup, original)) {
+  if (!config::write_file_synced(backup, original)) {
     error = backup + ": cannot be written";
     ::unlink(tmp.c_str());
     return false;
   }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+  if (!config::replace_file(tmp, path)) {
     error = path + ": cannot be replaced";
     ::unlink(tmp.c_str());
     return false;
-  }
-  // The rename is durable once the directory is synced.
-  const auto slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash);
-  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dfd >= 0) {
-    ::fsync(dfd);
-    ::close(dfd);
   }
   return true;
 }

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "config/durable_file.h"
 #include "config/recording_format.h"
 
 namespace planter::daemon {
@@ -15,19 +16,6 @@ namespace {
 
 std::runtime_error io_error(const std::string& path, const std::string& what) {
   return std::runtime_error(path + ": " + what + ": " + std::strerror(errno));
-}
-
-bool write_all(int fd, const char* data, std::size_t size) {
-  while (size > 0) {
-    const ssize_t n = write(fd, data, size);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return false;
-    }
-    data += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return true;
 }
 
 }  // namespace
@@ -83,7 +71,7 @@ CrashSafeRecording::CrashSafeRecording(const std::string& path,
   for (const std::string& m : metadata) head += "# " + m + "\n";
   head += config::kControllerColumns;
   head += "\n";
-  if (!write_all(fd_, head.data(), head.size()) || fdatasync(fd_) != 0)
+  if (!config::write_all(fd_, head.data(), head.size()) || fdatasync(fd_) != 0)
     throw io_error(path, "cannot write the header");
   block_.reserve(1 << 16);
 }
@@ -108,7 +96,7 @@ bool CrashSafeRecording::flush() {
   if (block_.empty()) return true;
   // One write of whole rows: a crash leaves either the block or (rarely, mid-copy) a tail
   // that the next start cuts back to the last complete row.
-  if (!write_all(fd_, block_.data(), block_.size()) || fdatasync(fd_) != 0) return false;
+  if (!config::write_all(fd_, block_.data(), block_.size()) || fdatasync(fd_) != 0) return false;
   block_.clear();
   rows_written_ += rows_pending_;
   rows_pending_ = 0;

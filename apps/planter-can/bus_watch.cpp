@@ -29,8 +29,7 @@ void BusWatch::on_frame(const hal::CanFrame& f, std::int64_t now_ns) {
   }
   ++c.count;
   c.last_ns = now_ns;
-  c.last_dlc = f.dlc;
-  c.last_data = f.data;
+  c.last = f;
 
   const auto fn = static_cast<std::uint16_t>(cob & 0x780);
   const auto id = static_cast<std::uint8_t>(cob & 0x7F);

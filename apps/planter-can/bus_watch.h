@@ -27,8 +27,7 @@ struct CobStats {
   std::int64_t first_ns = 0;
   std::int64_t last_ns = 0;
   std::int64_t max_gap_ns = 0;
-  std::uint8_t last_dlc = 0;
-  std::array<std::uint8_t, 8> last_data{};
+  hal::CanFrame last;  // the newest frame on this COB-ID
   // Mean frames per second between the first and the last frame.
   [[nodiscard]] double rate_hz() const;
 };

@@ -11,6 +11,7 @@
 #include "apps/planter-can/object_names.h"
 #include "apps/planter-can/operator_prompt.h"
 #include "apps/planter-can/sdo_session.h"
+#include "apps/planter-can/text_format.h"
 #include "config/commissioning.h"
 #include "firmware/canopen/cob_id.h"
 #include "firmware/sensing/quadrature_decoder.h"
@@ -23,12 +24,6 @@ struct Item {
   bool pass = false;
   std::string detail;
 };
-
-std::string fmt(const char* format, auto... args) {
-  char b[256];
-  std::snprintf(b, sizeof b, format, args...);
-  return b;
-}
 
 }  // namespace
 
@@ -47,7 +42,7 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
 
   // 1. Presence, identity and profile, error register.
   for (const auto& n : cfg.nodes) {
-    const std::string who = fmt("%s (node %u)", node_role_name(n.role), n.node_id);
+    const std::string who = format_text("%s (node %u)", node_role_name(n.role), n.node_id);
     const SdoResult type = sdo.read(n.node_id, 0x1000, 0);
     if (!type.ok()) {
       items.push_back({who + " present", false, type.error_text(n.node_id, ctx.sdo_timeout_ns)});
@@ -55,19 +50,20 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
     }
     const auto profile = static_cast<std::uint16_t>(type.value() & 0xFFFF);
     items.push_back({who + " profile", profile == n.profile,
-                     fmt("CiA %u, board expects %u", profile, n.profile)});
+                     format_text("CiA %u, board expects %u", profile, n.profile)});
     const SdoResult vendor = sdo.read(n.node_id, 0x1018, 1);
     const SdoResult product = sdo.read(n.node_id, 0x1018, 2);
     const bool id_ok = vendor.ok() && product.ok() &&
                        (n.vendor_id == 0 || vendor.value() == n.vendor_id) &&
                        (n.product_code == 0 || product.value() == n.product_code);
-    items.push_back({who + " identity", id_ok,
-                     fmt("vendor 0x%08X product 0x%08X (board 0x%08X 0x%08X)",
-                         static_cast<unsigned>(vendor.value()),
-                         static_cast<unsigned>(product.value()), n.vendor_id, n.product_code)});
+    items.push_back(
+        {who + " identity", id_ok,
+         format_text("vendor 0x%08X product 0x%08X (board 0x%08X 0x%08X)",
+                     static_cast<unsigned>(vendor.value()), static_cast<unsigned>(product.value()),
+                     n.vendor_id, n.product_code)});
     const SdoResult er = sdo.read(n.node_id, 0x1001, 0);
     items.push_back({who + " error register", er.ok() && er.value() == 0,
-                     er.ok() ? fmt("0x%02X", static_cast<unsigned>(er.value()))
+                     er.ok() ? format_text("0x%02X", static_cast<unsigned>(er.value()))
                              : er.error_text(n.node_id, ctx.sdo_timeout_ns)});
   }
 
@@ -85,28 +81,30 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
   const double hb_limit_ms = hb_ms * cfg.can.heartbeat_consumer_factor;
   for (const auto& n : cfg.nodes) {
     const NodeSeen& s = watch.node(n.node_id);
-    const std::string who = fmt("%s (node %u)", node_role_name(n.role), n.node_id);
+    const std::string who = format_text("%s (node %u)", node_role_name(n.role), n.node_id);
     const double gap_ms = static_cast<double>(s.max_heartbeat_gap_ns) * 1e-6;
     const double since_ms = static_cast<double>(t1 - s.last_heartbeat_ns) * 1e-6;
     const bool ok = s.heartbeats >= 2 && gap_ms <= hb_limit_ms && since_ms <= hb_limit_ms;
-    items.push_back({who + " heartbeat", ok,
-                     s.heartbeats == 0
-                         ? fmt("none in %.1f s (is 0x1017 set? run configure)",
-                               static_cast<double>(opt.listen_ns) * 1e-9)
-                         : fmt("%u beats, longest gap %.0f ms (limit %.0f ms), state %s",
-                               s.heartbeats, gap_ms, hb_limit_ms, nmt_state_name(s.state))});
+    items.push_back(
+        {who + " heartbeat", ok,
+         s.heartbeats == 0
+             ? format_text("none in %.1f s (is 0x1017 set? run configure)",
+                           static_cast<double>(opt.listen_ns) * 1e-9)
+             : format_text("%u beats, longest gap %.0f ms (limit %.0f ms), state %s", s.heartbeats,
+                           gap_ms, hb_limit_ms, nmt_state_name(s.state))});
     if (s.emcy_count > 0) {
       items.push_back({who + " EMCY", false,
-                       fmt("%u EMCY, last 0x%04X %s", s.emcy_count, s.last_emcy_code,
-                           emcy_code_text(s.last_emcy_code))});
+                       format_text("%u EMCY, last 0x%04X %s", s.emcy_count, s.last_emcy_code,
+                                   emcy_code_text(s.last_emcy_code))});
     }
   }
   const auto sync_it = watch.cobs().find(canopen::kSyncCobId);
   const double sync_hz = sync_it == watch.cobs().end() ? 0.0 : sync_it->second.rate_hz();
   const double sync_expected_hz = 1e9 / static_cast<double>(cfg.can.sync_period_ns);
   items.push_back({"SYNC rate", std::fabs(sync_hz - sync_expected_hz) <= 0.05 * sync_expected_hz,
-                   sync_hz == 0.0 ? std::string("no SYNC on the bus (is planterd running?)")
-                                  : fmt("%.1f Hz, board %.1f Hz", sync_hz, sync_expected_hz)});
+                   sync_hz == 0.0
+                       ? std::string("no SYNC on the bus (is planterd running?)")
+                       : format_text("%.1f Hz, board %.1f Hz", sync_hz, sync_expected_hz)});
   for (const auto& n : cfg.nodes) {
     for (std::size_t k = 0; k < 4; ++k) {
       if (n.tpdo[k].count == 0) continue;
@@ -115,27 +113,27 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
       const double hz = it == watch.cobs().end() ? 0.0 : it->second.rate_hz();
       // Transmission type 1: one TPDO per SYNC.
       const bool ok = sync_hz > 0.0 && std::fabs(hz - sync_hz) <= 0.05 * sync_hz;
-      items.push_back({fmt("%s TPDO%zu rate", node_role_name(n.role), k + 1), ok,
-                       fmt("%.1f Hz on 0x%03X, expected %.1f Hz (every SYNC)", hz, cob,
-                           sync_hz > 0 ? sync_hz : sync_expected_hz)});
+      items.push_back({format_text("%s TPDO%zu rate", node_role_name(n.role), k + 1), ok,
+                       format_text("%.1f Hz on 0x%03X, expected %.1f Hz (every SYNC)", hz, cob,
+                                   sync_hz > 0 ? sync_hz : sync_expected_hz)});
     }
   }
   const double load = watch.bus_load_pct(cfg.can.bitrate_bps, t1);
   items.push_back({"bus load", load <= opt.max_bus_load_pct,
-                   fmt("%.1f %% at %u bit/s (limit %.0f %%)", load, cfg.can.bitrate_bps,
-                       opt.max_bus_load_pct)});
+                   format_text("%.1f %% at %u bit/s (limit %.0f %%)", load, cfg.can.bitrate_bps,
+                               opt.max_bus_load_pct)});
   const auto counters = ctx.link.counters();
   const auto new_errors =
       counters.error_frames - counters_before.error_frames + watch.error_frames();
   items.push_back({"error frames", new_errors == 0 && !counters.bus_off,
-                   fmt("%llu error frames%s", static_cast<unsigned long long>(new_errors),
-                       counters.bus_off ? ", bus-off" : "")});
+                   format_text("%llu error frames%s", static_cast<unsigned long long>(new_errors),
+                               counters.bus_off ? ", bus-off" : "")});
   items.push_back({"lost frames",
                    counters.rx_overflow == counters_before.rx_overflow &&
                        counters.tx_dropped == counters_before.tx_dropped,
-                   fmt("%u receive overflows, %u refused sends",
-                       counters.rx_overflow - counters_before.rx_overflow,
-                       counters.tx_dropped - counters_before.tx_dropped)});
+                   format_text("%u receive overflows, %u refused sends",
+                               counters.rx_overflow - counters_before.rx_overflow,
+                               counters.tx_dropped - counters_before.tx_dropped)});
 
   // 3. Encoder direction: a push forward must count up.
   if (opt.encoder) {
@@ -161,11 +159,13 @@ int run_check(ToolContext& ctx, const CheckOptions& opt, std::istream& in) {
         const std::int64_t c = decoder.count();
         items.push_back(
             {"encoder direction", c >= 200,
-             c >= 200 ? fmt("%lld counts forward", static_cast<long long>(c))
+             c >= 200 ? format_text("%lld counts forward", static_cast<long long>(c))
              : c <= -200
-                 ? fmt("%lld counts: A and B are swapped (swap encoder_a_line and encoder_b_line)",
+                 ? format_text(
+                       "%lld counts: A and B are swapped (swap encoder_a_line and encoder_b_line)",
                        static_cast<long long>(c))
-                 : fmt("%lld counts in 5 s: the wheel did not turn", static_cast<long long>(c))});
+                 : format_text("%lld counts in 5 s: the wheel did not turn",
+                               static_cast<long long>(c))});
       }
     }
   }

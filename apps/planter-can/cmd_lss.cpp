@@ -15,11 +15,7 @@ namespace cs = canopen::lss_cs;
 
 void send_lss(ToolLink& link, std::uint8_t command, std::uint32_t value = 0, std::uint8_t b5 = 0,
               std::uint8_t b6 = 0, std::uint8_t b7 = 0) {
-  hal::CanFrame f{};
-  f.id = canopen::kLssMasterCobId;
-  f.dlc = 8;
-  f.data[0] = command;
-  for (int i = 0; i < 4; ++i) f.data[1 + i] = static_cast<std::uint8_t>(value >> (8 * i));
+  hal::CanFrame f = canopen::lss_frame(canopen::kLssMasterCobId, command, value);
   f.data[5] = b5;
   f.data[6] = b6;
   f.data[7] = b7;

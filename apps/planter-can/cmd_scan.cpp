@@ -13,23 +13,6 @@
 
 namespace planter::cantool {
 
-const char* nmt_state_name(std::uint8_t state) {
-  switch (state) {
-    case 0x00:
-      return "boot-up";
-    case 0x04:
-      return "stopped";
-    case 0x05:
-      return "operational";
-    case 0x7F:
-      return "pre-operational";
-    case 0xFF:
-      return "-";
-    default:
-      return "invalid";
-  }
-}
-
 ScanResult scan_bus(ToolContext& ctx, const ScanOptions& opt) {
   ScanResult r;
   ToolLink& link = ctx.link;
@@ -43,6 +26,14 @@ ScanResult scan_bus(ToolContext& ctx, const ScanOptions& opt) {
   // 2. Active: every ID at once, paced by the link, answers collected as they come.
   std::array<std::unique_ptr<canopen::SdoClient>, 128> clients{};
   std::array<std::array<std::uint8_t, 8>, 128> buffers{};
+  // Every frame is watched; an SDO answer goes to the probe of its node.
+  auto take = [&](const hal::CanFrame& frame) {
+    r.watch.on_frame(frame, link.now_ns());
+    const std::uint16_t cob = frame.cob_id();
+    if (frame.is_standard_data() && cob > canopen::kSdoResponseBase && cob < 0x600 &&
+        clients[cob & 0x7F])
+      clients[cob & 0x7F]->on_frame(frame, link.now_ns(), link);
+  };
   if (opt.probe) {
     for (int id = opt.first_id; id <= opt.last_id; ++id) {
       auto& c = clients[static_cast<std::size_t>(id)];
@@ -50,13 +41,7 @@ ScanResult scan_bus(ToolContext& ctx, const ScanOptions& opt) {
       c->start_read(0x1000, 0, buffers[static_cast<std::size_t>(id)], link.now_ns(), link);
       ++r.probes_sent;
       // Take answers that already arrived so the receive queue never fills while sending.
-      while (link.receive(f)) {
-        r.watch.on_frame(f, link.now_ns());
-        const std::uint16_t cob = f.cob_id();
-        if (f.is_standard_data() && cob > canopen::kSdoResponseBase && cob < 0x600 &&
-            clients[cob & 0x7F])
-          clients[cob & 0x7F]->on_frame(f, link.now_ns(), link);
-      }
+      while (link.receive(f)) take(f);
       progress.update("probing node " + std::to_string(id) + "/127");
     }
     for (;;) {
@@ -68,12 +53,7 @@ ScanResult scan_bus(ToolContext& ctx, const ScanOptions& opt) {
         busy = busy || c->status() == canopen::SdoStatus::kBusy;
       }
       if (!busy) break;
-      if (!link.receive_until(f, now + 5'000'000)) continue;
-      r.watch.on_frame(f, link.now_ns());
-      const std::uint16_t cob = f.cob_id();
-      if (f.is_standard_data() && cob > canopen::kSdoResponseBase && cob < 0x600 &&
-          clients[cob & 0x7F])
-        clients[cob & 0x7F]->on_frame(f, link.now_ns(), link);
+      if (link.receive_until(f, now + 5'000'000)) take(f);
     }
   }
   // 3. Identity of everything that answered or spoke.

@@ -36,6 +36,5 @@ struct ScanResult {
 
 ScanResult scan_bus(ToolContext& ctx, const ScanOptions& options);
 int run_scan(ToolContext& ctx, const ScanOptions& options);
-const char* nmt_state_name(std::uint8_t state);
 
 }  // namespace planter::cantool

@@ -36,11 +36,7 @@ void print_summary(ToolContext& ctx, const BusWatch& watch, const FrameDecoder& 
                      {"rx_overflow", c.rx_overflow},
                      {"bus_off", c.bus_off}};
     for (const auto& [cob, s] : watch.cobs()) {
-      hal::CanFrame f{};
-      f.id = cob;
-      f.dlc = s.last_dlc;
-      f.data = s.last_data;
-      const DecodedFrame d = decoder.decode(f);
+      const DecodedFrame d = decoder.decode(s.last);
       j["cobs"].push_back({{"cob_id", cob},
                            {"service", service_name(d.service)},
                            {"node", d.node},
@@ -56,11 +52,7 @@ void print_summary(ToolContext& ctx, const BusWatch& watch, const FrameDecoder& 
                 "frames", "rate Hz", "last value");
   ctx.out << line;
   for (const auto& [cob, s] : watch.cobs()) {
-    hal::CanFrame f{};
-    f.id = cob;
-    f.dlc = s.last_dlc;
-    f.data = s.last_data;
-    const DecodedFrame d = decoder.decode(f);
+    const DecodedFrame d = decoder.decode(s.last);
     const std::string node = d.node == 0 ? "-"
                              : d.node_name.empty()
                                  ? std::to_string(d.node)

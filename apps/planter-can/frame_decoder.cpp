@@ -3,35 +3,15 @@
 #include <cstdio>
 
 #include "apps/planter-can/object_names.h"
+#include "apps/planter-can/text_format.h"
 #include "firmware/canopen/cia402.h"
 #include "firmware/canopen/cob_id.h"
+#include "firmware/canopen/le_bytes.h"
 #include "firmware/canopen/lss.h"
 #include "firmware/canopen/pdo.h"
 
 namespace planter::cantool {
 namespace {
-
-std::uint32_t u32_at(const hal::CanFrame& f, int at) {
-  return static_cast<std::uint32_t>(f.data[at]) |
-         (static_cast<std::uint32_t>(f.data[at + 1]) << 8) |
-         (static_cast<std::uint32_t>(f.data[at + 2]) << 16) |
-         (static_cast<std::uint32_t>(f.data[at + 3]) << 24);
-}
-
-const char* nmt_state_text(std::uint8_t s) {
-  switch (s) {
-    case 0x00:
-      return "boot-up";
-    case 0x04:
-      return "stopped";
-    case 0x05:
-      return "operational";
-    case 0x7F:
-      return "pre-operational";
-    default:
-      return "invalid state";
-  }
-}
 
 const char* nmt_command_text(std::uint8_t cs) {
   switch (cs) {
@@ -50,12 +30,6 @@ const char* nmt_command_text(std::uint8_t cs) {
   }
 }
 
-std::string fmt(const char* format, auto... args) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, format, args...);
-  return buf;
-}
-
 std::string sdo_text(const hal::CanFrame& f, bool request) {
   if (f.dlc < 1) return "empty SDO frame";
   const std::uint8_t cmd = f.data[0];
@@ -67,50 +41,50 @@ std::string sdo_text(const hal::CanFrame& f, bool request) {
   const std::string_view label = info ? info->name : std::string_view("?");
   const int ll = static_cast<int>(label.size());
   if (cmd == 0x80) {
-    const std::uint32_t code = f.dlc >= 8 ? u32_at(f, 4) : 0;
-    return fmt("abort %04X:%02X %.*s: 0x%08X %s", index, sub, ll, label.data(), code,
-               canopen::abort_code_text(code));
+    const std::uint32_t code = f.dlc >= 8 ? canopen::read_le_u32(&f.data[4]) : 0;
+    return format_text("abort %04X:%02X %.*s: 0x%08X %s", index, sub, ll, label.data(), code,
+                       canopen::abort_code_text(code));
   }
   const std::uint8_t ccs = cmd >> 5;
   if (request) {
     switch (ccs) {
       case 1: {
         if ((cmd & 0x02) == 0)
-          return fmt("write %04X:%02X %.*s (segmented)", index, sub, ll, label.data());
+          return format_text("write %04X:%02X %.*s (segmented)", index, sub, ll, label.data());
         const int n = (cmd & 0x01) ? 4 - ((cmd >> 2) & 3) : 4;
         std::uint32_t v = 0;
         for (int i = 0; i < n && 4 + i < f.dlc; ++i)
           v |= static_cast<std::uint32_t>(f.data[4 + i]) << (8 * i);
-        return fmt("write %04X:%02X %.*s = %u (0x%X)", index, sub, ll, label.data(), v, v);
+        return format_text("write %04X:%02X %.*s = %u (0x%X)", index, sub, ll, label.data(), v, v);
       }
       case 2:
-        return fmt("read %04X:%02X %.*s", index, sub, ll, label.data());
+        return format_text("read %04X:%02X %.*s", index, sub, ll, label.data());
       case 0:
         return "download segment";
       case 3:
         return "upload segment request";
       default:
-        return fmt("SDO request 0x%02X", cmd);
+        return format_text("SDO request 0x%02X", cmd);
     }
   }
   switch (ccs) {
     case 2: {
       if ((cmd & 0x02) == 0)
-        return fmt("%04X:%02X %.*s (segmented upload)", index, sub, ll, label.data());
+        return format_text("%04X:%02X %.*s (segmented upload)", index, sub, ll, label.data());
       const int n = (cmd & 0x01) ? 4 - ((cmd >> 2) & 3) : 4;
       std::uint32_t v = 0;
       for (int i = 0; i < n && 4 + i < f.dlc; ++i)
         v |= static_cast<std::uint32_t>(f.data[4 + i]) << (8 * i);
-      return fmt("%04X:%02X %.*s = %u (0x%X)", index, sub, ll, label.data(), v, v);
+      return format_text("%04X:%02X %.*s = %u (0x%X)", index, sub, ll, label.data(), v, v);
     }
     case 3:
-      return fmt("write %04X:%02X %.*s ok", index, sub, ll, label.data());
+      return format_text("write %04X:%02X %.*s ok", index, sub, ll, label.data());
     case 0:
       return "upload segment";
     case 1:
       return "download segment ok";
     default:
-      return fmt("SDO response 0x%02X", cmd);
+      return format_text("SDO response 0x%02X", cmd);
   }
 }
 
@@ -151,10 +125,11 @@ const char* service_name(Service s) {
 }
 
 std::string raw_frame_text(const hal::CanFrame& f) {
-  std::string s = (f.id & hal::CanFrame::kExtendedFlag) ? fmt("%08X", f.id & 0x1FFFFFFFu)
-                                                        : fmt("%03X", f.id & 0x7FFu);
-  s += fmt("  [%u] ", f.dlc);
-  for (int i = 0; i < f.dlc && i < 8; ++i) s += fmt(" %02X", f.data[static_cast<std::size_t>(i)]);
+  std::string s = (f.id & hal::CanFrame::kExtendedFlag) ? format_text("%08X", f.id & 0x1FFFFFFFu)
+                                                        : format_text("%03X", f.id & 0x7FFu);
+  s += format_text("  [%u] ", f.dlc);
+  for (int i = 0; i < f.dlc && i < 8; ++i)
+    s += format_text(" %02X", f.data[static_cast<std::size_t>(i)]);
   return s;
 }
 
@@ -211,14 +186,14 @@ void FrameDecoder::decode_pdo(const hal::CanFrame& f, DecodedFrame& out, bool tr
   const canopen::PdoMapping* map =
       node ? &(transmit ? node->tpdo : node->rpdo)[static_cast<std::size_t>(k)] : nullptr;
   if (map == nullptr || map->count == 0) {
-    out.text = fmt("%s%d (not in the board file)", transmit ? "TPDO" : "RPDO", k + 1);
+    out.text = format_text("%s%d (not in the board file)", transmit ? "TPDO" : "RPDO", k + 1);
     return;
   }
   std::uint64_t raw[canopen::PdoMapping::kMaxEntries]{};
   if (!canopen::pdo_unpack(*map, f.data.data(), f.dlc, raw)) {
     out.malformed = true;
-    out.text = fmt("%s%d: %u bytes, the board maps %d", transmit ? "TPDO" : "RPDO", k + 1, f.dlc,
-                   map->total_bits() / 8);
+    out.text = format_text("%s%d: %u bytes, the board maps %d", transmit ? "TPDO" : "RPDO", k + 1,
+                           f.dlc, map->total_bits() / 8);
     return;
   }
   out.text.clear();
@@ -228,8 +203,8 @@ void FrameDecoder::decode_pdo(const hal::CanFrame& f, DecodedFrame& out, bool tr
     ProcessValue pv;
     if (auto scaled = scale_process_value(*node, e.index, e.sub, value)) {
       pv = *scaled;
-      out.text += fmt("%s%s %.4g %.*s", i ? ", " : "", pv.name.c_str(), pv.value,
-                      static_cast<int>(pv.unit.size()), pv.unit.data());
+      out.text += format_text("%s%s %.4g %.*s", i ? ", " : "", pv.name.c_str(), pv.value,
+                              static_cast<int>(pv.unit.size()), pv.unit.data());
     } else {
       pv.index = e.index;
       pv.sub = e.sub;
@@ -238,13 +213,13 @@ void FrameDecoder::decode_pdo(const hal::CanFrame& f, DecodedFrame& out, bool tr
       char buf[64];
       pv.name = std::string(object_label(e.index, e.sub, buf, sizeof buf));
       if (e.index == canopen::cia402::kStatusword) {
-        out.text += fmt("%s%s 0x%04llX (%s)", i ? ", " : "", pv.name.c_str(),
-                        static_cast<unsigned long long>(raw[i]),
-                        canopen::cia402::state_name(
-                            canopen::cia402::decode_state(static_cast<std::uint16_t>(raw[i]))));
+        out.text += format_text("%s%s 0x%04llX (%s)", i ? ", " : "", pv.name.c_str(),
+                                static_cast<unsigned long long>(raw[i]),
+                                canopen::cia402::state_name(canopen::cia402::decode_state(
+                                    static_cast<std::uint16_t>(raw[i]))));
       } else {
-        out.text += fmt("%s%s 0x%llX", i ? ", " : "", pv.name.c_str(),
-                        static_cast<unsigned long long>(raw[i]));
+        out.text += format_text("%s%s 0x%llX", i ? ", " : "", pv.name.c_str(),
+                                static_cast<unsigned long long>(raw[i]));
       }
     }
     out.values.push_back(std::move(pv));
@@ -255,7 +230,7 @@ DecodedFrame FrameDecoder::decode(const hal::CanFrame& f) const {
   DecodedFrame out;
   if (f.id & hal::CanFrame::kErrorFlag) {
     out.service = Service::kErrorFrame;
-    out.text = fmt("error frame, class 0x%X", f.id & 0x1FFFFFFFu);
+    out.text = format_text("error frame, class 0x%X", f.id & 0x1FFFFFFFu);
     return out;
   }
   if (f.id & hal::CanFrame::kExtendedFlag) {
@@ -284,18 +259,18 @@ DecodedFrame FrameDecoder::decode(const hal::CanFrame& f) const {
       return out;
     }
     out.node = f.data[1];
-    out.text = fmt("%s %s", nmt_command_text(f.data[0]),
-                   f.data[1] ? fmt("node %u", f.data[1]).c_str() : "all nodes");
+    out.text = format_text("%s %s", nmt_command_text(f.data[0]),
+                           f.data[1] ? format_text("node %u", f.data[1]).c_str() : "all nodes");
     return out;
   }
   if (cob == canopen::kSyncCobId) {
     out.service = Service::kSync;
-    out.text = f.dlc >= 1 ? fmt("SYNC counter %u", f.data[0]) : "SYNC";
+    out.text = f.dlc >= 1 ? format_text("SYNC counter %u", f.data[0]) : "SYNC";
     return out;
   }
   if (cob == canopen::kLssMasterCobId || cob == canopen::kLssSlaveCobId) {
     out.service = cob == canopen::kLssMasterCobId ? Service::kLssMaster : Service::kLssSlave;
-    out.text = f.dlc >= 1 ? fmt("LSS cs 0x%02X", f.data[0]) : "LSS (empty)";
+    out.text = f.dlc >= 1 ? format_text("LSS cs 0x%02X", f.data[0]) : "LSS (empty)";
     out.malformed = f.dlc < 1;
     return out;
   }
@@ -314,7 +289,8 @@ DecodedFrame FrameDecoder::decode(const hal::CanFrame& f) const {
       return out;
     }
     const auto code = static_cast<std::uint16_t>(f.data[0] | (f.data[1] << 8));
-    out.text = fmt("EMCY 0x%04X %s, error register 0x%02X", code, emcy_code_text(code), f.data[2]);
+    out.text =
+        format_text("EMCY 0x%04X %s, error register 0x%02X", code, emcy_code_text(code), f.data[2]);
     return out;
   }
   if (fn == canopen::kHeartbeatBase) {
@@ -324,7 +300,7 @@ DecodedFrame FrameDecoder::decode(const hal::CanFrame& f) const {
       out.text = "heartbeat without a state byte";
       return out;
     }
-    out.text = nmt_state_text(f.data[0] & 0x7F);
+    out.text = nmt_state_name(f.data[0] & 0x7F);
     return out;
   }
   if (fn == canopen::kSdoResponseBase || fn == canopen::kSdoRequestBase) {

@@ -149,6 +149,23 @@ const char* emcy_code_text(std::uint16_t code) {
   }
 }
 
+const char* nmt_state_name(std::uint8_t state) {
+  switch (state) {
+    case 0x00:
+      return "boot-up";
+    case 0x04:
+      return "stopped";
+    case 0x05:
+      return "operational";
+    case 0x7F:
+      return "pre-operational";
+    case 0xFF:
+      return "-";
+    default:
+      return "invalid state";
+  }
+}
+
 const char* device_profile_text(std::uint32_t device_type) {
   switch (device_type & 0xFFFF) {
     case 0:

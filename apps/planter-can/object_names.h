@@ -22,6 +22,8 @@ std::string_view object_label(std::uint16_t index, std::uint8_t sub, char* buf, 
 
 // Meaning of an EMCY error code (CiA 301 / 402 classes); static strings.
 const char* emcy_code_text(std::uint16_t code);
+// NMT state of a heartbeat byte ("operational"); 0xFF (none heard yet) is "-".
+const char* nmt_state_name(std::uint8_t state);
 // Device profile name of a 0x1000 value ("CiA 402 drive").
 const char* device_profile_text(std::uint32_t device_type);
 

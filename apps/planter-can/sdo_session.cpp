@@ -92,9 +92,11 @@ SdoResult SdoSession::write(std::uint8_t node_id, std::uint16_t index, std::uint
 
 SdoResult SdoSession::write_u32(std::uint8_t node_id, std::uint16_t index, std::uint8_t sub,
                                 std::uint32_t value, std::size_t size) {
-  std::array<std::uint8_t, 4> bytes{};
-  for (std::size_t i = 0; i < 4; ++i) bytes[i] = static_cast<std::uint8_t>(value >> (8 * i));
-  return write(node_id, index, sub, std::span<const std::uint8_t>(bytes.data(), size));
+  return run(node_id,
+             [&](canopen::SdoClient& c) {
+               return c.start_write_u32(index, sub, value, size, link_.now_ns(), link_);
+             },
+             {});
 }
 
 }  // namespace planter::cantool

@@ -1,22 +1,19 @@
 #include "firmware/canopen/lss.h"
 
+#include "firmware/canopen/le_bytes.h"
+
 namespace planter::canopen {
-namespace {
-
-std::uint32_t read_u32(const std::uint8_t* d) {
-  return static_cast<std::uint32_t>(d[0]) | (static_cast<std::uint32_t>(d[1]) << 8) |
-         (static_cast<std::uint32_t>(d[2]) << 16) | (static_cast<std::uint32_t>(d[3]) << 24);
-}
-
-}  // namespace
-
-void LssSlave::reply(std::uint8_t cs, std::uint32_t value, hal::CanBus& bus) {
+hal::CanFrame lss_frame(std::uint16_t cob_id, std::uint8_t cs, std::uint32_t value) {
   hal::CanFrame f{};
-  f.id = kLssSlaveCobId;
+  f.id = cob_id;
   f.dlc = 8;
   f.data[0] = cs;
-  for (int i = 0; i < 4; ++i) f.data[1 + i] = static_cast<std::uint8_t>(value >> (8 * i));
-  bus.send(f);
+  write_le_u32(&f.data[1], value);
+  return f;
+}
+
+void LssSlave::reply(std::uint8_t cs, std::uint32_t value, hal::CanBus& bus) {
+  bus.send(lss_frame(kLssSlaveCobId, cs, value));
 }
 
 LssSlave::Event LssSlave::on_frame(const hal::CanFrame& f, hal::CanBus& bus) {
@@ -37,7 +34,7 @@ LssSlave::Event LssSlave::on_frame(const hal::CanFrame& f, hal::CanBus& bus) {
       f.dlc >= 5) {
     const std::uint8_t part = cs - lss_cs::kSwitchSelectiveVendor;
     // The four parts come in order; a mismatch anywhere starts over.
-    if (part == selective_matched_ && read_u32(&d[1]) == identity_[part]) {
+    if (part == selective_matched_ && read_le_u32(&d[1]) == identity_[part]) {
       ++selective_matched_;
     } else {
       selective_matched_ = 0;
@@ -52,7 +49,7 @@ LssSlave::Event LssSlave::on_frame(const hal::CanFrame& f, hal::CanBus& bus) {
   if (cs == lss_cs::kFastscan && f.dlc >= 8) {
     // Only unconfigured nodes in waiting state take part.
     if (configuring_ || active_id_ != kUnconfiguredNodeId) return Event::kHandled;
-    const std::uint32_t id_number = read_u32(&d[1]);
+    const std::uint32_t id_number = read_le_u32(&d[1]);
     const std::uint8_t bit_checked = d[5];
     const std::uint8_t sub = d[6];
     const std::uint8_t next = d[7];

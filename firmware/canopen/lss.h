@@ -27,6 +27,9 @@ constexpr std::uint8_t kInquireNodeId = 0x5E;
 constexpr std::uint8_t kFastscanReset = 0x80;  // BitChecked value that starts a fastscan
 }  // namespace lss_cs
 
+// An LSS frame (master 0x7E5 or slave 0x7E4): command specifier, then a 32-bit value.
+hal::CanFrame lss_frame(std::uint16_t cob_id, std::uint8_t cs, std::uint32_t value);
+
 class LssSlave {
  public:
   // identity: vendor, product, revision, serial (0x1018:1-4).

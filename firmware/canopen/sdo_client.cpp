@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "firmware/canopen/cob_id.h"
+#include "firmware/canopen/le_bytes.h"
 
 namespace planter::canopen {
 namespace {
@@ -17,11 +18,6 @@ std::array<std::uint8_t, 8> mux_payload(std::uint8_t command, std::uint16_t inde
           0,
           0,
           0};
-}
-
-std::uint32_t read_u32(const std::uint8_t* p) {
-  return static_cast<std::uint32_t>(p[0]) | (static_cast<std::uint32_t>(p[1]) << 8) |
-         (static_cast<std::uint32_t>(p[2]) << 16) | (static_cast<std::uint32_t>(p[3]) << 24);
 }
 
 }  // namespace
@@ -108,7 +104,7 @@ bool SdoClient::on_frame(const hal::CanFrame& frame, std::int64_t now_ns, hal::C
   const bool mux_matches = has_mux && (d[1] | (d[2] << 8)) == index_ && d[3] == sub_;
 
   if (cmd == 0x80) {  // abort from the server
-    finish(SdoStatus::kAborted, frame.dlc >= 8 ? read_u32(&d[4]) : abort_code::kGeneral);
+    finish(SdoStatus::kAborted, frame.dlc >= 8 ? read_le_u32(&d[4]) : abort_code::kGeneral);
     return true;
   }
   deadline_ns_ = now_ns + timeout_ns_;  // every valid step restarts the timeout
@@ -128,7 +124,7 @@ bool SdoClient::on_frame(const hal::CanFrame& frame, std::int64_t now_ns, hal::C
         }
         return true;
       }
-      if ((cmd & 0x01) != 0 && frame.dlc >= 8 && read_u32(&d[4]) > read_buffer_.size()) {
+      if ((cmd & 0x01) != 0 && frame.dlc >= 8 && read_le_u32(&d[4]) > read_buffer_.size()) {
         send_abort(abort_code::kLength, bus);
         finish(SdoStatus::kAborted, abort_code::kLength);
         return true;

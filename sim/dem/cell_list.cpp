@@ -16,6 +16,13 @@ void CellList::build(const std::vector<Particle>& ps, double range_m) {
   }
   if (ps.empty()) lo = hi = Vec3::Zero();
   origin_ = lo;
+  // A particle that flew far away must not make the grid huge: widen the cells instead
+  // (correct, only slower), keeping at most about 8 cells per particle.
+  const Vec3 extent = hi - lo;
+  const double budget = 8.0 * static_cast<double>(ps.size()) + 64.0;
+  while ((extent.x() / cell_m_ + 1) * (extent.y() / cell_m_ + 1) * (extent.z() / cell_m_ + 1) >
+         budget)
+    cell_m_ *= 2.0;
   auto count = [&](double span) {
     return std::max(1, static_cast<int>(std::floor(span / cell_m_)) + 1);
   };

@@ -1,12 +1,32 @@
 #include "sim/dem/dem_world.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace planter::dem {
+namespace {
+
+double max_radius(const std::vector<Particle>& ps) {
+  double r = 0.0;
+  for (const auto& p : ps) r = std::max(r, p.radius_m);
+  return r;
+}
+
+// Cundall's local damping on one vector: each component loses `fraction` of its size,
+// in the direction that opposes the matching velocity component.
+void damp(Vec3& load, const Vec3& velocity, double fraction) {
+  for (int k = 0; k < 3; ++k) {
+    const double s = velocity[k] > 0.0 ? 1.0 : (velocity[k] < 0.0 ? -1.0 : 0.0);
+    load[k] -= fraction * std::abs(load[k]) * s;
+  }
+}
+
+}  // namespace
 
 int DemWorld::add_particle(const Particle& p) {
   particles_.push_back(p);
+  neighbours_valid_ = false;
   return static_cast<int>(particles_.size() - 1);
 }
 
@@ -15,15 +35,14 @@ void DemWorld::add_bond(int i, int j) {
   b.i = std::min(i, j);
   b.j = std::max(i, j);
   bonds_.push_back(b);
+  neighbours_valid_ = false;
 }
 
 int DemWorld::bond_neighbours(double gap_m) {
-  double r_max = 0.0;
-  for (const auto& p : particles_) r_max = std::max(r_max, p.radius_m);
-  cells_.build(particles_, 2.0 * r_max + gap_m);
-  cells_.pairs(particles_, candidates_);
+  cells_.build(particles_, 2.0 * max_radius(particles_) + gap_m);
+  cells_.pairs(particles_, pairs_scratch_);
   int added = 0;
-  for (const auto& [i, j] : candidates_) {
+  for (const auto& [i, j] : pairs_scratch_) {
     const Particle& a = particles_[static_cast<std::size_t>(i)];
     const Particle& b = particles_[static_cast<std::size_t>(j)];
     if ((b.x - a.x).norm() <= a.radius_m + b.radius_m + gap_m) {
@@ -37,61 +56,128 @@ int DemWorld::bond_neighbours(double gap_m) {
 int DemWorld::add_platen(const Platen& p) {
   platens_.push_back(p);
   platens_.back().normal.normalize();
+  neighbours_valid_ = false;
   return static_cast<int>(platens_.size() - 1);
 }
 
-void DemWorld::contacts(double dt) {
-  double r_max = 0.0;
-  for (const auto& p : particles_) r_max = std::max(r_max, p.radius_m);
-  cells_.build(particles_, 2.0 * r_max);
-  cells_.pairs(particles_, candidates_);
-  std::map<std::pair<int, int>, Vec3> next;
-  for (const auto& key : candidates_) {
-    Particle& a = particles_[static_cast<std::size_t>(key.first)];
-    Particle& b = particles_[static_cast<std::size_t>(key.second)];
-    if ((b.x - a.x).norm() >= a.radius_m + b.radius_m) continue;
-    Vec3 spring = Vec3::Zero();
-    if (auto it = springs_.find(key); it != springs_.end()) spring = it->second;
-    const PairProperties pp =
-        pair_properties(material_, a.radius_m, b.radius_m, a.mass_kg, b.mass_kg);
-    const ContactResult r = hertz_mindlin(material_, pp, a, b, dt, spring);
+bool DemWorld::neighbours_stale() const {
+  if (!neighbours_valid_) return true;
+  const double limit2 = 0.25 * skin_m_ * skin_m_;
+  for (std::size_t k = 0; k < particles_.size(); ++k) {
+    if ((particles_[k].x - x_at_rebuild_[k]).squaredNorm() > limit2) return true;
+  }
+  return false;
+}
+
+void DemWorld::rebuild_neighbours() {
+  const double r_max = max_radius(particles_);
+  skin_m_ = 0.2 * r_max;
+  cells_.build(particles_, 2.0 * r_max + skin_m_);
+  cells_.pairs(particles_, pairs_scratch_);
+  std::sort(pairs_scratch_.begin(), pairs_scratch_.end());
+  // Bonds ordered by pair, to mark bonded candidates by a merge.
+  std::vector<std::pair<std::pair<int, int>, int>> bond_keys;
+  bond_keys.reserve(bonds_.size());
+  for (std::size_t b = 0; b < bonds_.size(); ++b) {
+    bond_keys.push_back({{bonds_[b].i, bonds_[b].j}, static_cast<int>(b)});
+  }
+  std::sort(bond_keys.begin(), bond_keys.end());
+  previous_.swap(candidates_);  // ordered by (i, j) as built last time
+  candidates_.clear();
+  candidates_.reserve(pairs_scratch_.size());
+  std::size_t prev = 0;
+  std::size_t bk = 0;
+  for (const auto& key : pairs_scratch_) {
+    Candidate c;
+    c.i = key.first;
+    c.j = key.second;
+    while (bk < bond_keys.size() && bond_keys[bk].first < key) ++bk;
+    if (bk < bond_keys.size() && bond_keys[bk].first == key) c.bond = bond_keys[bk].second;
+    while (prev < previous_.size() &&
+           std::make_pair(previous_[prev].i, previous_[prev].j) < key) {
+      ++prev;
+    }
+    if (prev < previous_.size() && previous_[prev].i == c.i && previous_[prev].j == c.j) {
+      c.spring = previous_[prev].spring;
+    }
+    const Particle& a = particles_[static_cast<std::size_t>(c.i)];
+    const Particle& b = particles_[static_cast<std::size_t>(c.j)];
+    c.props = pair_properties(material_, a.radius_m, b.radius_m, a.mass_kg, b.mass_kg);
+    candidates_.push_back(c);
+  }
+  x_at_rebuild_.resize(particles_.size());
+  for (std::size_t k = 0; k < particles_.size(); ++k) x_at_rebuild_[k] = particles_[k].x;
+  platen_springs_.resize(platens_.size() * particles_.size(), Vec3::Zero());
+  neighbours_valid_ = true;
+  ++rebuilds_;
+}
+
+void DemWorld::particle_contacts(double dt) {
+  for (auto& c : candidates_) {
+    // A bonded pair is held by its bond; Hertz contact starts when the bond breaks.
+    if (c.bond >= 0 && !bonds_[static_cast<std::size_t>(c.bond)].broken) continue;
+    Particle& a = particles_[static_cast<std::size_t>(c.i)];
+    Particle& b = particles_[static_cast<std::size_t>(c.j)];
+    const double reach = a.radius_m + b.radius_m;
+    if ((b.x - a.x).squaredNorm() >= reach * reach) {
+      c.spring.setZero();
+      continue;
+    }
+    const ContactResult r = hertz_mindlin(material_, c.props, a, b, dt, c.spring);
     a.f += r.force_on_i;
     b.f -= r.force_on_i;
     a.tau += r.torque_on_i;
     b.tau += r.torque_on_j;
-    next.emplace(key, spring);
   }
-  springs_.swap(next);
-  // Platens: a wall is a sphere of infinite radius and mass at the particle's foot point.
-  std::map<std::pair<int, int>, Vec3> next_platen;
+}
+
+void DemWorld::platen_contacts(double dt) {
+  // A wall is a sphere of infinite radius and mass at the particle's foot point.
   constexpr double kInf = std::numeric_limits<double>::infinity();
+  const std::size_t n = particles_.size();
   for (std::size_t k = 0; k < platens_.size(); ++k) {
     Platen& w = platens_[k];
     w.force_N = 0.0;
-    for (std::size_t i = 0; i < particles_.size(); ++i) {
+    for (std::size_t i = 0; i < n; ++i) {
       Particle& p = particles_[i];
+      Vec3& spring = platen_springs_[k * n + i];
       const double h = (p.x - w.point).dot(w.normal);
-      if (h >= p.radius_m) continue;
+      if (h >= p.radius_m) {
+        spring.setZero();
+        continue;
+      }
       Particle wall;
-      wall.radius_m = 1.0;  // geometry only: the pair below treats the wall as flat (R* = r)
+      wall.radius_m = 1.0;  // geometry only: R* below treats the wall as flat
       wall.x = p.x - (h + wall.radius_m) * w.normal;
       wall.v = w.velocity;
       wall.mass_kg = kInf;
-      const std::pair<int, int> key{static_cast<int>(k), static_cast<int>(i)};
-      Vec3 spring = Vec3::Zero();
-      if (auto it = platen_springs_.find(key); it != platen_springs_.end()) spring = it->second;
-      const PairProperties pp = pair_properties(material_, p.radius_m, kInf, p.mass_kg, kInf);
-      const ContactResult r = hertz_mindlin(material_, pp, p, wall, dt, spring);
+      const PairProperties pp = pair_properties(material_, platen_material_,
+                                                platen_material_.restitution, p.radius_m, kInf,
+                                                p.mass_kg, kInf);
+      const ContactResult r = hertz_mindlin(platen_material_, pp, p, wall, dt, spring);
       p.f += r.force_on_i;
       p.tau += r.torque_on_i;
       w.force_N += r.normal_force_N;
-      next_platen.emplace(key, spring);
     }
   }
-  platen_springs_.swap(next_platen);
+}
+
+void DemWorld::integrate(double dt) {
+  for (auto& p : particles_) {
+    if (p.fixed) continue;
+    if (local_damping_ > 0.0) {
+      damp(p.f, p.v, local_damping_);
+      damp(p.tau, p.w, local_damping_);
+    }
+    p.v += p.f / p.mass_kg * dt;
+    p.x += p.v * dt;
+    if (p.inertia_kgm2 > 0.0) p.w += p.tau / p.inertia_kgm2 * dt;
+  }
+  for (auto& w : platens_) w.point += w.velocity * dt;
 }
 
 void DemWorld::step(double dt) {
+  if (neighbours_stale()) rebuild_neighbours();
   for (auto& p : particles_) {
     p.f.setZero();
     p.tau.setZero();
@@ -100,14 +186,9 @@ void DemWorld::step(double dt) {
     update_bond(b, bond_params_, particles_[static_cast<std::size_t>(b.i)],
                 particles_[static_cast<std::size_t>(b.j)], dt);
   }
-  contacts(dt);
-  for (auto& p : particles_) {
-    if (p.fixed) continue;
-    p.v += p.f / p.mass_kg * dt;
-    p.x += p.v * dt;
-    if (p.inertia_kgm2 > 0.0) p.w += p.tau / p.inertia_kgm2 * dt;
-  }
-  for (auto& w : platens_) w.point += w.velocity * dt;
+  particle_contacts(dt);
+  platen_contacts(dt);
+  integrate(dt);
   ++steps_;
 }
 
@@ -126,15 +207,11 @@ double DemWorld::kinetic_energy() const {
 
 double DemWorld::contact_energy() const {
   double e = 0.0;
-  for (std::size_t i = 0; i < particles_.size(); ++i) {
-    for (std::size_t j = i + 1; j < particles_.size(); ++j) {
-      const Particle& a = particles_[i];
-      const Particle& b = particles_[j];
-      const double overlap = a.radius_m + b.radius_m - (b.x - a.x).norm();
-      if (overlap <= 0.0) continue;
-      e += hertz_energy(pair_properties(material_, a.radius_m, b.radius_m, a.mass_kg, b.mass_kg),
-                        overlap);
-    }
+  for (const auto& c : candidates_) {
+    if (c.bond >= 0 && !bonds_[static_cast<std::size_t>(c.bond)].broken) continue;
+    const Particle& a = particles_[static_cast<std::size_t>(c.i)];
+    const Particle& b = particles_[static_cast<std::size_t>(c.j)];
+    e += hertz_energy(c.props, a.radius_m + b.radius_m - (b.x - a.x).norm());
   }
   return e;
 }

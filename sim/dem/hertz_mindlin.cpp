@@ -16,15 +16,22 @@ double inverse_sum(double a_inv, double b_inv) {
 
 PairProperties pair_properties(const ContactMaterial& m, double r_i, double r_j, double m_i,
                                double m_j) {
-  const double e = m.youngs_modulus_Pa();
-  const double nu = m.poisson;
+  return pair_properties(m, m, m.restitution, r_i, r_j, m_i, m_j);
+}
+
+PairProperties pair_properties(const ContactMaterial& mat_i, const ContactMaterial& mat_j,
+                               double e, double r_i, double r_j, double m_i, double m_j) {
+  const double e_i = mat_i.youngs_modulus_Pa();
+  const double e_j = mat_j.youngs_modulus_Pa();
+  const double nu_i = mat_i.poisson;
+  const double nu_j = mat_j.poisson;
   PairProperties p;
-  p.e_star = inverse_sum((1 - nu * nu) / e, (1 - nu * nu) / e);
-  p.g_star = inverse_sum(2 * (2 - nu) * (1 + nu) / e, 2 * (2 - nu) * (1 + nu) / e);
+  p.e_star = inverse_sum((1 - nu_i * nu_i) / e_i, (1 - nu_j * nu_j) / e_j);
+  p.g_star = inverse_sum(2 * (2 - nu_i) * (1 + nu_i) / e_i, 2 * (2 - nu_j) * (1 + nu_j) / e_j);
   p.r_star = inverse_sum(std::isinf(r_i) ? 0.0 : 1.0 / r_i, std::isinf(r_j) ? 0.0 : 1.0 / r_j);
   p.m_star = inverse_sum(std::isinf(m_i) ? 0.0 : 1.0 / m_i, std::isinf(m_j) ? 0.0 : 1.0 / m_j);
-  const double le = std::log(m.restitution);
-  p.beta = m.restitution >= 1.0 ? 0.0 : le / std::sqrt(le * le + kPi * kPi);
+  const double le = std::log(e);
+  p.beta = e >= 1.0 ? 0.0 : le / std::sqrt(le * le + kPi * kPi);
   return p;
 }
 

@@ -31,9 +31,7 @@ bool write_commissioning_stamp(const std::string& stamp_path, const std::string&
   const std::string text = "# planter-can check: every item passed\nboard: " + board_name +
                            "\nboard_file: " + board_path + "\nboard_fingerprint: " + fingerprint +
                            "\npassed_at: " + std::to_string(passed_at_unix_s) + "\n";
-  const std::string tmp = stamp_path + ".tmp";
-  if (!write_file_synced(tmp, text) || !replace_file(tmp, stamp_path)) {
-    ::unlink(tmp.c_str());
+  if (!write_file_atomic(stamp_path, text)) {
     error = stamp_path + ": cannot be written";
     return false;
   }

@@ -40,4 +40,11 @@ bool replace_file(const std::string& from, const std::string& to) {
   return true;
 }
 
+bool write_file_atomic(const std::string& path, const std::string& data) {
+  const std::string tmp = path + ".tmp";
+  if (write_file_synced(tmp, data) && replace_file(tmp, path)) return true;
+  ::unlink(tmp.c_str());
+  return false;
+}
+
 }  // namespace planter::config

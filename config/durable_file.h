@@ -12,5 +12,8 @@ bool write_all(int fd, const char* data, std::size_t size);
 bool write_file_synced(const std::string& path, const std::string& data);
 // Renames `from` over `to` and fsyncs the directory so the rename itself is durable.
 bool replace_file(const std::string& from, const std::string& to);
+// Writes `data` to `path` + ".tmp", fsyncs it and renames it over `path`: a reader sees the
+// old file or the new one, never half of one. The temporary is removed on failure.
+bool write_file_atomic(const std::string& path, const std::string& data);
 
 }  // namespace planter::config

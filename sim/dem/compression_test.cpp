@@ -6,20 +6,42 @@
 namespace planter::dem {
 
 void find_first_peak(CompressionResult& r, double drop_fraction) {
+  // Smoothed over a few samples, so that one noisy sample is not a peak; the seating of
+  // the first few tenths of a millimetre is not either.
+  constexpr double kSeating_m = 0.3e-3;
+  const std::size_t n = r.curve.size();
+  const std::size_t half = std::max<std::size_t>(1, n / 120);
+  std::vector<double> smooth(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t lo = k >= half ? k - half : 0;
+    const std::size_t hi = std::min(n - 1, k + half);
+    for (std::size_t m = lo; m <= hi; ++m) smooth[k] += r.curve[m].force_N;
+    smooth[k] /= static_cast<double>(hi - lo + 1);
+  }
   r.first_peak_found = false;
   double best = -1.0;
-  double best_x = 0.0;
-  for (const auto& p : r.curve) {
-    if (p.force_N > best) {
-      best = p.force_N;
-      best_x = p.displacement_m;
-    } else if (best > 0.0 && p.force_N < (1.0 - drop_fraction) * best) {
+  std::size_t best_k = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (r.curve[k].displacement_m < kSeating_m) continue;
+    if (smooth[k] > best) {
+      best = smooth[k];
+      best_k = k;
+    } else if (best > 0.0 && smooth[k] < (1.0 - drop_fraction) * best) {
       r.first_peak_found = true;
       break;
     }
   }
-  r.peak_force_N = std::max(best, 0.0);
-  r.peak_displacement_m = best_x;
+  // Report the raw curve's largest value around the smoothed peak.
+  r.peak_force_N = 0.0;
+  r.peak_displacement_m = 0.0;
+  if (best < 0.0) return;
+  const std::size_t lo = best_k >= half ? best_k - half : 0;
+  for (std::size_t m = lo; m <= std::min(n - 1, best_k + half); ++m) {
+    if (r.curve[m].force_N > r.peak_force_N) {
+      r.peak_force_N = r.curve[m].force_N;
+      r.peak_displacement_m = r.curve[m].displacement_m;
+    }
+  }
 }
 
 CompressionResult run_compression(const CompressionSetup& s) {

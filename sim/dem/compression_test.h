@@ -23,8 +23,8 @@ struct CompressionSetup {
   double speedup = 50.0;                 // platen speed multiplier (1 = the paper's)
   double time_step_s = 2e-6;
   double stroke_m = 6e-3;
-  double local_damping = 0.1;  // Cundall damping; keeps the fast loading quasi-static
-  int samples = 300;           // points on the force-displacement curve
+  double local_damping = 0.1;        // Cundall damping; keeps the fast loading quasi-static
+  int samples = 300;                 // points on the force-displacement curve
   double peak_drop_fraction = 0.05;  // a first peak is a maximum the force then falls 5 % from
 };
 

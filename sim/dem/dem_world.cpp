@@ -93,8 +93,7 @@ void DemWorld::rebuild_neighbours() {
     c.j = key.second;
     while (bk < bond_keys.size() && bond_keys[bk].first < key) ++bk;
     if (bk < bond_keys.size() && bond_keys[bk].first == key) c.bond = bond_keys[bk].second;
-    while (prev < previous_.size() &&
-           std::make_pair(previous_[prev].i, previous_[prev].j) < key) {
+    while (prev < previous_.size() && std::make_pair(previous_[prev].i, previous_[prev].j) < key) {
       ++prev;
     }
     if (prev < previous_.size() && previous_[prev].i == c.i && previous_[prev].j == c.j) {
@@ -151,9 +150,9 @@ void DemWorld::platen_contacts(double dt) {
       wall.x = p.x - (h + wall.radius_m) * w.normal;
       wall.v = w.velocity;
       wall.mass_kg = kInf;
-      const PairProperties pp = pair_properties(material_, platen_material_,
-                                                platen_material_.restitution, p.radius_m, kInf,
-                                                p.mass_kg, kInf);
+      const PairProperties pp =
+          pair_properties(material_, platen_material_, platen_material_.restitution, p.radius_m,
+                          kInf, p.mass_kg, kInf);
       const ContactResult r = hertz_mindlin(platen_material_, pp, p, wall, dt, spring);
       p.f += r.force_on_i;
       p.tau += r.torque_on_i;

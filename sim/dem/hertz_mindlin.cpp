@@ -19,8 +19,8 @@ PairProperties pair_properties(const ContactMaterial& m, double r_i, double r_j,
   return pair_properties(m, m, m.restitution, r_i, r_j, m_i, m_j);
 }
 
-PairProperties pair_properties(const ContactMaterial& mat_i, const ContactMaterial& mat_j,
-                               double e, double r_i, double r_j, double m_i, double m_j) {
+PairProperties pair_properties(const ContactMaterial& mat_i, const ContactMaterial& mat_j, double e,
+                               double r_i, double r_j, double m_i, double m_j) {
   const double e_i = mat_i.youngs_modulus_Pa();
   const double e_j = mat_j.youngs_modulus_Pa();
   const double nu_i = mat_i.poisson;

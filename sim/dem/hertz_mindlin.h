@@ -18,8 +18,8 @@ PairProperties pair_properties(const ContactMaterial& m, double r_i, double r_j,
                                double m_j);
 // Two materials (a particle on the steel platen): elastic values from each, the interaction's
 // restitution `e` (EDEM gives restitution and friction per material pair).
-PairProperties pair_properties(const ContactMaterial& mat_i, const ContactMaterial& mat_j,
-                               double e, double r_i, double r_j, double m_i, double m_j);
+PairProperties pair_properties(const ContactMaterial& mat_i, const ContactMaterial& mat_j, double e,
+                               double r_i, double r_j, double m_i, double m_j);
 
 struct ContactResult {
   Vec3 force_on_i = Vec3::Zero();   // the force on particle i at the contact point

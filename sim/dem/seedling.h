@@ -11,10 +11,10 @@ struct SeedlingGeometry {
   double length_m = 0.190;
   double diameter_m = 0.010;
   double particle_radius_m = 1.5e-3;
-  int layers = 2;                    // concentric rings in the wall
+  int layers = 2;  // concentric rings in the wall
   double density_kg_m3 = 870.0;
-  double bond_gap_m = 0.5e-3;        // pairs within 2r + gap are bonded
-  double curvature_radius_m = 0.0;   // bend the axis in the YZ plane; 0 = straight
+  double bond_gap_m = 0.5e-3;       // pairs within 2r + gap are bonded
+  double curvature_radius_m = 0.0;  // bend the axis in the YZ plane; 0 = straight
 };
 
 struct SeedlingBuild {

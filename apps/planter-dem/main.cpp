@@ -1,0 +1,150 @@
+// planter-dem: the seedling's bonded-particle model.
+//   compress   the paper's radial compression test: curve, first peak, report
+//   calibrate  Plackett-Burman, steepest ascent, Box-Behnken + ANOVA to a target peak force
+// Exit codes: 0 done, 1 the run failed (an output could not be written), 2 bad input.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <thread>
+
+#include "config/config_error.h"
+#include "sim/dem/calibration.h"
+#include "sim/dem/compression_report.h"
+#include "sim/dem/dem_params.h"
+
+namespace {
+
+using namespace planter;
+
+int fail(int code, const std::string& message) {
+  std::fprintf(stderr, "planter-dem: %s\n", message.c_str());
+  return code;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+struct Common {
+  std::string params;
+  std::string out;
+  double speedup = 0.0;
+  double diameter_mm = 0.0;
+};
+
+dem::CompressionSetup load_setup(const Common& c) {
+  dem::CompressionSetup s =
+      c.params.empty() ? dem::CompressionSetup{} : dem::load_compression_setup(c.params);
+  if (c.speedup > 0.0) s.speedup = c.speedup;
+  if (c.diameter_mm > 0.0) s.seedling.diameter_m = c.diameter_mm * 1e-3;
+  return s;
+}
+
+int compress(const Common& c) {
+  dem::CompressionRun run;
+  run.setup = load_setup(c);
+  const auto t0 = std::chrono::steady_clock::now();
+  run.result = dem::run_compression(run.setup);
+  run.wall_s = seconds_since(t0);
+  dem::write_compression_outputs(c.out, run);
+  const auto& r = run.result;
+  std::printf("seedling: %d particles, %d bonds; %ld steps of %g s; platen %g m/min (%gx)\n",
+              r.particles, r.bonds, r.steps, run.setup.time_step_s,
+              run.setup.platen_speed_mps * 60.0 * run.setup.speedup, run.setup.speedup);
+  std::printf("quasi-static check: kinetic energy / platen work <= %.4f\n", r.max_kinetic_to_work);
+  std::printf("broken bonds: %d of %d\n", r.broken_bonds, r.bonds);
+  std::printf("outputs: %s/{curve.csv,result.json,params.toml,report.html}\n", c.out.c_str());
+  std::printf("%s: %.1f N at %.2f mm (paper: 140.6 N at about 4 mm), %.1f s wall\n",
+              r.first_peak_found ? "first peak" : "maximum (no peak within the stroke)",
+              r.peak_force_N, r.peak_displacement_m * 1e3, run.wall_s);
+  return 0;
+}
+
+int calibrate(const Common& c, double target_N, int jobs, int max_new_runs) {
+  dem::CalibrationOptions o;
+  o.base = load_setup(c);
+  o.target_N = target_N;
+  o.jobs = jobs;
+  o.max_new_runs = max_new_runs;
+  o.out_dir = c.out;
+  const auto t0 = std::chrono::steady_clock::now();
+  const dem::CalibrationReport r = dem::calibrate(
+      o, [](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); });
+  dem::write_calibration_outputs(o, r);
+  std::printf("runs: %d new, %d reused from %s/runs, %d jobs, %.1f s wall\n", r.new_runs,
+              r.reused_runs, c.out.c_str(), jobs, seconds_since(t0));
+  if (!r.complete) {
+    std::printf("stopped before the end (--max-new-runs); run again with --out %s to resume\n",
+                c.out.c_str());
+    return 3;
+  }
+  std::printf("screening: %s\n", r.chosen_reason.c_str());
+  for (const auto& t : r.screening_anova.terms)
+    std::printf("  %-3s effect %+9.2f N  p = %.4f\n", t.name.c_str(), 2.0 * t.coefficient,
+                t.p_value);
+  std::printf("steepest ascent: best step %d\n", r.best_step);
+  std::printf(
+      "box-behnken surface: p = %.3g, R2 = %.4f, adjusted R2 = %.4f, adequate "
+      "precision %.1f\n",
+      r.surface.model_p, r.surface.r2, r.surface.r2_adjusted, r.surface.adequate_precision);
+  for (std::size_t m = 0; m < r.chosen.size(); ++m) {
+    const auto& f = r.factors[static_cast<std::size_t>(r.chosen[m])];
+    std::printf("  %s: %.4g .. %.4g .. %.4g %s\n", f.name.c_str(), r.bb_low[m], r.bb_centre[m],
+                r.bb_high[m], f.unit.c_str());
+  }
+  std::printf("outputs: %s/{calibration.json,calibrated.toml,report.html}\n", c.out.c_str());
+  const auto& v = r.verification.result;
+  std::printf("optimum: predicted %.1f N; simulated %.1f N at %.2f mm (target %.1f N, %+.1f %%)\n",
+              r.predicted_N, v.peak_force_N, v.peak_displacement_m * 1e3, target_N,
+              100.0 * (v.peak_force_N - target_N) / target_N);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "planter-dem: the seedling's bonded-particle model, its calibration and the "
+      "reduced-order force model"};
+  app.require_subcommand(1);
+  Common common;
+  auto add_common = [&](CLI::App* sub) {
+    sub->add_option("--params", common.params, "parameter file (TOML); default: the paper's")
+        ->check(CLI::ExistingFile);
+    sub->add_option("--out", common.out, "output directory")->required();
+    sub->add_option("--speedup", common.speedup, "platen speed over the paper's 0.2 m/min")
+        ->check(CLI::Range(1.0, 500.0));
+    sub->add_option("--diameter-mm", common.diameter_mm, "seedling diameter")
+        ->check(CLI::Range(3.0, 30.0));
+  };
+  auto* compress_cmd = app.add_subcommand("compress", "the radial compression test");
+  add_common(compress_cmd);
+  auto* calibrate_cmd = app.add_subcommand("calibrate", "calibrate to a target peak force");
+  add_common(calibrate_cmd);
+  double target_N = 140.6;
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  int max_new_runs = -1;
+  calibrate_cmd->add_option("--target", target_N, "target first-peak force, N")
+      ->check(CLI::Range(1.0, 10000.0));
+  calibrate_cmd->add_option("--jobs", jobs, "simulations at once (default: all cores)")
+      ->check(CLI::Range(1, 256));
+  calibrate_cmd
+      ->add_option("--max-new-runs", max_new_runs,
+                   "stop after this many new simulations (resume later)")
+      ->check(CLI::Range(0, 100000));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    return fail(2, std::string(e.what()) + " (planter-dem --help lists the options)");
+  }
+  try {
+    if (*compress_cmd) return compress(common);
+    return calibrate(common, target_N, jobs, max_new_runs);
+  } catch (const config::ConfigError& e) {
+    return fail(2, e.what());
+  } catch (const std::exception& e) {
+    return fail(1, e.what());
+  }
+}

@@ -1,0 +1,147 @@
+// What `planter-dem calibrate` writes: calibration.json (every design, response and ANOVA),
+// calibrated.toml (the optimum as a --params file) and a self-contained report.html.
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "config/durable_file.h"
+#include "sim/dem/calibration.h"
+#include "sim/dem/dem_params.h"
+#include "sim/report/svg_plot.h"
+
+namespace planter::dem {
+namespace {
+
+nlohmann::json anova_json(const Anova& a) {
+  nlohmann::json j;
+  j["intercept"] = a.intercept;
+  j["model"] = {{"sum_of_squares", a.model_ss},
+                {"df", a.model_df},
+                {"f_value", a.model_f},
+                {"p_value", a.model_p}};
+  j["residual"] = {{"sum_of_squares", a.residual_ss}, {"df", a.residual_df}};
+  j["r2"] = a.r2;
+  j["r2_adjusted"] = a.r2_adjusted;
+  j["adequate_precision"] = a.adequate_precision;
+  for (const auto& t : a.terms) {
+    j["terms"].push_back({{"term", t.name},
+                          {"coefficient", t.coefficient},
+                          {"sum_of_squares", t.sum_of_squares},
+                          {"f_value", t.f_value},
+                          {"p_value", t.p_value}});
+  }
+  return j;
+}
+
+nlohmann::json runs_json(const std::vector<DesignRun>& runs) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& d : runs) {
+    j.push_back({{"coded", d.coded},
+                 {"peak_force_N", d.result.peak_force_N},
+                 {"peak_displacement_mm", d.result.peak_displacement_m * 1e3},
+                 {"first_peak_found", d.result.first_peak_found},
+                 {"broken_bonds", d.result.broken_bonds}});
+  }
+  return j;
+}
+
+std::string anova_table(const Anova& a) {
+  std::ostringstream s;
+  s.precision(4);
+  s << "<table><tr><th>source</th><th>coefficient</th><th>sum of squares</th><th>F</th>"
+       "<th>p</th></tr><tr><td>model</td><td>"
+    << a.intercept << " (intercept)</td><td>" << a.model_ss << "</td><td>" << a.model_f
+    << "</td><td>" << a.model_p << "</td></tr>";
+  for (const auto& t : a.terms) {
+    s << "<tr><td>" << t.name << "</td><td>" << t.coefficient << "</td><td>" << t.sum_of_squares
+      << "</td><td>" << t.f_value << "</td><td>" << (t.p_value < 0.05 ? "<b>" : "") << t.p_value
+      << (t.p_value < 0.05 ? "</b>" : "") << "</td></tr>";
+  }
+  s << "<tr><td>residual</td><td></td><td>" << a.residual_ss << " (df " << a.residual_df
+    << ")</td></tr></table><p>R<sup>2</sup> " << a.r2 << ", adjusted " << a.r2_adjusted
+    << ", adequate precision " << a.adequate_precision << "</p>";
+  return s.str();
+}
+
+void write_output(const std::string& path, const std::string& data) {
+  if (!config::write_file_atomic(path, data))
+    throw std::runtime_error(path + ": cannot be written");
+}
+
+}  // namespace
+
+void write_calibration_outputs(const CalibrationOptions& o, const CalibrationReport& r) {
+  nlohmann::json j;
+  j["target_N"] = o.target_N;
+  j["complete"] = r.complete;
+  j["new_runs"] = r.new_runs;
+  j["reused_runs"] = r.reused_runs;
+  for (const auto& f : r.factors) {
+    j["factors"].push_back({{"name", f.name},
+                            {"unit", f.unit},
+                            {"low", f.low},
+                            {"high", f.high},
+                            {"log_scale", f.log_scale}});
+  }
+  j["plackett_burman"] = {{"runs", runs_json(r.screening)},
+                          {"anova", anova_json(r.screening_anova)}};
+  nlohmann::json chosen = nlohmann::json::array();
+  for (int k : r.chosen) chosen.push_back(r.factors[static_cast<std::size_t>(k)].name);
+  j["chosen"] = {{"factors", chosen}, {"reason", r.chosen_reason}};
+  j["steepest_ascent"] = {{"runs", runs_json(r.ascent)}, {"best_step", r.best_step}};
+  j["box_behnken"] = {{"low", r.bb_low},
+                      {"centre", r.bb_centre},
+                      {"high", r.bb_high},
+                      {"runs", runs_json(r.box_behnken)},
+                      {"anova", anova_json(r.surface)}};
+  if (r.complete) {
+    const double got = r.verification.result.peak_force_N;
+    j["optimum"] = {
+        {"coded", {r.optimum_coded(0), r.optimum_coded(1), r.optimum_coded(2)}},
+        {"predicted_N", r.predicted_N},
+        {"verified_peak_N", got},
+        {"verified_peak_displacement_mm", r.verification.result.peak_displacement_m * 1e3},
+        {"error_pct", 100.0 * (got - o.target_N) / o.target_N}};
+    write_output(o.out_dir + "/calibrated.toml", compression_setup_toml(r.verification.setup));
+  }
+  write_output(o.out_dir + "/calibration.json", j.dump(2) + "\n");
+
+  std::ostringstream h;
+  h.precision(4);
+  h << "<!doctype html><html><head><meta charset='utf-8'><title>planter-dem calibrate</title>"
+    << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td,th{padding:2px "
+       "8px}table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style>"
+    << "</head><body><h1>Calibration of the seedling model to " << o.target_N << " N</h1>";
+  if (!r.complete) h << "<p><b>Incomplete</b>: run again with the same --out to resume.</p>";
+  h << "<h2>Plackett-Burman screening (12 runs, main effects)</h2>"
+    << anova_table(r.screening_anova) << "<p>" << r.chosen_reason << ".</p>";
+  h << "<h2>Steepest ascent</h2><table><tr><th>step</th><th>peak [N]</th><th>at [mm]</th></tr>";
+  for (std::size_t s = 0; s < r.ascent.size(); ++s) {
+    h << "<tr><td>" << s << (static_cast<int>(s) == r.best_step ? " (best)" : "") << "</td><td>"
+      << r.ascent[s].result.peak_force_N << "</td><td>"
+      << r.ascent[s].result.peak_displacement_m * 1e3 << "</td></tr>";
+  }
+  h << "</table>";
+  if (!r.box_behnken.empty() && r.surface.beta.size() > 0) {
+    h << "<h2>Box-Behnken (13 runs) and the quadratic surface</h2>" << anova_table(r.surface);
+  }
+  if (r.complete) {
+    const auto& v = r.verification;
+    h << "<h2>Optimum</h2><p>Predicted " << r.predicted_N << " N; the run there gives <b>"
+      << v.result.peak_force_N << " N at " << v.result.peak_displacement_m * 1e3 << " mm</b> ("
+      << 100.0 * (v.result.peak_force_N - o.target_N) / o.target_N
+      << " %). Parameters: <code>calibrated.toml</code>.</p>";
+    std::vector<double> x, f;
+    for (const auto& p : v.result.curve) {
+      x.push_back(p.displacement_m * 1e3);
+      f.push_back(p.force_N);
+    }
+    h << report::svg_plot("Verification run: upper platen force", "N", "displacement [mm]", x,
+                          {{&f, "#c33", "DEM at the optimum"}}, 0.0, 3.0 * o.target_N);
+  }
+  h << "</body></html>\n";
+  write_output(o.out_dir + "/report.html", h.str());
+}
+
+}  // namespace planter::dem

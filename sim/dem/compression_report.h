@@ -1,0 +1,21 @@
+#pragma once
+// What `planter-dem compress` writes: curve.csv, result.json, params.toml and a
+// self-contained report.html with the force-displacement plot.
+#include <string>
+
+#include "sim/dem/compression_test.h"
+
+namespace planter::dem {
+
+struct CompressionRun {
+  CompressionSetup setup;
+  CompressionResult result;
+  double wall_s = 0.0;
+};
+
+// Throws std::runtime_error naming the file when one cannot be written.
+void write_compression_outputs(const std::string& dir, const CompressionRun& run);
+// result.json's content (also one line of a calibration's run cache).
+std::string compression_result_json(const CompressionRun& run);
+
+}  // namespace planter::dem

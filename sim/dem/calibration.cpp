@@ -274,14 +274,16 @@ CalibrationReport calibrate(const CalibrationOptions& o,
     }
   }
 
-  // 3. Box-Behnken around the best step: its neighbours on the path are -1 and +1; a factor
-  // the path hardly moves gets half its screening range instead.
+  // 3. Box-Behnken around the best step. The paper put the neighbouring steps at -1 and +1;
+  // here the response turns sharply where bonds start to fail (a collapse), so the levels are
+  // half a step away, where a quadratic can follow it. A factor the path hardly moves gets a
+  // quarter of its screening range instead.
   const std::vector<double> centre = path_point(r.best_step);
   std::vector<double> half(3);
   for (int m = 0; m < 3; ++m) {
     const auto k = static_cast<std::size_t>(r.chosen[static_cast<std::size_t>(m)]);
     const double h = std::abs(kAscentStep * direction[k]);
-    half[static_cast<std::size_t>(m)] = h >= 0.1 ? h : 0.5;
+    half[static_cast<std::size_t>(m)] = h >= 0.1 ? 0.5 * h : 0.25;
     const Factor& f = r.factors[k];
     r.bb_low.push_back(f.value(centre[k] - half[static_cast<std::size_t>(m)]));
     r.bb_centre.push_back(f.value(centre[k]));

@@ -44,20 +44,29 @@ void find_first_peak(CompressionResult& r, double drop_fraction) {
   }
 }
 
-CompressionResult run_compression(const CompressionSetup& s) {
-  DemWorld world(s.seedling_material, s.bonds, s.platen_material);
-  world.set_local_damping(s.local_damping);
-  const SeedlingBuild built = build_seedling(world, s.seedling);
-  const double speed = s.platen_speed_mps * s.speedup;
+CompressionWorld make_compression_world(const CompressionSetup& s) {
+  CompressionWorld c{DemWorld(s.seedling_material, s.bonds, s.platen_material), {}, 0, 0.0};
+  c.world.set_local_damping(s.local_damping);
+  c.seedling = build_seedling(c.world, s.seedling);
+  c.platen_speed_mps = s.platen_speed_mps * s.speedup;
   Platen lower;
-  lower.point = Vec3(0.0, built.min_y_m, 0.0);
+  lower.point = Vec3(0.0, c.seedling.min_y_m, 0.0);
   lower.normal = Vec3::UnitY();
-  world.add_platen(lower);
+  c.world.add_platen(lower);
   Platen upper;
-  upper.point = Vec3(0.0, built.max_y_m, 0.0);
+  upper.point = Vec3(0.0, c.seedling.max_y_m, 0.0);
   upper.normal = -Vec3::UnitY();
-  upper.velocity = Vec3(0.0, -speed, 0.0);
-  const int top = world.add_platen(upper);
+  upper.velocity = Vec3(0.0, -c.platen_speed_mps, 0.0);
+  c.upper_platen = c.world.add_platen(upper);
+  return c;
+}
+
+CompressionResult run_compression(const CompressionSetup& s) {
+  CompressionWorld c = make_compression_world(s);
+  DemWorld& world = c.world;
+  const SeedlingBuild& built = c.seedling;
+  const double speed = c.platen_speed_mps;
+  const int top = c.upper_platen;
 
   CompressionResult r;
   r.particles = built.particles;

@@ -46,6 +46,15 @@ struct CompressionResult {
   double max_kinetic_to_work = 0.0;  // largest kinetic energy / platen work after 10 % stroke
 };
 
+// The test's world before the first step: seedling, lower platen and the moving upper one.
+struct CompressionWorld {
+  DemWorld world;
+  SeedlingBuild seedling;
+  int upper_platen = 0;
+  double platen_speed_mps = 0.0;  // with the speed-up
+};
+CompressionWorld make_compression_world(const CompressionSetup& setup);
+
 // Runs the test; deterministic for a given setup.
 CompressionResult run_compression(const CompressionSetup& setup);
 

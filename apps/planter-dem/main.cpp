@@ -1,17 +1,22 @@
 // planter-dem: the seedling's bonded-particle model.
 //   compress   the paper's radial compression test: curve, first peak, report
 //   calibrate  Plackett-Burman, steepest ascent, Box-Behnken + ANOVA to a target peak force
+//   reduce     the reduced-order force model F(delta, delta_dot) for the plant model
 // Exit codes: 0 done, 1 the run failed (an output could not be written), 2 bad input.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "config/config_error.h"
+#include "config/durable_file.h"
 #include "sim/dem/calibration.h"
 #include "sim/dem/compression_report.h"
 #include "sim/dem/dem_params.h"
+#include "sim/dem/reduced_order.h"
 
 namespace {
 
@@ -101,6 +106,33 @@ int calibrate(const Common& c, double target_N, int jobs, int max_new_runs) {
   return 0;
 }
 
+int reduce(const Common& c, const std::vector<double>& diameters_mm, int jobs) {
+  const dem::CompressionSetup base = load_setup(c);
+  const auto t0 = std::chrono::steady_clock::now();
+  const dem::ReducedOrderFit fit = dem::fit_reduced_order(base, diameters_mm, jobs);
+  std::filesystem::create_directories(c.out);
+  const std::string path = c.out + "/seedling_force.toml";
+  const std::string source =
+      "from " + (c.params.empty() ? std::string("the paper's parameters") : c.params);
+  if (!config::write_file_atomic(path, dem::reduced_order_toml(fit, source)))
+    return fail(1, path + ": cannot be written");
+  std::printf("diameter   peak force   at      elastic fit rms\n");
+  for (const auto& dc : fit.curves) {
+    std::printf("%6.2f mm  %8.1f N  %5.2f mm  %6.2f N%s\n", dc.diameter_mm, dc.result.peak_force_N,
+                dc.result.peak_displacement_m * 1e3, dc.fit_rms_N,
+                dc.result.first_peak_found ? "" : "  (no peak within the stroke)");
+  }
+  const auto& m = fit.model;
+  std::printf(
+      "F = %.4g (1 %+.3g (d - %.4g)) delta^%.3f + %.3g delta_dot; peak %.1f N %+.1f N/mm at "
+      "%.2f mm; collapse to %.0f %%\n",
+      m.stiffness_N_per_mm_n, m.stiffness_slope_per_mm / m.stiffness_N_per_mm_n,
+      m.reference_diameter_mm, m.exponent, m.damping_N_s_per_mm, m.peak_force_N,
+      m.peak_force_slope_N_per_mm, m.peak_displacement_mm, 100.0 * m.residual_fraction);
+  std::printf("model: %s (%.1f s wall)\n", path.c_str(), seconds_since(t0));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -133,6 +165,14 @@ int main(int argc, char** argv) {
       ->add_option("--max-new-runs", max_new_runs,
                    "stop after this many new simulations (resume later)")
       ->check(CLI::Range(0, 100000));
+  auto* reduce_cmd = app.add_subcommand("reduce", "fit the reduced-order force model");
+  add_common(reduce_cmd);
+  std::vector<double> diameters_mm{8.3, 9.3, 10.35, 11.4};
+  reduce_cmd->add_option("--diameters-mm", diameters_mm, "seedling diameters to simulate")
+      ->delimiter(',')
+      ->check(CLI::Range(3.0, 30.0));
+  reduce_cmd->add_option("--jobs", jobs, "simulations at once (default: all cores)")
+      ->check(CLI::Range(1, 256));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -141,6 +181,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*compress_cmd) return compress(common);
+    if (*reduce_cmd) return reduce(common, diameters_mm, jobs);
     return calibrate(common, target_N, jobs, max_new_runs);
   } catch (const config::ConfigError& e) {
     return fail(2, e.what());

@@ -1,7 +1,6 @@
 #include "sim/dem/calibration.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -11,10 +10,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
 #include "config/durable_file.h"
 #include "sim/dem/dem_params.h"
+#include "sim/dem/parallel_for.h"
 
 namespace planter::dem {
 namespace {
@@ -106,31 +105,27 @@ class RunPool {
         complete = false;
       }
     }
-    std::atomic<std::size_t> next{0};
     std::mutex mu;
-    auto worker = [&] {
-      for (std::size_t t = next++; t < todo.size(); t = next++) {
-        DesignRun& d = runs[todo[t]];
-        d.result = run_compression(d.setup);
-        const std::string path = dir_ + "/" + run_key(d.setup) + ".json";
-        nlohmann::json j = result_to_json(d.result);
-        j["params"] = compression_setup_toml(d.setup);
-        if (!config::write_file_atomic(path, j.dump() + "\n"))
-          throw std::runtime_error(path + ": cannot be written");
-        std::lock_guard lock(mu);
-        ++report_.new_runs;
-        char line[160];
-        std::snprintf(line, sizeof line, "%s run %zu/%zu: peak %.1f N at %.2f mm", stage,
-                      todo[t] + 1, runs.size(), d.result.peak_force_N,
-                      d.result.peak_displacement_m * 1e3);
-        progress_(line);
+    std::string unwritten;
+    parallel_for(todo.size(), opt_.jobs, [&](std::size_t t) {
+      DesignRun& d = runs[todo[t]];
+      d.result = run_compression(d.setup);
+      const std::string path = dir_ + "/" + run_key(d.setup) + ".json";
+      nlohmann::json j = result_to_json(d.result);
+      j["params"] = compression_setup_toml(d.setup);
+      const bool written = config::write_file_atomic(path, j.dump() + "\n");
+      std::lock_guard lock(mu);
+      if (!written) {  // reported after the pool: a worker thread must not throw
+        unwritten = path;
+        return;
       }
-    };
-    const int threads = std::max(1, std::min<int>(opt_.jobs, static_cast<int>(todo.size())));
-    std::vector<std::thread> pool;
-    for (int k = 1; k < threads; ++k) pool.emplace_back(worker);
-    worker();
-    for (auto& th : pool) th.join();
+      ++report_.new_runs;
+      char line[160];
+      std::snprintf(line, sizeof line, "%s run %zu/%zu: peak %.1f N at %.2f mm", stage, todo[t] + 1,
+                    runs.size(), d.result.peak_force_N, d.result.peak_displacement_m * 1e3);
+      progress_(line);
+    });
+    if (!unwritten.empty()) throw std::runtime_error(unwritten + ": cannot be written");
     return complete;
   }
 

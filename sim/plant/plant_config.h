@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/plant/seedling_force_model.h"
+
 namespace planter::sim {
 
 struct StopEvent {
@@ -45,6 +47,9 @@ struct SeedlingConfig {
   double strength_mean_N = 140.6;
   double strength_sd_N = 24.9;
   double tilt_noise_deg = 2.5;
+  // From the DEM (planter-dem reduce) when the scenario names one: the mean strength then
+  // follows each seedling's diameter, with the measured spread (strength_sd / strength_mean).
+  SeedlingForceModel force_model;
 };
 
 struct MechanismConfig {

@@ -45,6 +45,13 @@ void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N,
     s.length_mm = sc.length_min_mm + (sc.length_max_mm - sc.length_min_mm) * u01(rng_);
     std::normal_distribution<double> strength(sc.strength_mean_N, sc.strength_sd_N);
     s.strength_N = std::max(40.0, strength(rng_));
+    if (sc.force_model.loaded) {
+      // The DEM's first peak for this diameter, spread as the measured peaks are.
+      const double cv = sc.strength_sd_N / sc.strength_mean_N;
+      s.strength_N = sc.force_model.peak_force(s.diameter_mm) *
+                     std::max(0.3, 1.0 + cv * (s.strength_N - sc.strength_mean_N) /
+                                             std::max(1e-9, sc.strength_sd_N));
+    }
     s.pickup_angle_rad = next_pickup_angle_rad_;
     s.pickup_time_s = now.t_s;
     next_pickup_angle_rad_ += pitch_rad;
@@ -56,6 +63,14 @@ void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N,
     if (now.t_s - s.pickup_time_s <= mc.nip_time_s) {
       s.peak_force_N = std::max(s.peak_force_N, clamp_force_N * contact_area_factor());
       s.damaged = s.peak_force_N > s.strength_N;
+      if (sc.force_model.loaded) {
+        // Past its first peak the wall collapses: the compression jumps past delta_p.
+        const SeedlingForceModel& m = sc.force_model;
+        s.peak_compression_mm = s.damaged
+                                    ? std::max(m.peak_displacement(s.diameter_mm),
+                                               m.compression_mm(s.diameter_mm, s.peak_force_N))
+                                    : m.compression_mm(s.diameter_mm, s.peak_force_N);
+      }
     }
   }
   const double carry_rad = mc.carry_angle_deg / kDegPerRad;

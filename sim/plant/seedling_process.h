@@ -16,7 +16,8 @@ struct Seedling {
   double strength_N = 0;
   double pickup_angle_rad = 0;
   double pickup_time_s = 0;
-  double peak_force_N = 0;  // largest radial compression while in the nip
+  double peak_force_N = 0;         // largest radial compression while in the nip
+  double peak_compression_mm = 0;  // its radial compression then (with a DEM force model)
   bool damaged = false;
   bool planted = false;
   double release_time_s = 0;

@@ -9,6 +9,28 @@ namespace planter::sim {
 using config::ConfigError;
 using config::TomlSection;
 
+SeedlingForceModel load_seedling_force_model(const std::string& path) {
+  config::TomlDocument doc(path);
+  TomlSection root = doc.root();
+  auto t = root.table("seedling_force");
+  if (!t) throw ConfigError(path, 1, "seedling_force", "table is missing (planter-dem reduce)");
+  SeedlingForceModel m;
+  m.reference_diameter_mm = t->required_number("reference_diameter_mm", 3.0, 30.0, "mm");
+  m.exponent = t->required_number("exponent", 0.5, 4.0);
+  m.stiffness_N_per_mm_n = t->required_number("stiffness_N_per_mm_n", 1e-3, 1e5);
+  m.stiffness_slope_per_mm = t->required_number("stiffness_slope_per_mm", -1e5, 1e5);
+  m.peak_force_N = t->required_number("peak_force_N", 1.0, 1e4, "N");
+  m.peak_force_slope_N_per_mm = t->required_number("peak_force_slope_N_per_mm", -1e4, 1e4);
+  m.peak_displacement_mm = t->required_number("peak_displacement_mm", 0.05, 20.0, "mm");
+  m.peak_displacement_slope = t->required_number("peak_displacement_slope", -10.0, 10.0);
+  m.residual_fraction = t->required_number("residual_fraction", 0.0, 1.0);
+  m.damping_N_s_per_mm = t->required_number("damping_N_s_per_mm", 0.0, 1e4);
+  t->reject_unknown_keys();
+  root.reject_unknown_keys();
+  m.loaded = true;
+  return m;
+}
+
 Scenario load_scenario(const std::string& path) {
   config::TomlDocument doc(path);
   TomlSection root = doc.root();
@@ -74,6 +96,13 @@ Scenario load_scenario(const std::string& path) {
     c.strength_mean_N = t->number("strength_mean_N", c.strength_mean_N, 10.0, 1000.0, "N");
     c.strength_sd_N = t->number("strength_sd_N", c.strength_sd_N, 0.0, 500.0, "N");
     c.tilt_noise_deg = t->number("tilt_noise_deg", c.tilt_noise_deg, 0.0, 45.0, "deg");
+    const std::string model = t->string("force_model", "");
+    if (!model.empty()) {
+      const auto model_path = std::filesystem::path(path).parent_path() / model;
+      if (!std::filesystem::exists(model_path))
+        t->fail("force_model", "file " + model_path.string() + " does not exist");
+      c.force_model = load_seedling_force_model(model_path.string());
+    }
     t->reject_unknown_keys();
   }
   if (auto t = root.table("mechanism")) {

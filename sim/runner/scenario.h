@@ -22,6 +22,8 @@ struct Scenario {
 
 // Throws config::ConfigError.
 Scenario load_scenario(const std::string& path);
+// A seedling force model file written by `planter-dem reduce`. Throws config::ConfigError.
+SeedlingForceModel load_seedling_force_model(const std::string& path);
 // Applies [controller]-style overrides (used by the sweep) with the same checks.
 void set_operating_point(Scenario& s, double sigma, double depth_mm, double contact_area_mm2);
 

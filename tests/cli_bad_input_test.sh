@@ -18,10 +18,10 @@ expect() {  # expect NAME PATTERN -- command...
   fi
 }
 cp "$src/scenarios/zhangqiu-field.toml" "$tmp/s.toml"
-sed -i "s|\.\./boards|$src/boards|" "$tmp/s.toml"
+sed -i "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" "$tmp/s.toml"
 printf '\n[route2]\nx = 1\n' >>"$tmp/s.toml"
 expect unknown-table "s.toml:[0-9]+: 'route2': unknown key" -- "$sim" run "$tmp/s.toml" --out "$tmp/o"
-sed "s|speed_mps = 0.06|speed_mps = 7|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|" >"$tmp/r.toml"
+sed "s|speed_mps = 0.06|speed_mps = 7|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/r.toml"
 expect out-of-range "r.toml:[0-9]+: 'route.speed_mps': 7 is out of range; allowed \[0.005, 1\] m/s" -- "$sim" run "$tmp/r.toml" --out "$tmp/o"
 printf '[scenario\n' >"$tmp/broken.toml"
 expect syntax "broken.toml:1:" -- "$sim" run "$tmp/broken.toml" --out "$tmp/o"

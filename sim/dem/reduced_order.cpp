@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "sim/dem/parallel_for.h"
 
@@ -77,7 +78,7 @@ ReducedOrderFit fit_reduced_order(const CompressionSetup& base,
     }
     double a = 0, n = 1;
     line_fit(lx, ly, a, n);
-    exponents.push_back(n);
+    if (results[k].first_peak_found) exponents.push_back(n);
   }
   double n_sum = 0;
   for (double n : exponents) n_sum += n;
@@ -116,14 +117,17 @@ ReducedOrderFit fit_reduced_order(const CompressionSetup& base,
       }
     }
     const double fp = dc.result.peak_force_N;
-    residuals.push_back(dc.result.first_peak_found && count > 0 && fp > 0 ? after / count / fp
-                                                                          : 1.0);
+    if (dc.result.first_peak_found && count > 0 && fp > 0) residuals.push_back(after / count / fp);
+    fit.curves.push_back(dc);
+    // A curve with no collapse within the stroke (a thin seedling squashed flat) has no peak
+    // to fit: it is reported, not averaged in.
+    if (!dc.result.first_peak_found) continue;
     ds.push_back(dc.diameter_mm);
     ks.push_back(k_fit);
     fps.push_back(fp);
     dps.push_back(dp);
-    fit.curves.push_back(dc);
   }
+  if (ds.empty()) throw std::runtime_error("no DEM curve has a first peak: nothing to reduce");
   std::vector<double> dx;
   for (double d : ds) dx.push_back(d - m.reference_diameter_mm);
   line_fit(dx, ks, m.stiffness_N_per_mm_n, m.stiffness_slope_per_mm);

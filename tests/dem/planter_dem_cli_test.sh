@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# planter-dem's bad input: one clear message naming file, line and key, and exit code 2.
+set -uo pipefail
+tool=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fails=0
+expect() {  # expect CODE PATTERN -- ARGS...
+  local code=$1 pattern=$2
+  shift 3
+  local out rc
+  out=$("$tool" "$@" 2>&1 >/dev/null)
+  rc=$?
+  if [ "$rc" -ne "$code" ] || ! grep -q -- "$pattern" <<<"$out"; then
+    echo "FAIL: planter-dem $* -> exit $rc, '$out' (wanted $code and /$pattern/)"
+    fails=$((fails + 1))
+  fi
+}
+printf '[bond]\nnormal_stiffness_N_m3 = 4.8e9\nradius_mm = 40\n' >"$work/range.toml"
+expect 2 "range.toml:3: 'bond.radius_mm'" -- compress --params "$work/range.toml" --out "$work/o"
+printf '[bond]\nstiffnes = 1\n' >"$work/typo.toml"
+expect 2 "typo.toml:2: 'bond.stiffnes'" -- compress --params "$work/typo.toml" --out "$work/o"
+printf '[bond\n' >"$work/syntax.toml"
+expect 2 "syntax.toml:1" -- compress --params "$work/syntax.toml" --out "$work/o"
+printf '[test]\nstroke_mm = 12\n' >"$work/stroke.toml"
+expect 2 "stroke_mm" -- compress --params "$work/stroke.toml" --out "$work/o"
+expect 2 "out" -- compress
+expect 2 "speedup" -- compress --out "$work/o" --speedup 0
+expect 2 "jobs" -- calibrate --out "$work/o" --jobs 0
+expect 2 "diameters" -- reduce --out "$work/o" --diameters-mm 8.3,abc
+[ "$fails" -eq 0 ] && echo "planter-dem bad input: all rejected with exit 2 and a message"
+exit "$fails"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every test: set up, format check, the unit and closed-loop tests under address and
-# undefined-behaviour sanitizers, the release build's tests, the benchmarks, the host package
+# undefined-behaviour sanitizers, the release build's tests, the benchmarks, the seedling DEM's
+# figures (compression, calibration, Yade), the host package
 # (installed and removed), the cross builds for the boards with their unit tests under
 # qemu-user and their packages, fuzzing, and the host-in-the-loop test of planterd and
 # planter-can in a VM with a real CAN and GPIO kernel.
@@ -20,6 +21,8 @@ echo "== benchmarks"
 "$root/build/bench/planter_bench_alloc" "$root/scenarios/zhangqiu-field.toml"
 "$root/build/bench/planter_bench_latency" "$root/scenarios/zhangqiu-field.toml" 60
 "$root/build/bench/planter_bench_can"
+echo "== seedling DEM: compression with the calibrated parameters, calibration, reduced-order model, speed against Yade"
+scripts/dem-test.sh "$root/build"
 echo "== tests (release build)"
 (cd "$root/build" && ctest -j "$(nproc)" --output-on-failure)
 echo "== package for this machine: build, inspect, install, verify, remove"

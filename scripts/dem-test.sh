@@ -14,7 +14,7 @@ echo "-- compression, the paper's parameters (S = 4.842e9 N/m^3, sigma_c = 5.643
 echo "-- compression, models/seedling_dem.toml"
 "$dem" compress --params "$root/models/seedling_dem.toml" --out "$out/calibrated" | tail -2
 echo "-- calibration workflow to 140.6 N (all cores; resumes from $out/calibrate/runs)"
-"$dem" calibrate --target 140.6 --out "$out/calibrate" 2>/dev/null
+"$dem" calibrate --target 140.6 --target-displacement-mm 4 --out "$out/calibrate" 2>/dev/null
 echo "-- reduced-order model over the paper's diameters"
 "$dem" reduce --params "$root/models/seedling_dem.toml" --out "$out/reduce" | tail -2
 echo "-- speed against Yade on the same compression test"

@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -20,17 +19,7 @@ namespace {
 
 constexpr int kCheckpoints = 6;
 
-// Yade's cohesive law has a linear sphere-box contact, k = 2 r E_box (E_box << the sphere's
-// young); ours is Hertz with the seedling's 7.2 MPa. The box's young is set so that Yade's
-// contact has our Hertz secant stiffness at a 0.1 mm overlap: the laws still differ in shape.
-double matched_platen_young(const CompressionSetup& s) {
-  constexpr double kOverlap_m = 1e-4;
-  const double r = s.seedling.particle_radius_m;
-  const PairProperties pp = pair_properties(
-      s.seedling_material, s.platen_material, s.platen_material.restitution, r,
-      std::numeric_limits<double>::infinity(), 1.0, std::numeric_limits<double>::infinity());
-  return hertz_normal_force(pp, kOverlap_m) / kOverlap_m / (2.0 * r);
-}
+constexpr double kPi = 3.14159265358979323846;
 
 void write_model(const std::string& path, const CompressionSetup& s, const CompressionWorld& c,
                  long steps) {
@@ -42,7 +31,7 @@ void write_model(const std::string& path, const CompressionSetup& s, const Compr
       << "\nshear_strength " << b.shear_strength_Pa << "\nbond_radius " << b.radius_m
       << "\nbond_gap " << s.seedling.bond_gap_m << "\ndensity " << s.seedling.density_kg_m3
       << "\nfriction " << s.seedling_material.friction << "\nplaten_young "
-      << matched_platen_young(s) << "\nplaten_poisson " << s.platen_material.poisson
+      << s.platen_material.youngs_modulus_Pa() << "\nplaten_poisson " << s.platen_material.poisson
       << "\nplaten_friction " << s.platen_material.friction << "\nmin_y " << c.seedling.min_y_m
       << "\nmax_y " << c.seedling.max_y_m << "\nplaten_speed " << c.platen_speed_mps << "\ndamping "
       << s.local_damping << "\ndt " << s.time_step_s << "\nsteps " << steps << "\ncheckpoints "
@@ -109,6 +98,18 @@ int main(int argc, char** argv) {
   const long steps = argc > 3 ? std::atol(argv[3]) : 6000;
   // The paper's parameters, the elastic part of the stroke (no bond breaks in either code).
   CompressionSetup s;
+  // Yade's cohesive law gives a sphere its bond's stiffness at a wall (k = 2 S_n A against a
+  // rigid box); ours gives it the Hertz stiffness of the seedling's 7.2 MPa, 50x softer. For
+  // the same test the bench makes our seedling's contact modulus as stiff as the bonds at a
+  // 0.05 mm overlap, so both codes compare the bonded wall, not their different contacts.
+  {
+    const double r = s.seedling.particle_radius_m;
+    const double k_bond =
+        2.0 * s.bonds.normal_stiffness_N_m3 * kPi * s.bonds.radius_m * s.bonds.radius_m;
+    const double e_star = k_bond / (4.0 / 3.0 * std::sqrt(r * 5e-5));
+    const double nu = s.seedling_material.poisson;
+    s.seedling_material.shear_modulus_Pa = e_star * (1.0 - nu * nu) / (2.0 * (1.0 + nu));
+  }
   const CompressionWorld c = make_compression_world(s);
   const std::string model = dir + "/yade_model.txt";
   write_model(model, s, c, steps);
@@ -126,14 +127,19 @@ int main(int argc, char** argv) {
   if (ours_again.seconds < ours.seconds) ours.seconds = ours_again.seconds;
 
   double worst = 0.0;
+  double worst_after_seating = 0.0;
   std::printf("platen force at checkpoints [N]:   planter-dem     yade   difference\n");
   for (std::size_t k = 0; k < ours.force_N.size(); ++k) {
     const double diff = (ours.force_N[k] - yade.force_N[k]) / std::max(1.0, yade.force_N[k]);
     worst = std::max(worst, std::abs(diff));
+    if (k > 0) worst_after_seating = std::max(worst_after_seating, std::abs(diff));
     std::printf("  checkpoint %zu/%d           %10.2f %10.2f %+9.1f %%\n", k + 1, kCheckpoints,
                 ours.force_N[k], yade.force_N[k], 100.0 * diff);
   }
-  std::printf("largest force difference: %.1f %%\n", 100.0 * worst);
+  std::printf(
+      "largest force difference: %.1f %% over the stroke, %.1f %% after the first "
+      "sixth (the seating: Yade's linear contact takes load at once, Hertz grows)\n",
+      100.0 * worst, 100.0 * worst_after_seating);
   const double ours_rate =
       static_cast<double>(ours.particles) * static_cast<double>(steps - 1) / ours.seconds;
   const double yade_rate =

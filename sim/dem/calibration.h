@@ -33,6 +33,8 @@ std::vector<Factor> screening_factors();
 
 struct CalibrationOptions {
   double target_N = 140.6;
+  double target_displacement_mm = 0.0;  // > 0: the refinement also places the peak there
+  int refinement_runs = 10;             // beyond the paper's workflow; 0 = none
   int jobs = 1;
   int max_new_runs = -1;  // stop (as if interrupted) after this many new runs; -1 = no limit
   CompressionSetup base;
@@ -61,6 +63,10 @@ struct CalibrationReport {
   Eigen::Vector3d optimum_coded = Eigen::Vector3d::Zero();
   double predicted_N = 0.0;
   DesignRun verification;
+  // Refinement: the peak force scales with the bond stiffness S at a fixed sigma_c / S, and
+  // the collapse point moves with sigma_c / S; secant steps on both from the verification.
+  std::vector<DesignRun> refinement;
+  DesignRun calibrated;  // the best of the verification and the refinement
   int new_runs = 0;
   int reused_runs = 0;
   bool complete = false;  // false when max_new_runs stopped it

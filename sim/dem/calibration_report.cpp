@@ -103,7 +103,14 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
         {"verified_peak_N", got},
         {"verified_peak_displacement_mm", r.verification.result.peak_displacement_m * 1e3},
         {"error_pct", 100.0 * (got - o.target_N) / o.target_N}};
-    write_output(o.out_dir + "/calibrated.toml", compression_setup_toml(r.verification.setup));
+    const auto& c = r.calibrated;
+    j["calibrated"] = {{"normal_stiffness_N_m3", c.setup.bonds.normal_stiffness_N_m3},
+                       {"tensile_strength_Pa", c.setup.bonds.tensile_strength_Pa},
+                       {"peak_force_N", c.result.peak_force_N},
+                       {"peak_displacement_mm", c.result.peak_displacement_m * 1e3},
+                       {"refinement_runs", r.refinement.size()},
+                       {"error_pct", 100.0 * (c.result.peak_force_N - o.target_N) / o.target_N}};
+    write_output(o.out_dir + "/calibrated.toml", compression_setup_toml(c.setup));
   }
   write_output(o.out_dir + "/calibration.json", j.dump(2) + "\n");
 
@@ -130,15 +137,21 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
     const auto& v = r.verification;
     h << "<h2>Optimum</h2><p>Predicted " << r.predicted_N << " N; the run there gives <b>"
       << v.result.peak_force_N << " N at " << v.result.peak_displacement_m * 1e3 << " mm</b> ("
-      << 100.0 * (v.result.peak_force_N - o.target_N) / o.target_N
-      << " %). Parameters: <code>calibrated.toml</code>.</p>";
+      << 100.0 * (v.result.peak_force_N - o.target_N) / o.target_N << " %).</p>";
+    const auto& c = r.calibrated;
+    h << "<h2>Refinement</h2><p>" << r.refinement.size()
+      << " run(s) scaling S and sigma_c together (force) and their ratio (peak position). "
+      << "Calibrated: S = " << c.setup.bonds.normal_stiffness_N_m3
+      << " N/m<sup>3</sup>, sigma_c = " << c.setup.bonds.tensile_strength_Pa << " Pa: <b>"
+      << c.result.peak_force_N << " N at " << c.result.peak_displacement_m * 1e3
+      << " mm</b>. Parameters: <code>calibrated.toml</code>.</p>";
     std::vector<double> x, f;
-    for (const auto& p : v.result.curve) {
+    for (const auto& p : r.calibrated.result.curve) {
       x.push_back(p.displacement_m * 1e3);
       f.push_back(p.force_N);
     }
-    h << report::svg_plot("Verification run: upper platen force", "N", "displacement [mm]", x,
-                          {{&f, "#c33", "DEM at the optimum"}}, 0.0, 3.0 * o.target_N);
+    h << report::svg_plot("Calibrated model: upper platen force", "N", "displacement [mm]", x,
+                          {{&f, "#c33", "DEM, calibrated"}}, 0.0, 3.0 * o.target_N);
   }
   h << "</body></html>\n";
   write_output(o.out_dir + "/report.html", h.str());

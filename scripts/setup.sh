@@ -6,7 +6,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 shift || true
 packages=(g++ cmake ninja-build clang-format libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
-          libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
+          libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libboost-dev libceres-dev
           pkg-config libgpiod-dev libsocketcan-dev systemd rt-tests
           can-utils python3-can clang libclang-rt-14-dev)
 "$root/scripts/apt-install.sh" setup "${packages[@]}"

@@ -1,0 +1,263 @@
+#include "sim/analysis/channel_fit.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace planter::analysis {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+// Where each free parameter lives: the nominal vector or an effect's values.
+struct Layout {
+  std::vector<double*> slots;
+  std::vector<ParamSpec> specs;
+};
+
+Layout layout(std::vector<double>& nominal, std::vector<Effect>& effects,
+              const std::vector<ParamSpec>& nominal_specs, bool include_grid) {
+  Layout l;
+  for (std::size_t k = 0; k < nominal.size(); ++k) {
+    l.slots.push_back(&nominal[k]);
+    l.specs.push_back(nominal_specs[k]);
+  }
+  for (auto& e : effects) {
+    for (std::size_t k = 0; k < e.values.size(); ++k) {
+      if (e.spec->params[k].grid && !include_grid) continue;
+      l.slots.push_back(&e.values[k]);
+      l.specs.push_back(e.spec->params[k]);
+    }
+  }
+  return l;
+}
+
+// Residual rows: the calibration samples, thinned to at most ~4000 rows.
+std::vector<std::size_t> rows(std::size_t end) {
+  const std::size_t stride = std::max<std::size_t>(1, end / 4000);
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < end; k += stride) out.push_back(k);
+  return out;
+}
+
+struct SimulationError {
+  const ChannelModel* channel;
+  const Recording* rec;
+  const std::vector<double>* y;
+  const std::vector<std::size_t>* at;
+  mutable std::vector<double> nominal;
+  mutable std::vector<Effect> effects;
+  Layout* lay;  // points into nominal/effects above
+  bool operator()(double const* const* p, double* residual) const {
+    for (std::size_t k = 0; k < lay->slots.size(); ++k) *lay->slots[k] = p[0][k];
+    std::vector<double> pred;
+    channel->simulate(*rec, nominal, effects, pred);
+    for (std::size_t i = 0; i < at->size(); ++i) {
+      const double e = pred[(*at)[i]] - (*y)[(*at)[i]];
+      residual[i] = std::isfinite(e) ? e : 1e6;
+    }
+    return true;
+  }
+};
+
+double rms(const std::vector<double>& a, const std::vector<double>& b, std::size_t from,
+           std::size_t to) {
+  double s = 0;
+  for (std::size_t k = from; k < to; ++k) s += (a[k] - b[k]) * (a[k] - b[k]);
+  return to > from ? std::sqrt(s / static_cast<double>(to - from)) : 0.0;
+}
+
+// Solves the smooth parameters with the grid ones fixed; returns the calibration RSS.
+double solve(const ChannelModel& ch, const Recording& r, const Split& split,
+             std::vector<double>& nominal, std::vector<Effect>& effects, double huber,
+             std::vector<double>* sd) {
+  const std::vector<double>& y = r.at(ch.output());
+  const std::vector<std::size_t> at = rows(split.calibration_end);
+  auto* functor = new SimulationError{&ch, &r, &y, &at, nominal, effects, nullptr};
+  Layout lay = layout(functor->nominal, functor->effects, ch.nominal_params(), false);
+  functor->lay = &lay;
+  std::vector<double> x(lay.slots.size());
+  for (std::size_t k = 0; k < x.size(); ++k) x[k] = *lay.slots[k];
+  if (!x.empty()) {
+    auto* cost =
+        new ceres::DynamicNumericDiffCostFunction<SimulationError>(functor, ceres::TAKE_OWNERSHIP);
+    cost->AddParameterBlock(static_cast<int>(x.size()));
+    cost->SetNumResiduals(static_cast<int>(at.size()));
+    ceres::Problem problem;
+    problem.AddResidualBlock(cost, huber > 0 ? new ceres::HuberLoss(huber) : nullptr, x.data());
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      x[k] = std::clamp(x[k], lay.specs[k].lower, lay.specs[k].upper);
+      problem.SetParameterLowerBound(x.data(), static_cast<int>(k), lay.specs[k].lower);
+      problem.SetParameterUpperBound(x.data(), static_cast<int>(k), lay.specs[k].upper);
+    }
+    ceres::Solver::Options opt;
+    opt.max_num_iterations = 40;
+    opt.linear_solver_type = ceres::DENSE_QR;
+    opt.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(opt, &problem, &summary);
+  } else {
+    delete functor;
+    functor = nullptr;
+  }
+  // Write the solution back to the caller's vectors.
+  Layout out = layout(nominal, effects, ch.nominal_params(), false);
+  for (std::size_t k = 0; k < x.size(); ++k) *out.slots[k] = x[k];
+  std::vector<double> pred;
+  ch.simulate(r, nominal, effects, pred);
+  double rss = 0;
+  for (std::size_t i : at) rss += (pred[i] - y[i]) * (pred[i] - y[i]);
+  if (sd) {
+    // Standard deviations from the Jacobian at the solution: sigma^2 (J'J)^-1.
+    sd->assign(x.size(), 0.0);
+    if (!x.empty() && at.size() > x.size()) {
+      Eigen::MatrixXd jac(at.size(), x.size());
+      for (std::size_t c = 0; c < x.size(); ++c) {
+        const double h = std::max(1e-7, 1e-4 * std::abs(x[c]));
+        const double keep = *out.slots[c];
+        *out.slots[c] = keep + h;
+        std::vector<double> p2;
+        ch.simulate(r, nominal, effects, p2);
+        *out.slots[c] = keep;
+        for (std::size_t i = 0; i < at.size(); ++i)
+          jac(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) =
+              (p2[at[i]] - pred[at[i]]) / h;
+      }
+      const double s2 = rss / static_cast<double>(at.size() - x.size());
+      const Eigen::MatrixXd cov =
+          s2 * (jac.transpose() * jac).completeOrthogonalDecomposition().pseudoInverse();
+      for (std::size_t c = 0; c < x.size(); ++c)
+        (*sd)[c] = std::sqrt(
+            std::max(0.0, cov(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c))));
+    }
+  }
+  return rss;
+}
+
+double robust_scale(const std::vector<double>& pred, const std::vector<double>& y,
+                    std::size_t end) {
+  std::vector<double> a;
+  for (std::size_t k = 0; k < end; k += std::max<std::size_t>(1, end / 4000))
+    a.push_back(std::abs(pred[k] - y[k]));
+  if (a.empty()) return 1.0;
+  std::nth_element(a.begin(), a.begin() + static_cast<long>(a.size() / 2), a.end());
+  return std::max(1e-9, 1.4826 * a[a.size() / 2]);
+}
+
+}  // namespace
+
+double signal_span(const std::vector<double>& v) {
+  if (v.empty()) return 0.0;
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  return *hi - *lo;
+}
+
+Effect initial_effect(const EffectSpec& spec, const ChannelModel& ch, const Recording& r,
+                      const std::vector<double>& residual) {
+  Effect e{&spec, {}};
+  for (const auto& p : spec.params) e.values.push_back(p.initial);
+  if (spec.kind == EffectKind::kPeriodic) {
+    // The residual spectrum's peak (Goertzel over a frequency grid on the calibration part).
+    const std::size_t n = std::min<std::size_t>(residual.size(), 20000);
+    const double dt = (r.t[n - 1] - r.t[0]) / static_cast<double>(n - 1);
+    const double f_max = std::min(50.0, 0.45 / dt);
+    double best_f = 1.0, best_p = -1.0, best_phase = 0.0;
+    for (double f = 0.2; f <= f_max; f += 0.02) {
+      double c = 0, s = 0;
+      for (std::size_t k = 0; k < n; ++k) {
+        c += residual[k] * std::cos(kTwoPi * f * r.t[k]);
+        s += residual[k] * std::sin(kTwoPi * f * r.t[k]);
+      }
+      const double p = c * c + s * s;
+      if (p > best_p) best_p = p, best_f = f, best_phase = std::atan2(c, s);
+    }
+    e.values = {2.0 * std::sqrt(best_p) / static_cast<double>(n), best_f, best_phase};
+  }
+  (void)ch;
+  return e;
+}
+
+ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& split,
+                       const std::vector<double>& nominal_start, std::vector<Effect> effects) {
+  const std::vector<double>& y = r.at(ch.output());
+  std::vector<double> nominal = nominal_start;
+  // Grid values for the non-smooth parameters, scaled to the data.
+  const double in_span = r.has(ch.input()) ? signal_span(r.at(ch.input())) : 1.0;
+  const double out_span = signal_span(y);
+  struct GridParam {
+    std::size_t effect, index;
+    std::vector<double> values;
+  };
+  std::vector<GridParam> grid;
+  for (std::size_t e = 0; e < effects.size(); ++e) {
+    for (std::size_t k = 0; k < effects[e].values.size(); ++k) {
+      const ParamSpec& p = effects[e].spec->params[k];
+      if (!p.grid) continue;
+      double hi = p.upper;
+      if (effects[e].spec->kind == EffectKind::kDeadZone) hi = 0.3 * in_span;
+      if (effects[e].spec->kind == EffectKind::kBacklash) hi = 0.2 * in_span;
+      if (effects[e].spec->kind == EffectKind::kQuantisation) hi = 0.05 * out_span;
+      GridParam g{e, k, {}};
+      if (effects[e].values[k] > 0.0) {
+        // Already located (a pair refit): refine around it.
+        for (double f : {0.8, 0.9, 1.0, 1.1, 1.2}) g.values.push_back(effects[e].values[k] * f);
+      } else {
+        for (int s = 1; s <= 16; ++s) g.values.push_back(hi * s / 16.0);
+      }
+      grid.push_back(g);
+    }
+  }
+  // A first solve without the effects' help sets the Huber scale from the nominal residual.
+  std::vector<double> pred;
+  ch.simulate(r, nominal, {}, pred);
+  const double huber = 3.0 * robust_scale(pred, y, split.calibration_end);
+
+  double best_rss = std::numeric_limits<double>::infinity();
+  std::vector<double> best_nominal = nominal;
+  std::vector<Effect> best_effects = effects;
+  // Grid over every combination (at most two grid parameters in practice).
+  std::vector<std::size_t> idx(grid.size(), 0);
+  while (true) {
+    std::vector<double> nom = nominal_start;
+    std::vector<Effect> fx = effects;
+    for (std::size_t g = 0; g < grid.size(); ++g)
+      fx[grid[g].effect].values[grid[g].index] = grid[g].values[idx[g]];
+    const double rss = solve(ch, r, split, nom, fx, huber, nullptr);
+    if (rss < best_rss) {
+      best_rss = rss;
+      best_nominal = nom;
+      best_effects = fx;
+    }
+    std::size_t g = 0;
+    while (g < grid.size() && ++idx[g] == grid[g].values.size()) idx[g++] = 0;
+    if (g == grid.size()) break;
+  }
+  ChannelFit fit;
+  fit.nominal = best_nominal;
+  fit.effects = best_effects;
+  std::vector<double> sd;
+  const double rss = solve(ch, r, split, fit.nominal, fit.effects, huber, &sd);
+  // Standard deviations back to their owners (grid parameters: the grid step, not a fit).
+  std::size_t k = 0;
+  fit.nominal_sd.assign(fit.nominal.size(), 0.0);
+  for (auto& v : fit.nominal_sd) v = sd.size() > k ? sd[k++] : 0.0;
+  for (const auto& e : fit.effects) {
+    std::vector<double> s;
+    for (const auto& p : e.spec->params)
+      s.push_back(p.grid ? 0.0 : (sd.size() > k ? sd[k++] : 0.0));
+    fit.effect_sd.push_back(s);
+  }
+  ch.simulate(r, fit.nominal, fit.effects, fit.prediction);
+  fit.rms_calibration = rms(fit.prediction, y, 0, split.calibration_end);
+  fit.rms_held_out = rms(fit.prediction, y, split.calibration_end, y.size());
+  fit.parameters = static_cast<int>(fit.nominal.size());
+  for (const auto& e : fit.effects) fit.parameters += static_cast<int>(e.values.size());
+  const double n = static_cast<double>(rows(split.calibration_end).size());
+  fit.bic = n * std::log(std::max(rss, 1e-300) / n) + fit.parameters * std::log(n);
+  return fit;
+}
+
+}  // namespace planter::analysis

@@ -1,0 +1,36 @@
+#pragma once
+// Fits a channel's nominal parameters, with or without candidate effects, in simulation
+// (free-run) error form: Ceres with bounds and a Huber loss on the calibration part; the
+// non-smooth parameters (a delay, a gap, a width, a step) on a grid around the solver.
+#include <vector>
+
+#include "sim/analysis/channel_model.h"
+
+namespace planter::analysis {
+
+struct Split {
+  std::size_t calibration_end = 0;  // samples [0, end) fit; [end, n) is held out
+};
+
+struct ChannelFit {
+  std::vector<double> nominal;
+  std::vector<Effect> effects;
+  std::vector<double> nominal_sd;
+  std::vector<std::vector<double>> effect_sd;
+  double rms_calibration = 0.0;
+  double rms_held_out = 0.0;
+  double bic = 0.0;  // on the calibration part, residuals thinned to about one per 0.1 s
+  int parameters = 0;
+  std::vector<double> prediction;  // over all samples
+};
+
+ChannelFit fit_channel(const ChannelModel& channel, const Recording& r, const Split& split,
+                       const std::vector<double>& nominal_start, std::vector<Effect> effects);
+
+// A candidate effect with starting values fitted to this channel's nominal residual.
+Effect initial_effect(const EffectSpec& spec, const ChannelModel& channel, const Recording& r,
+                      const std::vector<double>& residual);
+
+double signal_span(const std::vector<double>& v);
+
+}  // namespace planter::analysis

@@ -1,0 +1,75 @@
+#pragma once
+// One measured output of a subsystem and the nominal model that predicts it from recorded
+// inputs (PRODUCT.md's nominal structures), with hooks where a candidate effect acts:
+// on the input (delay, dead zone, play), on the state (rate limit), or on the output.
+#include <string>
+#include <vector>
+
+#include "sim/analysis/recording.h"
+
+namespace planter::analysis {
+
+struct ParamSpec {
+  std::string name;
+  std::string unit;
+  double initial = 0.0;
+  double lower = 0.0;
+  double upper = 0.0;
+  bool grid = false;  // non-smooth in the output (a delay, a gap, a step): searched on a grid
+};
+
+enum class EffectKind {
+  kWheelRadius,    // v_wheel = (1 + g) v
+  kSlipWithDraft,  // v_wheel = v (1 - s * depth_force / 1 kN)
+  kDelay,          // input delayed by tau
+  kDeadZone,       // input |u| below w does nothing
+  kBacklash,       // play of width gap between input and model
+  kRateLimit,      // the state moves at most r per second
+  kCoulomb,        // + F_c tanh(omega / 0.05)
+  kStribeck,       // + (F_s - F_c) exp(-(omega/omega_s)^2) sign(omega) on top of Coulomb
+  kOffset,         // + a
+  kGain,           // * (1 + g)
+  kDrift,          // + d * t
+  kPeriodic,       // + A sin(2 pi f t + phi)
+  kQuantisation,   // round to q
+  kRelaxation,     // a Maxwell branch takes share `frac` of the output with time constant tau
+  kSag,            // - c * load / 1 kN (compliance under the channel's load)
+};
+
+struct EffectSpec {
+  EffectKind kind;
+  std::string name;       // the physics, in the machine's words
+  std::string signature;  // what it looks like in the residual
+  std::vector<ParamSpec> params;
+};
+
+struct Effect {
+  const EffectSpec* spec = nullptr;
+  std::vector<double> values;
+};
+
+class ChannelModel {
+ public:
+  virtual ~ChannelModel() = default;
+  [[nodiscard]] virtual std::string subsystem() const = 0;
+  [[nodiscard]] virtual std::string output() const = 0;
+  [[nodiscard]] virtual std::string input() const = 0;  // the main recorded input
+  // Columns this channel needs (output included); the channel is observable when all exist.
+  [[nodiscard]] virtual std::vector<std::string> needs() const = 0;
+  [[nodiscard]] virtual std::vector<ParamSpec> nominal_params() const = 0;
+  // The candidate effects that make sense on this channel.
+  [[nodiscard]] virtual std::vector<const EffectSpec*> candidates() const = 0;
+  // Free-run prediction of the output over all samples.
+  virtual void simulate(const Recording& r, const std::vector<double>& nominal,
+                        const std::vector<Effect>& effects, std::vector<double>& y) const = 0;
+  // The signal that best explains this channel's load-driven effects (sag, slip), if any.
+  [[nodiscard]] virtual std::string load_signal() const { return ""; }
+  // Initial nominal values from the data (a rough guess for the solver).
+  [[nodiscard]] virtual std::vector<double> initial_guess(const Recording& r) const;
+};
+
+// Every channel of the nominal structures; the caller keeps those the recording observes.
+std::vector<const ChannelModel*> all_channels();
+const EffectSpec& effect_spec(EffectKind kind);
+
+}  // namespace planter::analysis

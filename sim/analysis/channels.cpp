@@ -1,0 +1,222 @@
+// The nominal structures of PRODUCT.md as channels: ground, disc drive (speed and torque),
+// clamp, depth (position and draft).
+#include <algorithm>
+#include <cmath>
+
+#include "sim/analysis/channel_model.h"
+#include "sim/analysis/effect_hooks.h"
+
+namespace planter::analysis {
+namespace {
+
+std::vector<const EffectSpec*> specs(std::initializer_list<EffectKind> kinds) {
+  std::vector<const EffectSpec*> out;
+  for (EffectKind k : kinds) out.push_back(&effect_spec(k));
+  return out;
+}
+
+// First-order lag y' = (u - y) / T, u limited to +-u_max, y' to the rate limit if any.
+void lag(const Recording& r, const std::vector<double>& u, double tau, double u_max,
+         const std::vector<Effect>& fx, double y0, std::vector<double>& y) {
+  const Effect* rate = find_effect(fx, EffectKind::kRateLimit);
+  y.assign(u.size(), y0);
+  double state = y0;
+  for (std::size_t k = 1; k < u.size(); ++k) {
+    const double dt = r.t[k] - r.t[k - 1];
+    const double target = std::clamp(u[k - 1], -u_max, u_max);
+    const double a = 1.0 - std::exp(-dt / tau);  // exact for a held input
+    double step = a * (target - state);
+    if (rate) step = std::clamp(step, -rate->values[0] * dt, rate->values[0] * dt);
+    state += step;
+    y[k] = state;
+  }
+}
+
+class GroundChannel : public ChannelModel {
+ public:
+  std::string subsystem() const override { return "ground"; }
+  std::string output() const override { return "v_wheel"; }
+  std::string input() const override { return "v_ground"; }
+  std::vector<std::string> needs() const override { return {"v_ground", "v_wheel"}; }
+  std::vector<ParamSpec> nominal_params() const override { return {}; }
+  std::vector<const EffectSpec*> candidates() const override {
+    return specs({EffectKind::kWheelRadius, EffectKind::kSlipWithDraft, EffectKind::kDelay,
+                  EffectKind::kOffset, EffectKind::kQuantisation});
+  }
+  std::string load_signal() const override { return "depth_force"; }
+  void simulate(const Recording& r, const std::vector<double>&, const std::vector<Effect>& fx,
+                std::vector<double>& y) const override {
+    y = transform_input(r, r.at("v_ground"), fx);
+    apply_output(r, fx, r.has("depth_force") ? &r.at("depth_force") : nullptr, nullptr, y);
+  }
+};
+
+class DiscSpeedChannel : public ChannelModel {
+ public:
+  std::string subsystem() const override { return "disc drive"; }
+  std::string output() const override { return "omega"; }
+  std::string input() const override { return "omega_cmd"; }
+  std::vector<std::string> needs() const override { return {"omega_cmd", "omega"}; }
+  std::vector<ParamSpec> nominal_params() const override {
+    return {{"T_d", "s", 0.1, 0.005, 5.0}, {"omega_max", "rad/s", 2.0, 0.01, 50.0}};
+  }
+  std::vector<double> initial_guess(const Recording& r) const override {
+    double m = 0;
+    for (double v : r.at("omega")) m = std::max(m, std::abs(v));
+    return {0.1, std::max(0.02, 1.5 * m)};
+  }
+  std::vector<const EffectSpec*> candidates() const override {
+    return specs({EffectKind::kDelay, EffectKind::kBacklash, EffectKind::kDeadZone,
+                  EffectKind::kRateLimit, EffectKind::kGain, EffectKind::kOffset,
+                  EffectKind::kPeriodic});
+  }
+  void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
+                std::vector<double>& y) const override {
+    const std::vector<double> u = transform_input(r, r.at("omega_cmd"), fx);
+    lag(r, u, p[0], p[1], fx, r.at("omega")[0], y);
+    apply_output(r, fx, nullptr, nullptr, y);
+  }
+};
+
+class DiscTorqueChannel : public ChannelModel {
+ public:
+  std::string subsystem() const override { return "disc drive"; }
+  std::string output() const override { return "disc_torque"; }
+  std::string input() const override { return "omega"; }
+  std::vector<std::string> needs() const override { return {"omega", "disc_torque"}; }
+  std::vector<ParamSpec> nominal_params() const override {
+    return {{"J", "kg m^2", 0.1, 0.0, 1e3}, {"b", "N m s/rad", 1.0, -1e3, 1e3}};
+  }
+  std::vector<const EffectSpec*> candidates() const override {
+    return specs({EffectKind::kCoulomb, EffectKind::kStribeck, EffectKind::kOffset,
+                  EffectKind::kPeriodic, EffectKind::kDelay});
+  }
+  void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
+                std::vector<double>& y) const override {
+    const std::vector<double> w = transform_input(r, r.at("omega"), fx);
+    const std::size_t n = w.size();
+    y.assign(n, 0.0);
+    // d(omega)/dt by central differences over +-5 samples: the speed is measured, noisy.
+    constexpr std::size_t kHalf = 5;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t a = k >= kHalf ? k - kHalf : 0, b = std::min(n - 1, k + kHalf);
+      const double dw = b > a ? (w[b] - w[a]) / (r.t[b] - r.t[a]) : 0.0;
+      y[k] = p[0] * dw + p[1] * w[k];
+    }
+    apply_output(r, fx, nullptr, &w, y);
+  }
+};
+
+class ClampChannel : public ChannelModel {
+ public:
+  std::string subsystem() const override { return "clamp"; }
+  std::string output() const override { return "clamp_force"; }
+  std::string input() const override { return "clamp_pos_mm"; }
+  std::vector<std::string> needs() const override { return {"clamp_pos_mm", "clamp_force"}; }
+  std::vector<ParamSpec> nominal_params() const override {
+    return {{"k_c", "N/mm^n", 10.0, 1e-3, 1e5},
+            {"x0", "mm", 0.0, -50.0, 50.0},
+            {"n", "1", 1.2, 0.5, 3.0}};
+  }
+  std::vector<double> initial_guess(const Recording& r) const override {
+    const auto& x = r.at("clamp_pos_mm");
+    const auto& f = r.at("clamp_force");
+    double xm = 0, fm = 0;
+    for (std::size_t k = 0; k < x.size(); ++k)
+      if (f[k] > fm) fm = f[k], xm = x[k];
+    const double x0 = *std::min_element(x.begin(), x.end());
+    return {std::max(1e-3, fm / std::pow(std::max(0.1, xm - x0), 1.2)), x0, 1.2};
+  }
+  // A sensor gain error is the same as a different k_c: the nominal fit absorbs it.
+  std::vector<const EffectSpec*> candidates() const override {
+    return specs({EffectKind::kOffset, EffectKind::kDrift, EffectKind::kRelaxation,
+                  EffectKind::kBacklash, EffectKind::kPeriodic, EffectKind::kQuantisation,
+                  EffectKind::kDelay});
+  }
+  void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
+                std::vector<double>& y) const override {
+    const std::vector<double> x = transform_input(r, r.at("clamp_pos_mm"), fx);
+    y.resize(x.size());
+    for (std::size_t k = 0; k < x.size(); ++k)
+      y[k] = p[0] * std::pow(std::max(0.0, x[k] - p[1]), p[2]);
+    apply_output(r, fx, nullptr, nullptr, y);
+  }
+};
+
+class DepthChannel : public ChannelModel {
+ public:
+  std::string subsystem() const override { return "depth"; }
+  std::string output() const override { return "depth_mm"; }
+  std::string input() const override { return "depth_cmd_mm"; }
+  std::vector<std::string> needs() const override { return {"depth_cmd_mm", "depth_mm"}; }
+  std::vector<ParamSpec> nominal_params() const override {
+    return {{"T_a", "s", 0.5, 0.01, 20.0}, {"r_max", "mm/s", 50.0, 0.1, 2000.0}};
+  }
+  std::vector<const EffectSpec*> candidates() const override {
+    return specs({EffectKind::kSag, EffectKind::kDelay, EffectKind::kDeadZone,
+                  EffectKind::kBacklash, EffectKind::kOffset, EffectKind::kGain,
+                  EffectKind::kPeriodic});
+  }
+  std::string load_signal() const override { return "depth_force"; }
+  void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
+                std::vector<double>& y) const override {
+    const std::vector<double> u = transform_input(r, r.at("depth_cmd_mm"), fx);
+    // The nominal rate limit r_max is part of the structure; a candidate one would repeat it.
+    const double tau = p[0], rate = p[1];
+    y.assign(u.size(), r.at("depth_mm")[0]);
+    double state = y[0];
+    for (std::size_t k = 1; k < u.size(); ++k) {
+      const double dt = r.t[k] - r.t[k - 1];
+      const double step = (1.0 - std::exp(-dt / tau)) * (u[k - 1] - state);
+      state += std::clamp(step, -rate * dt, rate * dt);
+      y[k] = state;
+    }
+    apply_output(r, fx, r.has("depth_force") ? &r.at("depth_force") : nullptr, nullptr, y);
+  }
+};
+
+class DraftChannel : public ChannelModel {
+ public:
+  std::string subsystem() const override { return "depth"; }
+  std::string output() const override { return "depth_force"; }
+  std::string input() const override { return "depth_mm"; }
+  std::vector<std::string> needs() const override { return {"depth_mm", "depth_force", "v_wheel"}; }
+  std::vector<ParamSpec> nominal_params() const override {
+    return {{"c_s", "N s/m^3", 1e5, 0.0, 1e9}};
+  }
+  std::vector<const EffectSpec*> candidates() const override {
+    return specs({EffectKind::kOffset, EffectKind::kPeriodic, EffectKind::kDelay,
+                  EffectKind::kQuantisation});
+  }
+  void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
+                std::vector<double>& y) const override {
+    const std::vector<double> d = transform_input(r, r.at("depth_mm"), fx);
+    const auto& v = r.has("v_ground") ? r.at("v_ground") : r.at("v_wheel");
+    y.resize(d.size());
+    for (std::size_t k = 0; k < d.size(); ++k) {
+      const double depth_m = std::max(0.0, d[k]) * 1e-3;
+      y[k] = p[0] * std::max(0.0, v[k]) * depth_m * depth_m;
+    }
+    apply_output(r, fx, nullptr, nullptr, y);
+  }
+};
+
+}  // namespace
+
+std::vector<double> ChannelModel::initial_guess(const Recording&) const {
+  std::vector<double> out;
+  for (const auto& p : nominal_params()) out.push_back(p.initial);
+  return out;
+}
+
+std::vector<const ChannelModel*> all_channels() {
+  static const GroundChannel ground;
+  static const DiscSpeedChannel disc;
+  static const DiscTorqueChannel torque;
+  static const ClampChannel clamp;
+  static const DepthChannel depth;
+  static const DraftChannel draft;
+  return {&ground, &disc, &torque, &clamp, &depth, &draft};
+}
+
+}  // namespace planter::analysis

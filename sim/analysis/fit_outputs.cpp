@@ -1,0 +1,194 @@
+#include "sim/analysis/fit_outputs.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "config/durable_file.h"
+#include "sim/report/svg_plot.h"
+
+namespace planter::analysis {
+namespace {
+
+nlohmann::json params_json(const std::vector<ParamSpec>& specs, const std::vector<double>& v,
+                           const std::vector<double>& sd) {
+  nlohmann::json j = nlohmann::json::array();
+  for (std::size_t k = 0; k < specs.size() && k < v.size(); ++k) {
+    j.push_back({{"name", specs[k].name},
+                 {"value", v[k]},
+                 {"sd", k < sd.size() ? sd[k] : 0.0},
+                 {"unit", specs[k].unit},
+                 {"grid", specs[k].grid}});
+  }
+  return j;
+}
+
+nlohmann::json effects_json(const ChannelFit& f) {
+  nlohmann::json j = nlohmann::json::array();
+  for (std::size_t e = 0; e < f.effects.size(); ++e) {
+    j.push_back({{"effect", f.effects[e].spec->name},
+                 {"signature", f.effects[e].spec->signature},
+                 {"parameters",
+                  params_json(f.effects[e].spec->params, f.effects[e].values,
+                              e < f.effect_sd.size() ? f.effect_sd[e] : std::vector<double>{})}});
+  }
+  return j;
+}
+
+std::string toml_key(const std::string& s) {
+  std::string out;
+  for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
+  return out;
+}
+
+}  // namespace
+
+std::string fit_json(const FitReport& r, double wall_s) {
+  nlohmann::json j;
+  j["recording"] = r.file;
+  j["rows"] = r.rows;
+  j["duration_s"] = r.duration_s;
+  j["held_out_from_s"] = r.held_out_from_s;
+  j["wall_s"] = wall_s;
+  j["unobservable"] = r.unobservable;
+  bool any = false, unexplained = false;
+  for (const auto& c : r.channels) {
+    any = any || !c.chosen.empty();
+    unexplained = unexplained || c.unexplained;
+    nlohmann::json ch;
+    ch["subsystem"] = c.channel->subsystem();
+    ch["output"] = c.channel->output();
+    ch["verdict"] = c.verdict;
+    ch["nominal"] =
+        params_json(c.channel->nominal_params(), c.nominal.nominal, c.nominal.nominal_sd);
+    ch["noise_rms"] = c.noise_rms;
+    ch["held_out_rms"] = {{"nominal", c.nominal.rms_held_out},
+                          {"augmented", c.final_fit.rms_held_out}};
+    ch["calibration_rms"] = {{"nominal", c.nominal.rms_calibration},
+                             {"augmented", c.final_fit.rms_calibration}};
+    ch["effects"] = effects_json(c.final_fit);
+    ch["augmented_nominal"] =
+        params_json(c.channel->nominal_params(), c.final_fit.nominal, c.final_fit.nominal_sd);
+    for (const auto& cand : c.ranked) {
+      ch["ranked"].push_back({{"effect", cand.effect},
+                              {"delta_bic", cand.delta_bic},
+                              {"held_out_improvement", cand.held_out_improvement}});
+    }
+    const Location& l = c.location;
+    nlohmann::json loc{{"whiteness_violations", l.whiteness_violations},
+                       {"input_correlation", l.input_correlation},
+                       {"worst_window_start_s", l.worst_window_start_s},
+                       {"worst_window_ratio", l.worst_window_ratio},
+                       {"time_correlation", l.time_correlation},
+                       {"dominant_frequency_hz", l.dominant_frequency_hz},
+                       {"dominant_amplitude", l.dominant_amplitude}};
+    for (const auto& g : l.regimes)
+      loc["regimes"].push_back(
+          {{"regime", g.name}, {"rms_ratio", g.rms_ratio}, {"share", g.share}});
+    ch["location"] = loc;
+    j["channels"].push_back(ch);
+  }
+  j["verdict"] =
+      any ? (unexplained ? "effects found; unexplained residual remains" : "effects found")
+          : (unexplained ? "unexplained residual" : "no significant mismatch");
+  return j.dump(2) + "\n";
+}
+
+std::string fit_model_toml(const FitReport& r) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "# The augmented model planter-fit found (nominal structures of PRODUCT.md plus the\n"
+       "# effects that earned their parameters). Run it: planter-sim replay MODEL RECORDING\n";
+  for (const auto& c : r.channels) {
+    s << "\n[[channel]]\noutput = \"" << c.channel->output() << "\"\nsubsystem = \""
+      << c.channel->subsystem() << "\"\n";
+    const auto specs = c.channel->nominal_params();
+    for (std::size_t k = 0; k < specs.size(); ++k)
+      s << toml_key(specs[k].name) << " = " << c.final_fit.nominal[k] << "\n";
+    for (const auto& e : c.final_fit.effects) {
+      s << "\n[[channel.effect]]\nname = \"" << e.spec->name << "\"\n";
+      for (std::size_t k = 0; k < e.values.size(); ++k)
+        s << toml_key(e.spec->params[k].name) << " = " << e.values[k] << "\n";
+    }
+  }
+  return s.str();
+}
+
+std::string fit_report_html(const FitReport& r, const Recording& rec) {
+  std::ostringstream h;
+  h.precision(4);
+  h << "<!doctype html><html><head><meta charset='utf-8'><title>planter-fit</title><style>"
+       "body{font-family:sans-serif;max-width:900px;margin:20px auto}td,th{padding:2px 8px}"
+       "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style></head>"
+       "<body><h1>planter-fit: "
+    << r.file << "</h1><p>" << r.rows << " rows, " << r.duration_s
+    << " s; the last 30 % is held out for the verdict.</p>";
+  if (!r.unobservable.empty()) {
+    h << "<p>Not observable (columns missing or constant):";
+    for (const auto& u : r.unobservable) h << " " << u << ";";
+    h << "</p>";
+  }
+  const std::size_t n = rec.size();
+  const std::size_t stride = std::max<std::size_t>(1, n / 3000);
+  std::vector<double> t;
+  for (std::size_t k = 0; k < n; k += stride) t.push_back(rec.t[k]);
+  for (const auto& c : r.channels) {
+    const auto& y = rec.at(c.channel->output());
+    std::vector<double> ys, nom, aug, e0, e1;
+    for (std::size_t k = 0; k < n; k += stride) {
+      ys.push_back(y[k]);
+      nom.push_back(c.nominal.prediction[k]);
+      aug.push_back(c.final_fit.prediction[k]);
+      e0.push_back(c.nominal.prediction[k] - y[k]);
+      e1.push_back(c.final_fit.prediction[k] - y[k]);
+    }
+    const auto [lo, hi] = std::minmax_element(ys.begin(), ys.end());
+    double emax = 1e-12;
+    for (double v : e0) emax = std::max(emax, std::abs(v));
+    h << "<h2>" << c.channel->subsystem() << ": " << c.channel->output() << " &mdash; " << c.verdict
+      << "</h2><p>Held-out RMS error: nominal " << c.nominal.rms_held_out << ", augmented <b>"
+      << c.final_fit.rms_held_out << "</b>; measurement noise about " << c.noise_rms << ".</p>";
+    for (const auto& e : c.final_fit.effects) {
+      h << "<p><b>" << e.spec->name << "</b> (" << e.spec->signature << "):";
+      for (std::size_t k = 0; k < e.values.size(); ++k)
+        h << " " << e.spec->params[k].name << " = " << e.values[k];
+      h << "</p>";
+    }
+    h << "<table><tr><th>candidate</th><th>&Delta;BIC</th><th>held-out improvement</th></tr>";
+    for (const auto& cand : c.ranked)
+      h << "<tr><td>" << cand.effect << "</td><td>" << cand.delta_bic << "</td><td>"
+        << 100.0 * cand.held_out_improvement << " %</td></tr>";
+    h << "</table><p>Where the nominal residual is: whiteness violations "
+      << 100.0 * c.location.whiteness_violations << " % of lags; input correlation "
+      << c.location.input_correlation << "; worst window at " << c.location.worst_window_start_s
+      << " s (" << c.location.worst_window_ratio << "x the median); drift correlation "
+      << c.location.time_correlation << "; spectrum peak " << c.location.dominant_frequency_hz
+      << " Hz.";
+    for (const auto& g : c.location.regimes) h << " " << g.name << ": " << g.rms_ratio << "x;";
+    h << "</p>"
+      << report::svg_plot(
+             c.channel->output(), "", "time [s]", t,
+             {{&ys, "#222", "recording"}, {&nom, "#36c", "nominal"}, {&aug, "#c33", "augmented"}},
+             *lo, *hi)
+      << report::svg_plot("residual", "", "time [s]", t,
+                          {{&e0, "#36c", "nominal"}, {&e1, "#c33", "augmented"}}, -emax, emax);
+  }
+  h << "</body></html>\n";
+  return h.str();
+}
+
+void write_fit_outputs(const std::string& dir, const FitReport& r, const Recording& rec,
+                       double wall_s) {
+  std::filesystem::create_directories(dir);
+  auto put = [](const std::string& path, const std::string& data) {
+    if (!config::write_file_atomic(path, data))
+      throw std::runtime_error(path + ": cannot be written");
+  };
+  put(dir + "/fit.json", fit_json(r, wall_s));
+  put(dir + "/model.toml", fit_model_toml(r));
+  put(dir + "/report.html", fit_report_html(r, rec));
+}
+
+}  // namespace planter::analysis

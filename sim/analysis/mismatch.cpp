@@ -1,0 +1,267 @@
+#include "sim/analysis/mismatch.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+namespace planter::analysis {
+namespace {
+
+std::vector<double> residual_of(const std::vector<double>& pred, const std::vector<double>& y) {
+  std::vector<double> e(y.size());
+  for (std::size_t k = 0; k < y.size(); ++k) e[k] = pred[k] - y[k];
+  return e;
+}
+
+double correlation(const std::vector<double>& a, const std::vector<double>& b, std::size_t from,
+                   std::size_t to, long lag) {
+  double ma = 0, mb = 0;
+  std::size_t n = 0;
+  for (std::size_t k = from; k < to; ++k) {
+    const long j = static_cast<long>(k) + lag;
+    if (j < static_cast<long>(from) || j >= static_cast<long>(to)) continue;
+    ma += a[k];
+    mb += b[static_cast<std::size_t>(j)];
+    ++n;
+  }
+  if (n < 3) return 0.0;
+  ma /= static_cast<double>(n);
+  mb /= static_cast<double>(n);
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t k = from; k < to; ++k) {
+    const long j = static_cast<long>(k) + lag;
+    if (j < static_cast<long>(from) || j >= static_cast<long>(to)) continue;
+    const double x = a[k] - ma, z = b[static_cast<std::size_t>(j)] - mb;
+    sab += x * z;
+    saa += x * x;
+    sbb += z * z;
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
+double noise_rms(const std::vector<double>& y, std::size_t end) {
+  double s = 0;
+  std::size_t n = 0;
+  for (std::size_t k = 2; k < end; ++k) {
+    const double d2 = y[k] - 2.0 * y[k - 1] + y[k - 2];
+    s += d2 * d2;
+    ++n;
+  }
+  return n > 0 ? std::sqrt(s / static_cast<double>(n) / 6.0) : 0.0;
+}
+
+Location locate(const ChannelModel& ch, const Recording& r, const std::vector<double>& e,
+                std::size_t end) {
+  Location l;
+  // Residual tests on the calibration part, thinned to at most 20000 samples.
+  const std::size_t stride = std::max<std::size_t>(1, end / 20000);
+  std::vector<double> et, ut, tt;
+  const std::vector<double>* u = r.has(ch.input()) ? &r.at(ch.input()) : nullptr;
+  for (std::size_t k = 0; k < end; k += stride) {
+    et.push_back(e[k]);
+    tt.push_back(r.t[k]);
+    if (u) ut.push_back((*u)[k]);
+  }
+  const std::size_t n = et.size();
+  const double band = 1.96 / std::sqrt(static_cast<double>(n));
+  int outside = 0;
+  for (long lag = 1; lag <= 50; ++lag)
+    if (std::abs(correlation(et, et, 0, n, lag)) > band) ++outside;
+  l.whiteness_violations = outside / 50.0;
+  if (u) {
+    for (long lag = -20; lag <= 20; ++lag)
+      l.input_correlation = std::max(l.input_correlation, std::abs(correlation(ut, et, 0, n, lag)));
+  }
+  l.time_correlation = correlation(tt, et, 0, n, 0);
+  // Ten windows over the whole recording.
+  std::vector<double> w_rms;
+  const std::size_t total = e.size();
+  for (int w = 0; w < 10; ++w) {
+    const std::size_t a = total * w / 10, b = total * (w + 1) / 10;
+    double s = 0;
+    for (std::size_t k = a; k < b; ++k) s += e[k] * e[k];
+    w_rms.push_back(std::sqrt(s / std::max<double>(1.0, static_cast<double>(b - a))));
+  }
+  std::vector<double> sorted = w_rms;
+  std::sort(sorted.begin(), sorted.end());
+  const auto worst = std::max_element(w_rms.begin(), w_rms.end()) - w_rms.begin();
+  l.worst_window_start_s = r.t[total * static_cast<std::size_t>(worst) / 10];
+  l.worst_window_ratio = sorted[5] > 0 ? w_rms[static_cast<std::size_t>(worst)] / sorted[5] : 0.0;
+  // Regimes of the input and the load.
+  auto regime = [&](const std::string& name, const std::vector<bool>& in) {
+    double si = 0, so = 0;
+    std::size_t ni = 0, no = 0;
+    for (std::size_t k = 0; k < total; ++k) {
+      if (in[k])
+        si += e[k] * e[k], ++ni;
+      else
+        so += e[k] * e[k], ++no;
+    }
+    if (ni < 10 || no < 10) return;
+    l.regimes.push_back({name,
+                         std::sqrt(si / static_cast<double>(ni)) /
+                             std::max(1e-12, std::sqrt(so / static_cast<double>(no))),
+                         static_cast<double>(ni) / static_cast<double>(total)});
+  };
+  if (u) {
+    const double span = signal_span(*u);
+    std::vector<bool> near_zero(total), reversal(total, false), after_step(total, false);
+    for (std::size_t k = 0; k < total; ++k) near_zero[k] = std::abs((*u)[k]) < 0.1 * span;
+    regime("near zero " + ch.input(), near_zero);
+    double last_sign = 0;
+    for (std::size_t k = 1; k < total; ++k) {
+      const double d = (*u)[k] - (*u)[k - 1];
+      if (std::abs(d) < 1e-9 * span) continue;
+      const double s = d > 0 ? 1 : -1;
+      if (last_sign != 0 && s != last_sign)
+        for (std::size_t j = k; j < total && r.t[j] - r.t[k] < 0.5; ++j) reversal[j] = true;
+      last_sign = s;
+      if (std::abs(d) > 0.05 * span)
+        for (std::size_t j = k; j < total && r.t[j] - r.t[k] < 1.0; ++j) after_step[j] = true;
+    }
+    regime("at reversals of " + ch.input(), reversal);
+    regime("after steps of " + ch.input(), after_step);
+  }
+  if (r.has("depth_force")) {
+    std::vector<double> f = r.at("depth_force");
+    std::vector<double> s = f;
+    std::nth_element(s.begin(), s.begin() + static_cast<long>(3 * s.size() / 4), s.end());
+    const double q3 = s[3 * s.size() / 4];
+    std::vector<bool> high(total);
+    for (std::size_t k = 0; k < total; ++k) high[k] = f[k] > q3 && q3 > 0;
+    regime("at high draft load", high);
+  }
+  const Effect p = initial_effect(effect_spec(EffectKind::kPeriodic), ch, r, e);
+  l.dominant_amplitude = p.values[0];
+  l.dominant_frequency_hz = p.values[1];
+  return l;
+}
+
+ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const FitOptions& o,
+                              const Split& split) {
+  ChannelReport rep;
+  rep.channel = &ch;
+  const std::vector<double>& y = r.at(ch.output());
+  rep.noise_rms = noise_rms(y, split.calibration_end);
+  rep.nominal = fit_channel(ch, r, split, ch.initial_guess(r), {});
+  const std::vector<double> e = residual_of(rep.nominal.prediction, y);
+  rep.location = locate(ch, r, e, split.calibration_end);
+
+  auto try_effects = [&](const ChannelFit& base, std::vector<Effect> start) {
+    std::vector<Candidate> out;
+    const std::vector<double> base_e = residual_of(base.prediction, y);
+    for (const EffectSpec* spec : ch.candidates()) {
+      bool used = false;
+      for (const auto& s : start) used = used || s.spec == spec;
+      if (used) continue;
+      if ((spec->kind == EffectKind::kSag || spec->kind == EffectKind::kSlipWithDraft) &&
+          !r.has(ch.load_signal()))
+        continue;
+      std::vector<Effect> fx = start;
+      fx.push_back(initial_effect(*spec, ch, r, base_e));
+      Candidate c;
+      c.effect = spec->name;
+      c.fit = fit_channel(ch, r, split, base.nominal, fx);
+      c.delta_bic = c.fit.bic - base.bic;
+      c.held_out_improvement =
+          base.rms_held_out > 0 ? 1.0 - c.fit.rms_held_out / base.rms_held_out : 0.0;
+      out.push_back(std::move(c));
+    }
+    std::sort(out.begin(), out.end(),
+              [](const Candidate& a, const Candidate& b) { return a.delta_bic < b.delta_bic; });
+    return out;
+  };
+  auto earns = [&](const Candidate& c) {
+    return c.delta_bic < -o.min_delta_bic && c.held_out_improvement >= o.min_improvement;
+  };
+  rep.ranked = try_effects(rep.nominal, {});
+  rep.final_fit = rep.nominal;
+  // The best single effect that earns its parameters, by held-out error among those by BIC.
+  const Candidate* best = nullptr;
+  for (const auto& c : rep.ranked)
+    if (earns(c) && (!best || c.fit.rms_held_out < best->fit.rms_held_out)) best = &c;
+  if (best) {
+    rep.chosen.push_back(*best);
+    rep.final_fit = best->fit;
+    const std::vector<Candidate> pairs = try_effects(best->fit, best->fit.effects);
+    const Candidate* second = nullptr;
+    for (const auto& c : pairs)
+      if (earns(c) && (!second || c.fit.rms_held_out < second->fit.rms_held_out)) second = &c;
+    if (second) {
+      rep.chosen.push_back(*second);
+      rep.final_fit = second->fit;
+    }
+  }
+  // What is left: more than three times the measurement noise and structured is unexplained.
+  const double left = rep.final_fit.rms_held_out;
+  rep.unexplained =
+      left > 3.0 * std::max(rep.noise_rms, 1e-12) && rep.location.whiteness_violations > 0.5;
+  if (rep.chosen.empty())
+    rep.verdict = rep.unexplained ? "unexplained residual" : "no significant mismatch";
+  else
+    rep.verdict =
+        rep.unexplained ? "effect(s) found; a residual is still unexplained" : "effect(s) found";
+  return rep;
+}
+
+}  // namespace
+
+Recording thinned(const Recording& r, std::size_t max_rows) {
+  const std::size_t stride = (r.size() + max_rows - 1) / max_rows;
+  if (stride <= 1) return r;
+  Recording out;
+  out.file = r.file;
+  out.metadata = r.metadata;
+  for (std::size_t k = 0; k < r.size(); k += stride) out.t.push_back(r.t[k]);
+  for (const auto& [name, v] : r.signals) {
+    auto& o = out.signals[name];
+    for (std::size_t k = 0; k < v.size(); k += stride) o.push_back(v[k]);
+  }
+  for (std::size_t k = 0; k < r.state.size(); k += stride) out.state.push_back(r.state[k]);
+  return out;
+}
+
+FitReport analyse(const Recording& full, const FitOptions& o) {
+  // Every k-th row, at most max_rows of them: the fits simulate the whole record for each
+  // evaluation. (Disturbances above the thinned Nyquist frequency alias: see the README.)
+  const Recording r = thinned(full, o.max_rows);
+  FitReport rep;
+  rep.analysed_rows = r.size();
+  rep.file = r.file;
+  rep.rows = full.size();
+  rep.duration_s = r.t.back() - r.t.front();
+  rep.split.calibration_end =
+      static_cast<std::size_t>(static_cast<double>(r.size()) * (1.0 - o.held_out_fraction));
+  rep.held_out_from_s = r.t[rep.split.calibration_end];
+  std::vector<const ChannelModel*> todo;
+  for (const ChannelModel* ch : all_channels()) {
+    bool ok = true;
+    for (const auto& c : ch->needs()) ok = ok && r.has(c);
+    // A channel whose output never moves says nothing about its physics.
+    if (ok && signal_span(r.at(ch->output())) <= 0.0) ok = false;
+    if (ok)
+      todo.push_back(ch);
+    else
+      rep.unobservable.push_back(ch->subsystem() + ": " + ch->output());
+  }
+  if (todo.empty())
+    throw RecordingError(r.file, 1,
+                         "no observable subsystem: the header needs, for example, omega_cmd and "
+                         "omega (disc drive), clamp_pos_mm and clamp_force (clamp), "
+                         "depth_cmd_mm and depth_mm (depth), or v_ground and v_wheel (ground)");
+  rep.channels.resize(todo.size());
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t k = next++; k < todo.size(); k = next++)
+      rep.channels[k] = analyse_channel(*todo[k], r, o, rep.split);
+  };
+  std::vector<std::thread> pool;
+  for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(todo.size())); ++j)
+    pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  return rep;
+}
+
+}  // namespace planter::analysis

@@ -1,0 +1,72 @@
+#pragma once
+// planter-fit's analysis of one recording: for every observable channel, calibrate the
+// nominal structure, locate where its residual concentrates, score the named candidate
+// effects (and pairs) by BIC and held-out error, and refit the chosen ones.
+#include <string>
+#include <vector>
+
+#include "sim/analysis/channel_fit.h"
+
+namespace planter::analysis {
+
+struct Regime {
+  std::string name;        // "near zero input", "at reversals", "after steps", ...
+  double rms_ratio = 0.0;  // residual RMS inside the regime over outside it
+  double share = 0.0;      // share of the samples in the regime
+};
+
+struct Location {
+  double whiteness_violations = 0.0;  // share of lags 1-50 outside +-1.96/sqrt(N)
+  double input_correlation = 0.0;     // largest |cross-correlation| with the input, lags +-20
+  double worst_window_start_s = 0.0;  // of ten windows, the one with the largest RMS
+  double worst_window_ratio = 0.0;    // its RMS over the median window's
+  double time_correlation = 0.0;      // residual against time (drift)
+  double dominant_frequency_hz = 0.0;
+  double dominant_amplitude = 0.0;
+  std::vector<Regime> regimes;
+};
+
+struct Candidate {
+  std::string effect;
+  double delta_bic = 0.0;             // against the model it would extend
+  double held_out_improvement = 0.0;  // 1 - rms_after / rms_before on the held-out part
+  ChannelFit fit;
+};
+
+struct ChannelReport {
+  const ChannelModel* channel = nullptr;
+  ChannelFit nominal;
+  double noise_rms = 0.0;  // white measurement noise estimated from second differences
+  Location location;
+  std::vector<Candidate> ranked;  // single effects, best BIC first
+  std::vector<Candidate> chosen;  // accepted (one or two)
+  ChannelFit final_fit;
+  std::string verdict;  // "no significant mismatch", "effect(s) found", "unexplained residual"
+  bool unexplained = false;
+};
+
+struct FitOptions {
+  double held_out_fraction = 0.3;
+  double min_improvement = 0.10;  // held-out RMS must fall by at least this share
+  double min_delta_bic = 20.0;
+  int jobs = 1;
+  std::size_t max_rows = 12000;  // longer recordings are thinned to this many rows
+};
+
+struct FitReport {
+  std::string file;
+  std::size_t rows = 0;
+  std::size_t analysed_rows = 0;  // after thinning
+  double duration_s = 0.0;
+  Split split;
+  double held_out_from_s = 0.0;
+  std::vector<ChannelReport> channels;
+  std::vector<std::string> unobservable;  // channels whose columns are missing
+};
+
+// Throws RecordingError when no channel is observable.
+FitReport analyse(const Recording& r, const FitOptions& o);
+// Every k-th row, at most max_rows (the analysis's own copy of a long recording).
+Recording thinned(const Recording& r, std::size_t max_rows);
+
+}  // namespace planter::analysis

@@ -1,0 +1,129 @@
+#include "sim/analysis/recording.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace planter::analysis {
+namespace {
+
+std::vector<std::string> split_commas(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cell;
+  for (char c : line) {
+    if (c == ',') {
+      out.push_back(cell);
+      cell.clear();
+    } else if (c != '\r') {
+      cell += c;
+    }
+  }
+  out.push_back(cell);
+  return out;
+}
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+}  // namespace
+
+Recording parse_recording(const std::string& text, const std::string& file, std::size_t min_rows) {
+  Recording r;
+  r.file = file;
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  std::vector<std::string> header;
+  int state_col = -1, t_col = -1;
+  std::vector<std::vector<double>*> columns;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (header.empty()) {
+      if (line.empty()) continue;
+      if (line[0] == '#') {
+        const auto colon = line.find(':');
+        if (colon != std::string::npos)
+          r.metadata[trim(line.substr(1, colon - 1))] = trim(line.substr(colon + 1));
+        continue;
+      }
+      header = split_commas(line);
+      std::set<std::string> seen;
+      for (std::size_t c = 0; c < header.size(); ++c) {
+        header[c] = trim(header[c]);
+        const std::string& name = header[c];
+        if (name.empty())
+          throw RecordingError(file, line_no,
+                               "header: column " + std::to_string(c + 1) + " has no name");
+        if (!seen.insert(name).second)
+          throw RecordingError(file, line_no, "header: column '" + name + "' appears twice");
+        if (name == "t") t_col = static_cast<int>(c);
+        if (name == "state") state_col = static_cast<int>(c);
+      }
+      if (t_col < 0)
+        throw RecordingError(file, line_no,
+                             "header: no 't' column (the first line after the # comments must "
+                             "be the header of signal names, with t in seconds)");
+      for (std::size_t c = 0; c < header.size(); ++c) {
+        columns.push_back(static_cast<int>(c) == state_col || static_cast<int>(c) == t_col
+                              ? nullptr
+                              : &r.signals[header[c]]);
+      }
+      continue;
+    }
+    if (line.empty()) continue;
+    const std::vector<std::string> cells = split_commas(line);
+    if (cells.size() != header.size())
+      throw RecordingError(
+          file, line_no,
+          std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (static_cast<int>(c) == state_col) {
+        r.state.push_back(trim(cells[c]));
+        continue;
+      }
+      const std::string cell = trim(cells[c]);
+      char* end = nullptr;
+      errno = 0;
+      const double v = std::strtod(cell.c_str(), &end);
+      if (cell.empty() || end != cell.c_str() + cell.size() || errno == ERANGE)
+        throw RecordingError(file, line_no,
+                             "column '" + header[c] + "': '" + cell + "' is not a number");
+      if (!std::isfinite(v))
+        throw RecordingError(
+            file, line_no,
+            "column '" + header[c] + "': " + cell + " (NaN or infinite values are not allowed)");
+      if (static_cast<int>(c) == t_col) {
+        if (!r.t.empty() && v <= r.t.back())
+          throw RecordingError(file, line_no,
+                               "time " + cell + " s does not increase (previous row: " +
+                                   std::to_string(r.t.back()) + " s)");
+        r.t.push_back(v);
+      } else {
+        columns[c]->push_back(v);
+      }
+    }
+  }
+  if (header.empty()) throw RecordingError(file, line_no, "no header line (an empty file?)");
+  if (r.t.size() < min_rows)
+    throw RecordingError(file, line_no,
+                         "too short: " + std::to_string(r.t.size()) + " rows, at least " +
+                             std::to_string(min_rows) + " are needed");
+  return r;
+}
+
+Recording load_recording(const std::string& path, std::size_t min_rows) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw RecordingError(path, 0, "cannot be read");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return parse_recording(s.str(), path, min_rows);
+}
+
+}  // namespace planter::analysis

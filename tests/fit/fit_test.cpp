@@ -1,0 +1,93 @@
+// planter-fit: the recording reader's messages, and the analysis on synthetic clamp data
+// with and without a hidden effect.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "sim/analysis/mismatch.h"
+
+using namespace planter::analysis;
+
+namespace {
+
+int error_line(const std::string& text, const std::string& expect) {
+  try {
+    parse_recording(text, "rec.csv", 3);
+  } catch (const RecordingError& e) {
+    EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+    return e.line();
+  }
+  ADD_FAILURE() << "accepted: " << text;
+  return -1;
+}
+
+// A clamp run: the roller steps between positions; the force follows the nominal law
+// (k 12 N/mm^1.3 above x0 = 1 mm), optionally relaxing, plus sensor noise.
+Recording clamp_recording(double relax_fraction, double noise_N, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, noise_N);
+  std::uniform_real_distribution<double> level(3.0, 9.0);
+  Recording r;
+  r.file = "synthetic";
+  auto& x = r.signals["clamp_pos_mm"];
+  auto& f = r.signals["clamp_force"];
+  double pos = 5.0, relaxed = 0.0;
+  for (int k = 0; k < 18000; ++k) {  // 180 s at 100 Hz
+    const double t = 0.01 * k;
+    if (k % 800 == 0) pos = level(rng);
+    const double elastic = 12.0 * std::pow(std::max(0.0, pos - 1.0), 1.3);
+    relaxed += (relax_fraction * elastic - relaxed) * 0.01 / 3.0;
+    r.t.push_back(t);
+    x.push_back(pos);
+    f.push_back(elastic - relaxed + noise(rng));
+  }
+  return r;
+}
+
+}  // namespace
+
+TEST(Recording, EachDefectIsOneMessageWithItsLine) {
+  EXPECT_EQ(error_line("a,b\n1,2\n", "no 't' column"), 1);
+  EXPECT_EQ(error_line("# board: x\nt,omega\n0,1\n0.1,abc\n", "'abc' is not a number"), 4);
+  EXPECT_EQ(error_line("t,omega\n0,1\n0.1,2\n0.1,3\n", "does not increase"), 4);
+  EXPECT_EQ(error_line("t,omega\n0,1\n0.1,nan\n", "NaN"), 3);
+  EXPECT_EQ(error_line("t,omega\n0,1\n", "too short"), 2);
+  EXPECT_EQ(error_line("t,omega\n0,1,5\n", "3 cells"), 2);
+  EXPECT_EQ(error_line("", "no header"), 0);
+  const Recording ok =
+      parse_recording("# board: b\nt,omega,state\n0,1,idle\n0.1,2,run\n0.2,3,run\n", "rec.csv", 3);
+  EXPECT_EQ(ok.metadata.at("board"), "b");
+  EXPECT_EQ(ok.state.size(), 3u);
+  EXPECT_EQ(ok.at("omega").back(), 3.0);
+}
+
+TEST(Analysis, NoObservableSubsystemIsBadInput) {
+  std::ostringstream s;
+  s << "t,temperature\n";
+  for (int k = 0; k < 100; ++k) s << 0.01 * k << "," << 20 + k << "\n";
+  const Recording r = parse_recording(s.str(), "rec.csv");
+  EXPECT_THROW(analyse(r, FitOptions{}), RecordingError);
+}
+
+TEST(Analysis, ACleanClampRecordingHasNoSignificantMismatch) {
+  for (double noise : {0.5, 2.0}) {
+    const FitReport rep = analyse(clamp_recording(0.0, noise, 7), FitOptions{});
+    ASSERT_EQ(rep.channels.size(), 1u);
+    EXPECT_EQ(rep.channels[0].verdict, "no significant mismatch") << "noise " << noise;
+    EXPECT_NEAR(rep.channels[0].nominal.nominal[2], 1.3, 0.05);  // n, calibrated
+  }
+}
+
+TEST(Analysis, HiddenClampRelaxationIsNamedAndFitted) {
+  const FitReport rep = analyse(clamp_recording(0.3, 1.0, 11), FitOptions{});
+  ASSERT_EQ(rep.channels.size(), 1u);
+  const ChannelReport& c = rep.channels[0];
+  ASSERT_FALSE(c.chosen.empty()) << c.verdict;
+  ASSERT_FALSE(c.final_fit.effects.empty());
+  EXPECT_EQ(c.final_fit.effects[0].spec->kind, EffectKind::kRelaxation);
+  EXPECT_NEAR(c.final_fit.effects[0].values[0], 0.3, 0.06);  // fraction within 20 %
+  EXPECT_NEAR(c.final_fit.effects[0].values[1], 3.0, 0.6);   // tau within 20 %
+  EXPECT_LT(c.final_fit.rms_held_out, 0.5 * c.nominal.rms_held_out);
+}

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every test: set up, format check, the unit and closed-loop tests under address and
 # undefined-behaviour sanitizers, the release build's tests, the benchmarks, the seedling DEM's
-# figures (compression, calibration, Yade), the host package
+# figures (compression, calibration, Yade), planter-fit's blind proof and speed, the host package
 # (installed and removed), the cross builds for the boards with their unit tests under
 # qemu-user and their packages, fuzzing, and the host-in-the-loop test of planterd and
 # planter-can in a VM with a real CAN and GPIO kernel.
@@ -23,6 +23,9 @@ echo "== benchmarks"
 "$root/build/bench/planter_bench_can"
 echo "== seedling DEM: compression with the calibrated parameters, calibration, reduced-order model, speed against Yade"
 scripts/dem-test.sh "$root/build"
+echo "== planter-fit: the blind proof on planter-sim recordings (a report while issue 5 is open), then its speed"
+scripts/fit-proof.sh "$root/build"
+scripts/fit-bench.sh "$root/build"
 echo "== tests (release build)"
 (cd "$root/build" && ctest -j "$(nproc)" --output-on-failure)
 echo "== package for this machine: build, inspect, install, verify, remove"

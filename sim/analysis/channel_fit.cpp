@@ -160,21 +160,40 @@ Effect initial_effect(const EffectSpec& spec, const ChannelModel& ch, const Reco
   Effect e{&spec, {}};
   for (const auto& p : spec.params) e.values.push_back(p.initial);
   if (spec.kind == EffectKind::kPeriodic) {
-    // The residual spectrum's peak (Goertzel over a frequency grid on the calibration part).
-    const std::size_t n = std::min<std::size_t>(residual.size(), 20000);
+    // The effect adds to the prediction, so it must match -residual. The residual
+    // spectrum's peak: a coarse Goertzel scan, then a fine search around the best bin (over a
+    // long record a small frequency error turns into a large phase error).
+    const std::size_t n = std::min<std::size_t>(residual.size(), 40000);
     const double dt = (r.t[n - 1] - r.t[0]) / static_cast<double>(n - 1);
     const double f_max = std::min(50.0, 0.45 / dt);
-    double best_f = 1.0, best_p = -1.0, best_phase = 0.0;
-    for (double f = 0.2; f <= f_max; f += 0.02) {
-      double c = 0, s = 0;
+    auto project = [&](double f, double& a, double& b) {
+      a = b = 0.0;
       for (std::size_t k = 0; k < n; ++k) {
-        c += residual[k] * std::cos(kTwoPi * f * r.t[k]);
-        s += residual[k] * std::sin(kTwoPi * f * r.t[k]);
+        a -= residual[k] * std::sin(kTwoPi * f * r.t[k]);
+        b -= residual[k] * std::cos(kTwoPi * f * r.t[k]);
       }
-      const double p = c * c + s * s;
-      if (p > best_p) best_p = p, best_f = f, best_phase = std::atan2(c, s);
+      a *= 2.0 / static_cast<double>(n);
+      b *= 2.0 / static_cast<double>(n);
+      return a * a + b * b;
+    };
+    const double duration = r.t[n - 1] - r.t[0];
+    const double coarse = std::max(0.02, 0.5 / duration);
+    double best_f = 1.0, best_p = -1.0, a = 0, b = 0;
+    for (double f = 0.2; f <= f_max; f += coarse) {
+      const double p = project(f, a, b);
+      if (p > best_p) best_p = p, best_f = f;
     }
-    e.values = {2.0 * std::sqrt(best_p) / static_cast<double>(n), best_f, best_phase};
+    double lo = best_f - coarse, hi = best_f + coarse;
+    for (int it = 0; it < 40; ++it) {  // golden-section on the power
+      const double m1 = lo + 0.382 * (hi - lo), m2 = lo + 0.618 * (hi - lo);
+      if (project(m1, a, b) > project(m2, a, b))
+        hi = m2;
+      else
+        lo = m1;
+    }
+    best_f = 0.5 * (lo + hi);
+    project(best_f, a, b);
+    e.values = {std::sqrt(a * a + b * b), best_f, std::atan2(b, a)};
   }
   (void)ch;
   return e;

@@ -38,15 +38,20 @@ class GroundChannel : public ChannelModel {
   std::string output() const override { return "v_wheel"; }
   std::string input() const override { return "v_ground"; }
   std::vector<std::string> needs() const override { return {"v_ground", "v_wheel"}; }
-  std::vector<ParamSpec> nominal_params() const override { return {}; }
+  // The encoder speed is an estimate over a window of edges: it lags the true speed by
+  // about half the window. That lag is part of the measurement, not missing physics.
+  std::vector<ParamSpec> nominal_params() const override {
+    return {{"estimator_lag_s", "s", 0.1, 0.0, 1.0}};
+  }
   std::vector<const EffectSpec*> candidates() const override {
-    return specs({EffectKind::kWheelRadius, EffectKind::kSlipWithDraft, EffectKind::kDelay,
-                  EffectKind::kOffset, EffectKind::kQuantisation});
+    return specs({EffectKind::kWheelRadius, EffectKind::kSlipWithDraft, EffectKind::kOffset,
+                  EffectKind::kQuantisation});
   }
   std::string load_signal() const override { return "depth_force"; }
-  void simulate(const Recording& r, const std::vector<double>&, const std::vector<Effect>& fx,
+  void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
-    y = transform_input(r, r.at("v_ground"), fx);
+    const Effect lag{&effect_spec(EffectKind::kDelay), {p[0]}};
+    y = transform_input(r, r.at("v_ground"), {lag});
     apply_output(r, fx, r.has("depth_force") ? &r.at("depth_force") : nullptr, nullptr, y);
   }
 };

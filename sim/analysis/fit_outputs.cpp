@@ -74,7 +74,8 @@ std::string fit_json(const FitReport& r, double wall_s) {
     for (const auto& cand : c.ranked) {
       ch["ranked"].push_back({{"effect", cand.effect},
                               {"delta_bic", cand.delta_bic},
-                              {"held_out_improvement", cand.held_out_improvement}});
+                              {"held_out_improvement", cand.held_out_improvement},
+                              {"block_improvement", cand.block_improvement}});
     }
     const Location& l = c.location;
     nlohmann::json loc{{"whiteness_violations", l.whiteness_violations},

@@ -149,10 +149,12 @@ TEST(SeedlingForceModel, CompressionInvertsTheElasticBranch) {
 
 TEST(Calibration, AnInterruptedCalibrationResumesWithoutRerunning) {
   CalibrationOptions o;
-  o.base.seedling.length_m = 0.012;  // a short seedling: the workflow, not the physics
-  o.base.stroke_m = 3e-3;
-  o.base.speedup = 200.0;
-  o.base.samples = 60;
+  // A short seedling, a short fast stroke: this tests the workflow, not the physics, and
+  // must stay quick under the sanitizers too (about 300 steps of 44 particles a run).
+  o.base.seedling.length_m = 0.012;
+  o.base.stroke_m = 1e-3;
+  o.base.speedup = 500.0;
+  o.base.samples = 30;
   o.jobs = 2;
   o.target_N = 20.0;
   o.refinement_runs = 0;  // the paper's workflow only: a fixed number of runs

@@ -1,0 +1,63 @@
+#!/usr/bin/python3
+"""Checks one planter-fit verdict against the effect hidden in the recording.
+
+Usage: fit_proof_check.py FIT_JSON CASE EXPECT
+EXPECT is "clean", "unexplained:OUTPUT" or "channel:effect name:param=value[,param=value]" items joined by ";".
+Prints one line: PASS or FAIL, the case, and what was found. Exit 0 on PASS, 1 on FAIL.
+"""
+import json
+import sys
+
+
+def main():
+    fit = json.load(open(sys.argv[1]))
+    case, expect = sys.argv[2], sys.argv[3]
+    found = []
+    by_output = {c["output"]: c for c in fit["channels"]}
+    for c in fit["channels"]:
+        for e in c["effects"]:
+            found.append("%s:%s" % (c["output"], e["effect"]))
+    problems = []
+    if expect == "clean":
+        if found:
+            problems.append("false positive")
+        for c in fit["channels"]:
+            if c["verdict"] != "no significant mismatch":
+                problems.append("%s: %s" % (c["output"], c["verdict"]))
+    elif expect.startswith("unexplained:"):
+        output = expect.split(":", 1)[1]
+        ch = by_output.get(output)
+        if ch is None or "unexplained" not in ch["verdict"]:
+            problems.append("%s: %s" % (output, ch["verdict"] if ch else "not analysed"))
+        if ch is not None and ch["effects"]:
+            problems.append("%s: named %s" % (output, ", ".join(e["effect"] for e in ch["effects"])))
+    else:
+        for item in expect.split(";"):
+            output, name, params = item.split(":")
+            ch = by_output.get(output)
+            if ch is None:
+                problems.append("%s not analysed" % output)
+                continue
+            effect = next((e for e in ch["effects"] if e["effect"] == name), None)
+            if effect is None:
+                problems.append("%s: %s not named" % (output, name))
+                continue
+            values = {p["name"]: p["value"] for p in effect["parameters"]}
+            for pv in filter(None, params.split(",")):
+                key, want = pv.split("=")
+                got = values.get(key)
+                if got is None or abs(got - float(want)) > 0.2 * abs(float(want)):
+                    problems.append("%s %s = %s, hidden %s" % (name, key, got, want))
+            before = ch["held_out_rms"]["nominal"]
+            after = ch["held_out_rms"]["augmented"]
+            if before <= 0 or after > 0.5 * before:
+                problems.append("%s held-out RMS %.4g -> %.4g (less than a 50 %% drop)"
+                                % (output, before, after))
+    verdict = "PASS" if not problems else "FAIL"
+    print("%-4s %-28s found: %s%s" % (verdict, case, ", ".join(found) or "nothing",
+                                       "" if not problems else "  [" + "; ".join(problems) + "]"))
+    return 0 if not problems else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -150,9 +150,9 @@ TEST(SeedlingForceModel, CompressionInvertsTheElasticBranch) {
 TEST(Calibration, AnInterruptedCalibrationResumesWithoutRerunning) {
   CalibrationOptions o;
   // A short seedling, a short fast stroke: this tests the workflow, not the physics, and
-  // must stay quick under the sanitizers too (about 300 steps of 44 particles a run).
-  o.base.seedling.length_m = 0.012;
-  o.base.stroke_m = 1e-3;
+  // must stay quick under the sanitizers too (150 steps of 22 particles a run).
+  o.base.seedling.length_m = 0.006;
+  o.base.stroke_m = 0.5e-3;
   o.base.speedup = 500.0;
   o.base.samples = 30;
   o.jobs = 2;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "config/durable_file.h"
+#include "sim/analysis/model_file.h"
 #include "sim/report/svg_plot.h"
 
 namespace planter::analysis {
@@ -35,12 +36,6 @@ nlohmann::json effects_json(const ChannelFit& f) {
                               e < f.effect_sd.size() ? f.effect_sd[e] : std::vector<double>{})}});
   }
   return j;
-}
-
-std::string toml_key(const std::string& s) {
-  std::string out;
-  for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
-  return out;
 }
 
 }  // namespace
@@ -99,7 +94,7 @@ std::string fit_json(const FitReport& r, double wall_s) {
 
 std::string fit_model_toml(const FitReport& r) {
   std::ostringstream s;
-  s.precision(9);
+  s.precision(17);  // round trip: replay predicts what the fit predicted
   s << "# The augmented model planter-fit found (nominal structures of PRODUCT.md plus the\n"
        "# effects that earned their parameters). Run it: planter-sim replay MODEL RECORDING\n";
   for (const auto& c : r.channels) {
@@ -107,11 +102,11 @@ std::string fit_model_toml(const FitReport& r) {
       << c.channel->subsystem() << "\"\n";
     const auto specs = c.channel->nominal_params();
     for (std::size_t k = 0; k < specs.size(); ++k)
-      s << toml_key(specs[k].name) << " = " << c.final_fit.nominal[k] << "\n";
+      s << model_key(specs[k].name) << " = " << c.final_fit.nominal[k] << "\n";
     for (const auto& e : c.final_fit.effects) {
       s << "\n[[channel.effect]]\nname = \"" << e.spec->name << "\"\n";
       for (std::size_t k = 0; k < e.values.size(); ++k)
-        s << toml_key(e.spec->params[k].name) << " = " << e.values[k] << "\n";
+        s << model_key(e.spec->params[k].name) << " = " << e.values[k] << "\n";
     }
   }
   return s.str();

@@ -10,7 +10,11 @@
 
 #include "config/config_error.h"
 #include "hal/linux/hal_error.h"
+#include "sim/apps/replay.h"
 #include "sim/hil/realtime_devices.h"
+#ifdef PLANTER_WITH_REPLAY
+#include "sim/analysis/recording.h"
+#endif
 #include "sim/runner/lockstep_runner.h"
 #include "sim/runner/recording_writer.h"
 
@@ -164,6 +168,14 @@ int main(int argc, char** argv) {
   devices->add_option("--truth", devices_options.truth_path, "write ground truth CSV here");
   devices->add_option("--duration", devices_options.duration_s, "seconds (0 = whole route)")
       ->check(CLI::Range(0.0, 1e6));
+#ifdef PLANTER_WITH_REPLAY
+  std::string model, recording;
+  auto* replay = app.add_subcommand(
+      "replay", "run planter-fit's augmented model (model.toml) on a recording's inputs");
+  replay->add_option("model", model, "model.toml from planter-fit")->required();
+  replay->add_option("recording", recording, "recording CSV")->required();
+  replay->add_option("--out", out, "output directory (replay.csv)")->capture_default_str();
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -174,6 +186,12 @@ int main(int argc, char** argv) {
     if (*run) return run_scenario(scenario, out, quiet);
     if (*sweep) return run_sweep(scenario, out, sweep_distance);
     if (*devices) return run_devices(scenario, devices_board, devices_options);
+#ifdef PLANTER_WITH_REPLAY
+    if (*replay) return run_replay(model, recording, out);
+  } catch (const analysis::RecordingError& e) {
+    std::fprintf(stderr, "planter-sim: %s\n", e.what());
+    return 2;
+#endif
   } catch (const config::ConfigError& e) {
     std::fprintf(stderr, "planter-sim: %s\n", e.what());
     return 2;

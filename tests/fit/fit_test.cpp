@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <random>
 #include <sstream>
 
+#include "sim/analysis/fit_outputs.h"
 #include "sim/analysis/mismatch.h"
+#include "sim/analysis/model_file.h"
 
 using namespace planter::analysis;
 
@@ -97,4 +100,19 @@ TEST(Analysis, HiddenClampRelaxationIsNamedAndFitted) {
   EXPECT_NEAR(c.final_fit.effects[0].values[0], 0.3, 0.06);  // fraction within 20 %
   EXPECT_NEAR(c.final_fit.effects[0].values[1], 3.0, 0.6);   // tau within 20 %
   EXPECT_LT(c.final_fit.rms_held_out, 0.5 * c.nominal.rms_held_out);
+
+  // model.toml carries the augmented model: read back, it predicts what the fit predicted.
+  const std::string path = testing::TempDir() + "/model.toml";
+  {
+    std::ofstream f(path);
+    f << fit_model_toml(rep);
+  }
+  const std::vector<ModelChannel> model = load_augmented_model(path);
+  ASSERT_EQ(model.size(), 1u);
+  ASSERT_EQ(model[0].effects.size(), c.final_fit.effects.size());
+  const Recording r = thinned(clamp_recording(0.3, 1.0, 11), quick().max_rows);
+  std::vector<double> y;
+  model[0].channel->simulate(r, model[0].nominal, model[0].effects, y);
+  ASSERT_EQ(y.size(), c.final_fit.prediction.size());
+  for (std::size_t k = 0; k < y.size(); k += 97) EXPECT_NEAR(y[k], c.final_fit.prediction[k], 1e-6);
 }

@@ -1,0 +1,59 @@
+#include "sim/analysis/model_file.h"
+
+#include <cctype>
+
+#include "config/toml_section.h"
+
+namespace planter::analysis {
+namespace {
+
+const EffectSpec* spec_named(const std::string& name) {
+  for (int k = 0; k <= static_cast<int>(EffectKind::kSag); ++k) {
+    const EffectSpec& s = effect_spec(static_cast<EffectKind>(k));
+    if (s.name == name) return &s;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::string model_key(const std::string& name) {
+  std::string out;
+  for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
+  return out;
+}
+
+std::vector<ModelChannel> load_augmented_model(const std::string& path) {
+  config::TomlDocument doc(path);
+  config::TomlSection root = doc.root();
+  std::vector<ModelChannel> out;
+  for (auto& t : root.array_of_tables("channel")) {
+    ModelChannel m;
+    const std::string output = t.string("output", "");
+    for (const ChannelModel* ch : all_channels())
+      if (ch->output() == output) m.channel = ch;
+    if (!m.channel) t.fail("output", "'" + output + "' is no channel planter-fit knows");
+    (void)t.string("subsystem", "");
+    for (const ParamSpec& p : m.channel->nominal_params())
+      m.nominal.push_back(t.required_number(model_key(p.name), p.lower, p.upper, p.unit.c_str()));
+    for (auto& e : t.array_of_tables("effect")) {
+      const std::string name = e.string("name", "");
+      const EffectSpec* spec = spec_named(name);
+      if (!spec) e.fail("name", "'" + name + "' is no effect of the library");
+      Effect fx{spec, {}};
+      for (const ParamSpec& p : spec->params) {
+        const double hi = p.upper > p.lower ? p.upper : 1e9;  // grid ones scale with the data
+        fx.values.push_back(e.required_number(model_key(p.name), p.lower, hi, p.unit.c_str()));
+      }
+      e.reject_unknown_keys();
+      m.effects.push_back(fx);
+    }
+    t.reject_unknown_keys();
+    out.push_back(std::move(m));
+  }
+  root.reject_unknown_keys();
+  if (out.empty()) throw config::ConfigError(path, 1, "channel", "no [[channel]] table");
+  return out;
+}
+
+}  // namespace planter::analysis

@@ -70,7 +70,8 @@ std::string fit_json(const FitReport& r, double wall_s) {
       ch["ranked"].push_back({{"effect", cand.effect},
                               {"delta_bic", cand.delta_bic},
                               {"held_out_improvement", cand.held_out_improvement},
-                              {"block_improvement", cand.block_improvement}});
+                              {"block_improvement", cand.block_improvement},
+                              {"explained", cand.explained}});
     }
     const Location& l = c.location;
     nlohmann::json loc{{"whiteness_violations", l.whiteness_violations},

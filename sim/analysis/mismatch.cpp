@@ -148,7 +148,8 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   const std::vector<double> e = residual_of(rep.nominal.prediction, y);
   rep.location = locate(ch, r, e, split.calibration_end);
 
-  // Earning its parameters: a clear BIC gain, an improvement that holds across time (the
+  // Earning its parameters: a clear BIC gain, half of the residual beyond noise explained,
+  // an improvement that holds across time (the
   // median over three contiguous blocks of the calibration part) or shows on the held-out
   // part, and no loss on the held-out part. (Closed-loop records excite some effects only at
   // starts and stops, so the held-out part alone may not see them.)
@@ -168,7 +169,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     return gains[1];
   };
   auto earns = [&](const Candidate& c) {
-    return c.delta_bic < -o.min_delta_bic &&
+    return c.delta_bic < -o.min_delta_bic && c.explained >= o.min_explained &&
            (c.block_improvement >= o.min_improvement ||
             c.held_out_improvement >= o.min_improvement) &&
            c.held_out_improvement > -0.02;
@@ -201,6 +202,12 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       c.held_out_improvement =
           base.rms_held_out > 0 ? 1.0 - c.fit.rms_held_out / base.rms_held_out : 0.0;
       c.block_improvement = block_improvement(base, c.fit);
+      // The share of the residual beyond the noise that the effect accounts for: a real
+      // mechanism explains the shape of what is left, a wrong name only bends it a little.
+      const double noise2 = rep.noise_rms * rep.noise_rms;
+      const double before2 = base.rms_calibration * base.rms_calibration;
+      const double after2 = c.fit.rms_calibration * c.fit.rms_calibration;
+      c.explained = before2 > noise2 ? (before2 - after2) / (before2 - noise2) : 0.0;
       out.push_back(std::move(c));
     }
     std::sort(out.begin(), out.end(),

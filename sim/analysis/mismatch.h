@@ -31,6 +31,7 @@ struct Candidate {
   double delta_bic = 0.0;             // against the model it would extend
   double held_out_improvement = 0.0;  // 1 - rms_after / rms_before on the held-out part
   double block_improvement = 0.0;     // the median of that over 3 calibration blocks
+  double explained = 0.0;  // share of the calibration residual beyond noise it accounts for
   ChannelFit fit;
 };
 
@@ -50,6 +51,7 @@ struct FitOptions {
   double held_out_fraction = 0.3;
   double min_improvement = 0.10;  // the median block RMS must fall by at least this share
   double min_delta_bic = 20.0;
+  double min_explained = 0.5;
   int jobs = 1;
   std::size_t max_rows = 12000;  // longer recordings are thinned to this many rows
 };

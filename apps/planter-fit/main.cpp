@@ -1,4 +1,4 @@
-// planter-fit RECORDING.csv [--out DIR] [--json] [--jobs N]
+// planter-fit RECORDING.csv [--model MODEL.toml] [--out DIR] [--json] [--jobs N]
 // Calibrates the nominal model of every observable subsystem, locates the mismatch, names
 // the missing physics from a library of effects, refits it and shows the held-out error.
 // Exit codes: 0 done (whatever the verdict), 1 an output could not be written, 2 bad input.
@@ -8,7 +8,9 @@
 #include <string>
 #include <thread>
 
+#include "config/config_error.h"
 #include "sim/analysis/fit_outputs.h"
+#include "sim/analysis/model_file.h"
 
 namespace {
 
@@ -59,6 +61,10 @@ int main(int argc, char** argv) {
   bool json = false;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   app.add_option("recording", file, "recording CSV (PRODUCT.md format)")->required();
+  std::string model;
+  app.add_option("--model", model,
+                 "a model.toml to start from: its values and effects are taken as known")
+      ->check(CLI::ExistingFile);
   app.add_option("--out", out, "output directory (fit.json, report.html, model.toml)");
   app.add_flag("--json", json, "print fit.json instead of the summary");
   app.add_option("--jobs", jobs, "channels analysed at once")->check(CLI::Range(1, 256));
@@ -73,6 +79,7 @@ int main(int argc, char** argv) {
     const Recording rec = load_recording(file);
     FitOptions o;
     o.jobs = jobs;
+    if (!model.empty()) o.start_model = load_augmented_model(model);
     const FitReport rep = analyse(rec, o);
     const Recording analysed = thinned(rec, o.max_rows);
     const double wall =
@@ -92,6 +99,8 @@ int main(int argc, char** argv) {
       print_summary(rep, wall, pass);
     return 0;
   } catch (const RecordingError& e) {
+    return fail(2, e.what());
+  } catch (const planter::config::ConfigError& e) {
     return fail(2, e.what());
   } catch (const std::exception& e) {
     return fail(1, e.what());

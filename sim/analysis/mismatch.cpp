@@ -5,6 +5,8 @@
 #include <cmath>
 #include <thread>
 
+#include "sim/analysis/model_file.h"
+
 namespace planter::analysis {
 namespace {
 
@@ -144,7 +146,13 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   rep.channel = &ch;
   const std::vector<double>& y = r.at(ch.output());
   rep.noise_rms = noise_rms(y, split.calibration_end);
-  rep.nominal = fit_channel(ch, r, split, ch.initial_guess(r), {});
+  // A model given with --model: its values start the fit and its effects are already known;
+  // the search is for what is missing beyond them.
+  const ModelChannel* given = nullptr;
+  for (const auto& m : o.start_model)
+    if (m.channel == &ch) given = &m;
+  const std::vector<Effect> known = given ? given->effects : std::vector<Effect>{};
+  rep.nominal = fit_channel(ch, r, split, given ? given->nominal : ch.initial_guess(r), known);
   const std::vector<double> e = residual_of(rep.nominal.prediction, y);
   rep.location = locate(ch, r, e, split.calibration_end);
 
@@ -214,7 +222,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
               [](const Candidate& a, const Candidate& b) { return a.delta_bic < b.delta_bic; });
     return out;
   };
-  rep.ranked = try_effects(rep.nominal, {});
+  rep.ranked = try_effects(rep.nominal, known);
   rep.final_fit = rep.nominal;
   // The best single effect that earns its parameters, by held-out error among those by BIC.
   const Candidate* best = nullptr;

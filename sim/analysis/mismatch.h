@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "sim/analysis/channel_fit.h"
+#include "sim/analysis/model_file.h"
 
 namespace planter::analysis {
 
@@ -53,7 +54,8 @@ struct FitOptions {
   double min_delta_bic = 20.0;
   double min_explained = 0.5;
   int jobs = 1;
-  std::size_t max_rows = 12000;  // longer recordings are thinned to this many rows
+  std::size_t max_rows = 12000;           // longer recordings are thinned to this many rows
+  std::vector<ModelChannel> start_model;  // from --model: start values and known effects
 };
 
 struct FitReport {

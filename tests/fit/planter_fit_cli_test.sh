@@ -34,5 +34,14 @@ expect "no observable subsystem" "$work/nothing.csv"
 expect "cannot be read" "$work/missing.csv"
 : >"$work/empty.csv"
 expect "no header" "$work/empty.csv"
+# A bad --model file: its line and key, exit 2.
+{ echo "t,omega_cmd,omega"; rows; } >"$work/good.csv"
+printf '[[channel]]\noutput = "omega"\nT_d = 0.1\n' >"$work/model.toml"
+out=$("$tool" "$work/good.csv" --model "$work/model.toml" --out "$work/out" 2>&1 >/dev/null)
+rc=$?
+if [ "$rc" -ne 2 ] || ! grep -q "model.toml:1: 'channel\[0\].omega_max'" <<<"$out"; then
+  echo "FAIL: bad --model -> exit $rc, '$out'"
+  fails=$((fails + 1))
+fi
 [ "$fails" -eq 0 ] && echo "planter-fit bad input: all rejected with exit 2 and one message"
 exit "$fails"

@@ -157,10 +157,9 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   rep.location = locate(ch, r, e, split.calibration_end);
 
   // Earning its parameters: a clear BIC gain, half of the residual beyond noise explained,
-  // an improvement that holds across time (the
-  // median over three contiguous blocks of the calibration part) or shows on the held-out
-  // part, and no loss on the held-out part. (Closed-loop records excite some effects only at
-  // starts and stops, so the held-out part alone may not see them.)
+  // an improvement in one of three contiguous calibration blocks with no block worse, or on
+  // the held-out part, and no loss on the held-out part. (Closed-loop records excite some effects
+  // only at starts and stops, so the held-out part alone may not see them.)
   auto block_improvement = [&](const ChannelFit& base, const ChannelFit& with) {
     std::vector<double> gains;
     const std::size_t end = split.calibration_end;
@@ -173,8 +172,10 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       }
       gains.push_back(s0 > 0 ? 1.0 - std::sqrt(s1 / s0) : 0.0);
     }
+    // The best block must gain, and no block may lose: an effect excited only at a start or
+    // a stop shows in one block, but a wrong one costs somewhere else.
     std::sort(gains.begin(), gains.end());
-    return gains[1];
+    return gains.front() < -0.02 ? gains.front() : gains.back();
   };
   auto earns = [&](const Candidate& c) {
     return c.delta_bic < -o.min_delta_bic && c.explained >= o.min_explained &&

@@ -25,7 +25,7 @@ enum class EffectKind {
   kDeadZone,       // input |u| below w does nothing
   kBacklash,       // play of width gap between input and model
   kRateLimit,      // the state moves at most r per second
-  kCoulomb,        // + F_c tanh(omega / 0.05)
+  kCoulomb,        // + F_c tanh(omega / 0.005)
   kStribeck,       // + (F_s - F_c) exp(-(omega/omega_s)^2) sign(omega) on top of Coulomb
   kOffset,         // + a
   kGain,           // * (1 + g)
@@ -34,6 +34,7 @@ enum class EffectKind {
   kQuantisation,   // round to q
   kRelaxation,     // a Maxwell branch takes share `frac` of the output with time constant tau
   kSag,            // - c * load / 1 kN (compliance under the channel's load)
+  kStiction,       // at standstill: the drive's effort K * command, held up to F_s
 };
 
 struct EffectSpec {

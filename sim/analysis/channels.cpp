@@ -93,9 +93,11 @@ class DiscTorqueChannel : public ChannelModel {
     return {{"J", "kg m^2", 0.1, 0.0, 1e3}, {"b", "N m s/rad", 1.0, -1e3, 1e3}};
   }
   std::vector<const EffectSpec*> candidates() const override {
-    return specs({EffectKind::kCoulomb, EffectKind::kStribeck, EffectKind::kOffset,
-                  EffectKind::kPeriodic, EffectKind::kDelay});
+    return specs({EffectKind::kCoulomb, EffectKind::kStribeck, EffectKind::kStiction,
+                  EffectKind::kOffset, EffectKind::kPeriodic, EffectKind::kDelay});
   }
+  // Stiction needs the speed command (the drive's effort while the disc is held).
+  std::string load_signal() const override { return "omega_cmd"; }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
     const std::vector<double> w = transform_input(r, r.at("omega"), fx);
@@ -110,6 +112,13 @@ class DiscTorqueChannel : public ChannelModel {
       y[k] = p[0] * dw + p[1] * w[k];
     }
     apply_output(r, fx, nullptr, &w, y);
+    if (const Effect* st = find_effect(fx, EffectKind::kStiction); st && r.has("omega_cmd")) {
+      const auto& cmd = r.at("omega_cmd");
+      for (std::size_t k = 0; k < n; ++k) {
+        if (std::abs(w[k]) < 1e-3 && std::abs(cmd[k]) > 1e-3)
+          y[k] = std::clamp(st->values[0] * cmd[k], -st->values[1], st->values[1]);
+      }
+    }
   }
 };
 

@@ -1,6 +1,7 @@
 // The library of named candidate effects and the hooks that apply them.
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "sim/analysis/effect_hooks.h"
 
@@ -74,6 +75,10 @@ const std::vector<EffectSpec>& library() {
        "actuator compliance (sag) under load",
        "residual proportional to the load on the actuator",
        {{"sag_per_kN", "output units/kN", 0.0, -100.0, 100.0}}},
+      {EffectKind::kStiction,
+       "stiction (the disc held by static friction)",
+       "torque while the speed is zero and the command is not",
+       {{"effort_gain", "N m s/rad", 10.0, 0.0, 1e3}, {"breakaway", "N m", 1.0, 0.0, 100.0}}},
   };
   return lib;
 }
@@ -83,7 +88,7 @@ const std::vector<EffectSpec>& library() {
 const EffectSpec& effect_spec(EffectKind kind) {
   for (const auto& e : library())
     if (e.kind == kind) return e;
-  return library().front();
+  throw std::logic_error("effect kind without an entry in the library");
 }
 
 const Effect* find_effect(const std::vector<Effect>& fx, EffectKind kind) {
@@ -151,7 +156,7 @@ void apply_output(const Recording& r, const std::vector<Effect>& fx,
     const Effect* s = find_effect(fx, EffectKind::kStribeck);
     for (std::size_t k = 0; k < n && (c || s); ++k) {
       const double w = (*speed)[k];
-      const double sgn = std::tanh(w / 0.05);
+      const double sgn = std::tanh(w / 0.005);  // sharp: the disc turns at only ~0.3 rad/s
       if (c) y[k] += c->values[0] * sgn;
       if (s) y[k] += s->values[0] * std::exp(-(w / s->values[1]) * (w / s->values[1])) * sgn;
     }

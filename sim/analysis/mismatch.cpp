@@ -190,7 +190,8 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       bool used = false;
       for (const auto& s : start) used = used || s.spec == spec;
       if (used) continue;
-      if ((spec->kind == EffectKind::kSag || spec->kind == EffectKind::kSlipWithDraft) &&
+      if ((spec->kind == EffectKind::kSag || spec->kind == EffectKind::kSlipWithDraft ||
+           spec->kind == EffectKind::kStiction) &&
           !r.has(ch.load_signal()))
         continue;
       std::vector<Effect> fx = start;

@@ -8,7 +8,7 @@ namespace planter::analysis {
 namespace {
 
 const EffectSpec* spec_named(const std::string& name) {
-  for (int k = 0; k <= static_cast<int>(EffectKind::kSag); ++k) {
+  for (int k = 0; k <= static_cast<int>(EffectKind::kStiction); ++k) {
     const EffectSpec& s = effect_spec(static_cast<EffectKind>(k));
     if (s.name == name) return &s;
   }

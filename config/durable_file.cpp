@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <stdexcept>
 
 namespace planter::config {
 
@@ -45,6 +46,10 @@ bool write_file_atomic(const std::string& path, const std::string& data) {
   if (write_file_synced(tmp, data) && replace_file(tmp, path)) return true;
   ::unlink(tmp.c_str());
   return false;
+}
+
+void write_output_file(const std::string& path, const std::string& data) {
+  if (!write_file_atomic(path, data)) throw std::runtime_error(path + ": cannot be written");
 }
 
 }  // namespace planter::config

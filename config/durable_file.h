@@ -15,5 +15,7 @@ bool replace_file(const std::string& from, const std::string& to);
 // Writes `data` to `path` + ".tmp", fsyncs it and renames it over `path`: a reader sees the
 // old file or the new one, never half of one. The temporary is removed on failure.
 bool write_file_atomic(const std::string& path, const std::string& data);
+// The same for a tool's output file: throws std::runtime_error "<path>: cannot be written".
+void write_output_file(const std::string& path, const std::string& data);
 
 }  // namespace planter::config

@@ -124,8 +124,7 @@ int reduce(const Common& c, const std::vector<double>& diameters_mm, int jobs) {
   const std::string path = c.out + "/seedling_force.toml";
   const std::string source =
       "from " + (c.params.empty() ? std::string("the paper's parameters") : c.params);
-  if (!config::write_file_atomic(path, dem::reduced_order_toml(fit, source)))
-    return fail(1, path + ": cannot be written");
+  config::write_output_file(path, dem::reduced_order_toml(fit, source));
   std::printf("diameter   peak force   at      elastic fit rms\n");
   for (const auto& dc : fit.curves) {
     std::printf("%6.2f mm  %8.1f N  %5.2f mm  %6.2f N%s\n", dc.diameter_mm, dc.result.peak_force_N,

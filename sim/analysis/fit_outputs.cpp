@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <stdexcept>
 
 #include "config/durable_file.h"
 #include "sim/analysis/model_file.h"
@@ -179,13 +178,9 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
 void write_fit_outputs(const std::string& dir, const FitReport& r, const Recording& rec,
                        double wall_s) {
   std::filesystem::create_directories(dir);
-  auto put = [](const std::string& path, const std::string& data) {
-    if (!config::write_file_atomic(path, data))
-      throw std::runtime_error(path + ": cannot be written");
-  };
-  put(dir + "/fit.json", fit_json(r, wall_s));
-  put(dir + "/model.toml", fit_model_toml(r));
-  put(dir + "/report.html", fit_report_html(r, rec));
+  config::write_output_file(dir + "/fit.json", fit_json(r, wall_s));
+  config::write_output_file(dir + "/model.toml", fit_model_toml(r));
+  config::write_output_file(dir + "/report.html", fit_report_html(r, rec));
 }
 
 }  // namespace planter::analysis

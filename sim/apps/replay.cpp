@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
-#include <stdexcept>
 
 #include "config/durable_file.h"
 #include "sim/analysis/model_file.h"
@@ -53,8 +52,7 @@ int run_replay(const std::string& model_path, const std::string& recording_path,
   }
   std::filesystem::create_directories(out_dir);
   const std::string path = out_dir + "/replay.csv";
-  if (!config::write_file_atomic(path, csv.str()))
-    throw std::runtime_error(path + ": cannot be written");
+  config::write_output_file(path, csv.str());
   std::printf("wrote %s\n", path.c_str());
   return 0;
 }

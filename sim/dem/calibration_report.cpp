@@ -3,7 +3,6 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <stdexcept>
 
 #include "config/durable_file.h"
 #include "sim/dem/calibration.h"
@@ -64,11 +63,6 @@ std::string anova_table(const Anova& a) {
   return s.str();
 }
 
-void write_output(const std::string& path, const std::string& data) {
-  if (!config::write_file_atomic(path, data))
-    throw std::runtime_error(path + ": cannot be written");
-}
-
 }  // namespace
 
 void write_calibration_outputs(const CalibrationOptions& o, const CalibrationReport& r) {
@@ -110,9 +104,9 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
                        {"peak_displacement_mm", c.result.peak_displacement_m * 1e3},
                        {"refinement_runs", r.refinement.size()},
                        {"error_pct", 100.0 * (c.result.peak_force_N - o.target_N) / o.target_N}};
-    write_output(o.out_dir + "/calibrated.toml", compression_setup_toml(c.setup));
+    config::write_output_file(o.out_dir + "/calibrated.toml", compression_setup_toml(c.setup));
   }
-  write_output(o.out_dir + "/calibration.json", j.dump(2) + "\n");
+  config::write_output_file(o.out_dir + "/calibration.json", j.dump(2) + "\n");
 
   std::ostringstream h;
   h.precision(4);
@@ -154,7 +148,7 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
                           {{&f, "#c33", "DEM, calibrated"}}, 0.0, 3.0 * o.target_N);
   }
   h << "</body></html>\n";
-  write_output(o.out_dir + "/report.html", h.str());
+  config::write_output_file(o.out_dir + "/report.html", h.str());
 }
 
 }  // namespace planter::dem

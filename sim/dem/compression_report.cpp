@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <stdexcept>
 
 #include "config/durable_file.h"
 #include "sim/dem/dem_params.h"
@@ -16,11 +15,6 @@ namespace {
 // The paper's figures the result is compared with.
 constexpr double kPaperPeak_N = 140.6;
 constexpr double kPaperPeakDisplacement_mm = 4.0;
-
-void write_output(const std::string& path, const std::string& data) {
-  if (!config::write_file_atomic(path, data))
-    throw std::runtime_error(path + ": cannot be written");
-}
 
 }  // namespace
 
@@ -58,9 +52,9 @@ void write_compression_outputs(const std::string& dir, const CompressionRun& run
                   p.broken_bonds);
     csv << line;
   }
-  write_output(dir + "/curve.csv", csv.str());
-  write_output(dir + "/result.json", compression_result_json(run));
-  write_output(dir + "/params.toml", compression_setup_toml(run.setup));
+  config::write_output_file(dir + "/curve.csv", csv.str());
+  config::write_output_file(dir + "/result.json", compression_result_json(run));
+  config::write_output_file(dir + "/params.toml", compression_setup_toml(run.setup));
 
   std::vector<double> x, f, broken;
   double f_max = 1.0, b_max = 1.0;
@@ -97,7 +91,7 @@ void write_compression_outputs(const std::string& dir, const CompressionRun& run
                            {{&broken, "#555", "broken"}}, 0.0, b_max)
        << "<p>Curve: <code>curve.csv</code>; parameters: <code>params.toml</code>.</p>"
        << "</body></html>\n";
-  write_output(dir + "/report.html", html.str());
+  config::write_output_file(dir + "/report.html", html.str());
 }
 
 }  // namespace planter::dem

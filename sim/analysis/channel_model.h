@@ -58,13 +58,12 @@ class ChannelModel {
   // Columns this channel needs (output included); the channel is observable when all exist.
   [[nodiscard]] virtual std::vector<std::string> needs() const = 0;
   [[nodiscard]] virtual std::vector<ParamSpec> nominal_params() const = 0;
-  // The candidate effects that make sense on this channel.
-  [[nodiscard]] virtual std::vector<const EffectSpec*> candidates() const = 0;
+  // The candidate effects that make sense on this channel, given the recording's columns (an
+  // effect driven by another signal, such as sag by the draft, needs that signal).
+  [[nodiscard]] virtual std::vector<const EffectSpec*> candidates(const Recording& r) const = 0;
   // Free-run prediction of the output over all samples.
   virtual void simulate(const Recording& r, const std::vector<double>& nominal,
                         const std::vector<Effect>& effects, std::vector<double>& y) const = 0;
-  // The signal that best explains this channel's load-driven effects (sag, slip), if any.
-  [[nodiscard]] virtual std::string load_signal() const { return ""; }
   // Initial nominal values from the data (a rough guess for the solver).
   [[nodiscard]] virtual std::vector<double> initial_guess(const Recording& r) const;
 };

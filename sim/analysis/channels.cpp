@@ -15,6 +15,14 @@ std::vector<const EffectSpec*> specs(std::initializer_list<EffectKind> kinds) {
   return out;
 }
 
+// `always`, and `driven` too when the recording has the signal that drives it.
+std::vector<const EffectSpec*> specs(const Recording& r, std::initializer_list<EffectKind> always,
+                                     const char* signal, EffectKind driven) {
+  std::vector<const EffectSpec*> out = specs(always);
+  if (r.has(signal)) out.push_back(&effect_spec(driven));
+  return out;
+}
+
 // First-order lag y' = (u - y) / T, u limited to +-u_max, y' to the rate limit if any.
 void lag(const Recording& r, const std::vector<double>& u, double tau, double u_max,
          const std::vector<Effect>& fx, double y0, std::vector<double>& y) {
@@ -43,11 +51,10 @@ class GroundChannel : public ChannelModel {
   std::vector<ParamSpec> nominal_params() const override {
     return {{"estimator_lag_s", "s", 0.1, 0.0, 1.0}};
   }
-  std::vector<const EffectSpec*> candidates() const override {
-    return specs({EffectKind::kWheelRadius, EffectKind::kSlipWithDraft, EffectKind::kOffset,
-                  EffectKind::kQuantisation});
+  std::vector<const EffectSpec*> candidates(const Recording& r) const override {
+    return specs(r, {EffectKind::kWheelRadius, EffectKind::kOffset, EffectKind::kQuantisation},
+                 "depth_force", EffectKind::kSlipWithDraft);
   }
-  std::string load_signal() const override { return "depth_force"; }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
     const Effect lag{&effect_spec(EffectKind::kDelay), {p[0]}};
@@ -70,7 +77,7 @@ class DiscSpeedChannel : public ChannelModel {
     for (double v : r.at("omega")) m = std::max(m, std::abs(v));
     return {0.1, std::max(0.02, 1.5 * m)};
   }
-  std::vector<const EffectSpec*> candidates() const override {
+  std::vector<const EffectSpec*> candidates(const Recording&) const override {
     return specs({EffectKind::kDelay, EffectKind::kBacklash, EffectKind::kDeadZone,
                   EffectKind::kRateLimit, EffectKind::kGain, EffectKind::kOffset,
                   EffectKind::kPeriodic});
@@ -92,12 +99,13 @@ class DiscTorqueChannel : public ChannelModel {
   std::vector<ParamSpec> nominal_params() const override {
     return {{"J", "kg m^2", 0.1, 0.0, 1e3}, {"b", "N m s/rad", 1.0, -1e3, 1e3}};
   }
-  std::vector<const EffectSpec*> candidates() const override {
-    return specs({EffectKind::kCoulomb, EffectKind::kStribeck, EffectKind::kStiction,
-                  EffectKind::kOffset, EffectKind::kPeriodic, EffectKind::kDelay});
-  }
   // Stiction needs the speed command (the drive's effort while the disc is held).
-  std::string load_signal() const override { return "omega_cmd"; }
+  std::vector<const EffectSpec*> candidates(const Recording& r) const override {
+    return specs(r,
+                 {EffectKind::kCoulomb, EffectKind::kStribeck, EffectKind::kOffset,
+                  EffectKind::kPeriodic, EffectKind::kDelay},
+                 "omega_cmd", EffectKind::kStiction);
+  }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
     const std::vector<double> w = transform_input(r, r.at("omega"), fx);
@@ -145,7 +153,7 @@ class ClampChannel : public ChannelModel {
   // n within 0.9-2.5: PRODUCT.md gives 1-1.5 from the DEM; a law much softer than linear
   // would be the fit bending to mimic creep. A sensor gain error is the same as a different
   // k_c: the nominal fit absorbs it.
-  std::vector<const EffectSpec*> candidates() const override {
+  std::vector<const EffectSpec*> candidates(const Recording&) const override {
     return specs({EffectKind::kOffset, EffectKind::kDrift, EffectKind::kRelaxation,
                   EffectKind::kBacklash, EffectKind::kPeriodic, EffectKind::kQuantisation,
                   EffectKind::kDelay});
@@ -169,12 +177,12 @@ class DepthChannel : public ChannelModel {
   std::vector<ParamSpec> nominal_params() const override {
     return {{"T_a", "s", 0.5, 0.01, 20.0}, {"r_max", "mm/s", 50.0, 0.1, 2000.0}};
   }
-  std::vector<const EffectSpec*> candidates() const override {
-    return specs({EffectKind::kSag, EffectKind::kDelay, EffectKind::kDeadZone,
-                  EffectKind::kBacklash, EffectKind::kOffset, EffectKind::kGain,
-                  EffectKind::kPeriodic});
+  std::vector<const EffectSpec*> candidates(const Recording& r) const override {
+    return specs(r,
+                 {EffectKind::kDelay, EffectKind::kDeadZone, EffectKind::kBacklash,
+                  EffectKind::kOffset, EffectKind::kGain, EffectKind::kPeriodic},
+                 "depth_force", EffectKind::kSag);
   }
-  std::string load_signal() const override { return "depth_force"; }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
     const std::vector<double> u = transform_input(r, r.at("depth_cmd_mm"), fx);
@@ -201,7 +209,7 @@ class DraftChannel : public ChannelModel {
   std::vector<ParamSpec> nominal_params() const override {
     return {{"c_s", "N s/m^3", 1e5, 0.0, 1e9}};
   }
-  std::vector<const EffectSpec*> candidates() const override {
+  std::vector<const EffectSpec*> candidates(const Recording&) const override {
     return specs({EffectKind::kOffset, EffectKind::kPeriodic, EffectKind::kDelay,
                   EffectKind::kQuantisation});
   }

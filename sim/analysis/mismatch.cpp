@@ -186,14 +186,10 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   auto try_effects = [&](const ChannelFit& base, std::vector<Effect> start) {
     std::vector<Candidate> out;
     const std::vector<double> base_e = residual_of(base.prediction, y);
-    for (const EffectSpec* spec : ch.candidates()) {
+    for (const EffectSpec* spec : ch.candidates(r)) {
       bool used = false;
       for (const auto& s : start) used = used || s.spec == spec;
       if (used) continue;
-      if ((spec->kind == EffectKind::kSag || spec->kind == EffectKind::kSlipWithDraft ||
-           spec->kind == EffectKind::kStiction) &&
-          !r.has(ch.load_signal()))
-        continue;
       std::vector<Effect> fx = start;
       fx.push_back(initial_effect(*spec, ch, r, base_e));
       Candidate c;

@@ -107,6 +107,14 @@ void DemWorld::rebuild_neighbours() {
   x_at_rebuild_.resize(particles_.size());
   for (std::size_t k = 0; k < particles_.size(); ++k) x_at_rebuild_[k] = particles_[k].x;
   platen_springs_.resize(platens_.size() * particles_.size(), Vec3::Zero());
+  // Every platen is the same steel: one pair per particle, not one per contact and step.
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  platen_props_.clear();
+  for (const auto& p : particles_) {
+    platen_props_.push_back(pair_properties(material_, platen_material_,
+                                            platen_material_.restitution, p.radius_m, kInf,
+                                            p.mass_kg, kInf));
+  }
   neighbours_valid_ = true;
   ++rebuilds_;
 }
@@ -150,10 +158,8 @@ void DemWorld::platen_contacts(double dt) {
       wall.x = p.x - (h + wall.radius_m) * w.normal;
       wall.v = w.velocity;
       wall.mass_kg = kInf;
-      const PairProperties pp =
-          pair_properties(material_, platen_material_, platen_material_.restitution, p.radius_m,
-                          kInf, p.mass_kg, kInf);
-      const ContactResult r = hertz_mindlin(platen_material_, pp, p, wall, dt, spring);
+      const ContactResult r =
+          hertz_mindlin(platen_material_, platen_props_[i], p, wall, dt, spring);
       p.f += r.force_on_i;
       p.tau += r.torque_on_i;
       w.force_N += r.normal_force_N;

@@ -82,7 +82,8 @@ class DemWorld {
   std::vector<Vec3> x_at_rebuild_;
   double skin_m_ = 0.0;
   bool neighbours_valid_ = false;
-  std::vector<Vec3> platen_springs_;  // [platen * n + particle]
+  std::vector<Vec3> platen_springs_;          // [platen * n + particle]
+  std::vector<PairProperties> platen_props_;  // [particle], against the platen material
   long steps_ = 0;
   long rebuilds_ = 0;
 };

@@ -93,9 +93,9 @@ int main(int argc, char** argv) {
     }
     const double pass =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - p0).count();
-    write_fit_outputs(out, rep, analysed, wall);
+    const std::string fit_text = write_fit_outputs(out, rep, analysed, wall);
     if (json)
-      std::fputs(fit_json(rep, wall).c_str(), stdout);
+      std::fputs(fit_text.c_str(), stdout);
     else
       print_summary(rep, wall, pass);
     return 0;

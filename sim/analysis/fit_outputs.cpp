@@ -175,12 +175,14 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
   return h.str();
 }
 
-void write_fit_outputs(const std::string& dir, const FitReport& r, const Recording& rec,
-                       double wall_s) {
+std::string write_fit_outputs(const std::string& dir, const FitReport& r, const Recording& rec,
+                              double wall_s) {
   std::filesystem::create_directories(dir);
-  config::write_output_file(dir + "/fit.json", fit_json(r, wall_s));
+  const std::string json = fit_json(r, wall_s);
+  config::write_output_file(dir + "/fit.json", json);
   config::write_output_file(dir + "/model.toml", fit_model_toml(r));
   config::write_output_file(dir + "/report.html", fit_report_html(r, rec));
+  return json;
 }
 
 }  // namespace planter::analysis

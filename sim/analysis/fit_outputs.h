@@ -12,8 +12,9 @@ namespace planter::analysis {
 std::string fit_json(const FitReport& r, double wall_s);
 std::string fit_model_toml(const FitReport& r);
 std::string fit_report_html(const FitReport& r, const Recording& rec);
-// Writes all three into dir; throws std::runtime_error naming a file that cannot be written.
-void write_fit_outputs(const std::string& dir, const FitReport& r, const Recording& rec,
-                       double wall_s);
+// Writes all three into dir and returns fit.json's text; throws std::runtime_error naming a
+// file that cannot be written.
+std::string write_fit_outputs(const std::string& dir, const FitReport& r, const Recording& rec,
+                              double wall_s);
 
 }  // namespace planter::analysis

@@ -155,7 +155,7 @@ double signal_span(const std::vector<double>& v) {
   return *hi - *lo;
 }
 
-Effect initial_effect(const EffectSpec& spec, const ChannelModel& ch, const Recording& r,
+Effect initial_effect(const EffectSpec& spec, const Recording& r,
                       const std::vector<double>& residual) {
   Effect e{&spec, {}};
   for (const auto& p : spec.params) e.values.push_back(p.initial);
@@ -195,7 +195,6 @@ Effect initial_effect(const EffectSpec& spec, const ChannelModel& ch, const Reco
     project(best_f, a, b);
     e.values = {std::sqrt(a * a + b * b), best_f, std::atan2(b, a)};
   }
-  (void)ch;
   return e;
 }
 

@@ -28,7 +28,7 @@ ChannelFit fit_channel(const ChannelModel& channel, const Recording& r, const Sp
                        const std::vector<double>& nominal_start, std::vector<Effect> effects);
 
 // A candidate effect with starting values fitted to this channel's nominal residual.
-Effect initial_effect(const EffectSpec& spec, const ChannelModel& channel, const Recording& r,
+Effect initial_effect(const EffectSpec& spec, const Recording& r,
                       const std::vector<double>& residual);
 
 double signal_span(const std::vector<double>& v);

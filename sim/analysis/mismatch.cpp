@@ -134,7 +134,7 @@ Location locate(const ChannelModel& ch, const Recording& r, const std::vector<do
     for (std::size_t k = 0; k < total; ++k) high[k] = f[k] > q3 && q3 > 0;
     regime("at high draft load", high);
   }
-  const Effect p = initial_effect(effect_spec(EffectKind::kPeriodic), ch, r, e);
+  const Effect p = initial_effect(effect_spec(EffectKind::kPeriodic), r, e);
   l.dominant_amplitude = p.values[0];
   l.dominant_frequency_hz = p.values[1];
   return l;
@@ -191,7 +191,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       for (const auto& s : start) used = used || s.spec == spec;
       if (used) continue;
       std::vector<Effect> fx = start;
-      fx.push_back(initial_effect(*spec, ch, r, base_e));
+      fx.push_back(initial_effect(*spec, r, base_e));
       Candidate c;
       c.effect = spec->name;
       c.fit = fit_channel(ch, r, split, base.nominal, fx);

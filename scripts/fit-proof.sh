@@ -18,7 +18,7 @@ fit=$build/apps/planter-fit/planter-fit
 # it; the terrain case puts the terrain back.
 base() {  # base NOISE_N
   sed -e "s|\.\./boards|$root/boards|; s|\.\./models|$root/models|" \
-      -e "s|^distance_m = .*|distance_m = 15.0|" -e "s|^stops = .*|stops = [{ at_m = 11.5, duration_s = 8.0 }]|" \
+      -e "s|^distance_m = .*|distance_m = 15.0|" -e "s|^stops = .*|stops = [{ at_m = 5.0, duration_s = 12.0, planting_off = true }, { at_m = 12.5, duration_s = 12.0, planting_off = true }]|" \
       -e "s|^name = .*|name = \"fit-proof\"|" -e "s|^roughness_mm = .*|roughness_mm = 0.0|" \
       -e "s|^wheel_radius_m = .*|wheel_radius_m = 0.15464|" -e "s|^slip_mean_pct = .*|slip_mean_pct = 0.0|" -e "s|^slip_variation_pct = .*|slip_variation_pct = 0.0|" \
       -e "s|^diameter_min_mm = .*|diameter_min_mm = 10.0|" -e "s|^diameter_max_mm = .*|diameter_max_mm = 10.0|" \
@@ -58,7 +58,7 @@ run_case slip-with-draft 1.0 "v_wheel:wheel slip growing with draft load:slip_pe
   "slip_per_kN = 5.0"
 run_case depth-sag 1.0 "depth_mm:actuator compliance (sag) under load:sag_per_kN=8" \
   "depth_sag_mm_per_kN = 8.0"
-run_case pair-relaxation-delay 2.0 \
+run_case pair-relaxation-delay 1.0 \
   "clamp_force:viscoelastic relaxation (creep) of the clamp:fraction=0.3;omega:transport delay:delay_s=0.15" \
   "clamp_relaxation_frac = 0.3" "clamp_relaxation_tau_s = 3.0" "command_delay_s = 0.15"
 # Terrain the depth wheel follows is no effect of the library: it must be reported as an

@@ -209,6 +209,33 @@ TEST(Determinism, SameSeedSameResult) {
   EXPECT_DOUBLE_EQ(sa.uprightness_pct, sb.uprightness_pct);
 }
 
+// A stop with planting off: the operator stops the machine once it stands (disc stopped, clamp
+// open, opener raised) and starts it again before driving off; it plants again after the stop.
+TEST(PlantingOffStop, StopsAtTheStopAndRunsAgainBeforeDrivingOff) {
+  Scenario s = short_run(0.8);
+  s.plant.route.stops = {StopEvent{0.4, 14.0, true}};
+  LockstepRunner r(s);
+  bool ready_while_standing = false, clamp_opened = false;
+  double x_at_restart_m = -1.0;
+  SupervisorState last = SupervisorState::kBoot;
+  while (r.time_s() < 60.0) {
+    r.step();
+    const SupervisorState now = r.controller().state();
+    if (now == SupervisorState::kReady && r.plant().ground().dwelling_stop() == 0) {
+      ready_while_standing = true;
+      clamp_opened = clamp_opened || r.controller().telemetry().clamp_force_N < 5.0;
+    }
+    if (last == SupervisorState::kReady && now == SupervisorState::kRunning && ready_while_standing)
+      x_at_restart_m = r.plant().ground().x_m();
+    last = now;
+  }
+  EXPECT_TRUE(ready_while_standing);
+  EXPECT_TRUE(clamp_opened);
+  EXPECT_NEAR(x_at_restart_m, 0.4, 1e-3);  // running again before it moves on
+  EXPECT_EQ(r.controller().state(), SupervisorState::kRunning);
+  EXPECT_GT(r.plant().ground().x_m(), 0.79);
+}
+
 // The bus goes away for longer than a heartbeat period and comes back: the controller faults
 // on the lost heartbeats, and an operator's fault reset boots the nodes again and plants again.
 TEST(LinkLoss, FaultThenResetBootsTheNodesAgainAndRuns) {

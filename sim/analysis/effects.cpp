@@ -142,7 +142,10 @@ void apply_output(const Recording& r, const std::vector<Effect>& fx,
     for (std::size_t k = 0; k < n; ++k) {
       const double dt = k > 0 ? r.t[k] - r.t[k - 1] : 0.0;
       relaxed += (frac * y[k] - relaxed) * std::min(1.0, dt / tau);
-      y[k] -= relaxed;
+      // A contact force cannot pull: the relaxed branch lowers the output towards zero, never
+      // past it (an opened clamp reads nothing while the branch recovers).
+      const double relaxed_y = y[k] - relaxed;
+      y[k] = y[k] >= 0.0 ? std::max(0.0, relaxed_y) : std::min(0.0, relaxed_y);
     }
   }
   if (load) {

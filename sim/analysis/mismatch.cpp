@@ -54,7 +54,7 @@ double noise_rms(const std::vector<double>& y, std::size_t end) {
 }
 
 Location locate(const ChannelModel& ch, const Recording& r, const std::vector<double>& e,
-                std::size_t end) {
+                std::size_t end, double noise_rms) {
   Location l;
   // Residual tests on the calibration part, thinned to at most 20000 samples.
   const std::size_t stride = std::max<std::size_t>(1, end / 20000);
@@ -89,7 +89,10 @@ Location locate(const ChannelModel& ch, const Recording& r, const std::vector<do
   std::sort(sorted.begin(), sorted.end());
   const auto worst = std::max_element(w_rms.begin(), w_rms.end()) - w_rms.begin();
   l.worst_window_start_s = r.t[total * static_cast<std::size_t>(worst) / 10];
-  l.worst_window_ratio = sorted[5] > 0 ? w_rms[static_cast<std::size_t>(worst)] / sorted[5] : 0.0;
+  // Against the median window, but never below the noise: a window where the machine stands
+  // still fits to nothing and would make any other look infinitely worse.
+  const double typical = std::max(sorted[5], noise_rms);
+  l.worst_window_ratio = typical > 0 ? w_rms[static_cast<std::size_t>(worst)] / typical : 0.0;
   // Regimes of the input and the load.
   auto regime = [&](const std::string& name, const std::vector<bool>& in) {
     double si = 0, so = 0;
@@ -154,7 +157,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   const std::vector<Effect> known = given ? given->effects : std::vector<Effect>{};
   rep.nominal = fit_channel(ch, r, split, given ? given->nominal : ch.initial_guess(r), known);
   const std::vector<double> e = residual_of(rep.nominal.prediction, y);
-  rep.location = locate(ch, r, e, split.calibration_end);
+  rep.location = locate(ch, r, e, split.calibration_end, rep.noise_rms);
 
   // Earning its parameters: a clear BIC gain, half of the residual beyond noise explained,
   // an improvement in one of three contiguous calibration blocks with no block worse, or on
@@ -170,6 +173,10 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
         s0 += (base.prediction[k] - y[k]) * (base.prediction[k] - y[k]);
         s1 += (with.prediction[k] - y[k]) * (with.prediction[k] - y[k]);
       }
+      // Below the noise a block has nothing to gain or lose (a stretch at rest fits to zero).
+      const double floor = rep.noise_rms * rep.noise_rms * static_cast<double>(to - from);
+      s0 = std::max(s0, floor);
+      s1 = std::max(s1, floor);
       gains.push_back(s0 > 0 ? 1.0 - std::sqrt(s1 / s0) : 0.0);
     }
     // The best block must gain, and no block may lose: an effect excited only at a start or
@@ -239,15 +246,16 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     }
   }
   // What is left is unexplained when it is well above the measurement noise, structured
-  // (not white), and a real share (a tenth) of how much the output moves in the held-out part.
+  // (not white), and a real share of the output's size in the held-out part: half a percent
+  // of its RMS (below that it is a numerical detail of the model, not physics to act on).
+  // Its size, not its spread: a stop in the held-out part must not hide a residual.
   const double left = rep.final_fit.rms_held_out;
-  double mean = 0, var = 0;
+  double mean_square = 0;
   const std::size_t from = split.calibration_end, n = y.size() - from;
-  for (std::size_t k = from; k < y.size(); ++k) mean += y[k] / static_cast<double>(n);
-  for (std::size_t k = from; k < y.size(); ++k)
-    var += (y[k] - mean) * (y[k] - mean) / static_cast<double>(n);
+  for (std::size_t k = from; k < y.size(); ++k) mean_square += y[k] * y[k] / static_cast<double>(n);
   rep.unexplained = left > 3.0 * std::max(rep.noise_rms, 1e-12) &&
-                    rep.location.whiteness_violations > 0.5 && left > 0.1 * std::sqrt(var);
+                    rep.location.whiteness_violations > 0.5 &&
+                    left > o.min_unexplained_share * std::sqrt(mean_square);
   if (rep.chosen.empty())
     rep.verdict = rep.unexplained ? "unexplained residual" : "no significant mismatch";
   else

@@ -53,6 +53,7 @@ struct FitOptions {
   double min_improvement = 0.10;  // a block's RMS must fall by at least this share
   double min_delta_bic = 20.0;
   double min_explained = 0.5;
+  double min_unexplained_share = 0.005;  // of the output's held-out RMS, to call a residual
   int jobs = 1;
   std::size_t max_rows = 12000;           // longer recordings are thinned to this many rows
   std::vector<ModelChannel> start_model;  // from --model: start values and known effects

@@ -30,9 +30,11 @@ class Ground {
           if (dwell_until_s_ < 0.0) dwell_until_s_ = t_s + s.duration_s;
           if (t_s < dwell_until_s_) {
             wanted = 0.0;
+            dwelling_stop_ = static_cast<int>(i);
           } else {
             stop_done_mask_ |= 1u << i;
             dwell_until_s_ = -1.0;
+            dwelling_stop_ = -1;
           }
         } else {
           wanted = std::min(wanted, std::sqrt(2.0 * route_.accel_mps2 * to_stop));
@@ -47,6 +49,9 @@ class Ground {
   void start() { moving_ = true; }
   [[nodiscard]] double x_m() const { return x_m_; }
   [[nodiscard]] double v_mps() const { return v_mps_; }
+  // The stop the machine is standing at (index into the route's stops), or -1.
+  [[nodiscard]] int dwelling_stop() const { return dwelling_stop_; }
+  [[nodiscard]] double dwell_until_s() const { return dwell_until_s_; }
   [[nodiscard]] bool finished() const { return x_m_ >= route_.distance_m - 1e-3 && v_mps_ < 1e-4; }
   // Terrain height (mm) under the machine: two incommensurate waves.
   [[nodiscard]] double terrain_mm() const {
@@ -63,6 +68,7 @@ class Ground {
   double x_m_ = 0.0;
   double v_mps_ = 0.0;
   double dwell_until_s_ = -1.0;
+  int dwelling_stop_ = -1;
   unsigned stop_done_mask_ = 0;
 };
 

@@ -11,6 +11,9 @@ namespace planter::sim {
 struct StopEvent {
   double at_m = 0.0;
   double duration_s = 0.0;
+  // The operator switches planting off for the stop (disc stopped, clamp open, opener up) and
+  // on again before driving off, as at a belt refill.
+  bool planting_off = false;
 };
 
 struct RouteConfig {

@@ -37,6 +37,7 @@ void LockstepRunner::apply_events() {
     controller_->request_run();
     run_requested_ = true;
   }
+  apply_planting_off_stops(t);
   if (controller_->state() == SupervisorState::kRunning && running_since_s_ < 0.0)
     running_since_s_ = t;
   const double push_at_s = scenario_.plant.route.push_at_s;
@@ -45,6 +46,25 @@ void LockstepRunner::apply_events() {
                               t >= running_since_s_ + scenario_.plant.start_delay_s))) {
     rig_->plant().start_moving();
     moving_ = true;
+  }
+}
+
+// At a stop with planting off the operator presses stop once the machine stands, and run
+// again start_delay_s before the stop ends, as at the first start.
+void LockstepRunner::apply_planting_off_stops(double t) {
+  const Ground& ground = rig_->plant().ground();
+  const int stop = ground.dwelling_stop();
+  if (stop >= 0 && stop != switched_off_stop_ &&
+      scenario_.plant.route.stops[static_cast<std::size_t>(stop)].planting_off &&
+      controller_->state() == SupervisorState::kRunning) {
+    controller_->request_stop();
+    switched_off_stop_ = stop;
+    restart_at_s_ = ground.dwell_until_s() - scenario_.plant.start_delay_s;
+  }
+  if (restart_at_s_ >= 0.0 && t >= restart_at_s_ &&
+      controller_->state() == SupervisorState::kReady) {
+    controller_->request_run();
+    restart_at_s_ = -1.0;
   }
 }
 

@@ -51,6 +51,7 @@ class LockstepRunner {
 
  private:
   void apply_events();
+  void apply_planting_off_stops(double t);
 
   Scenario scenario_;
   hal::sim::VirtualCanBus bus_;
@@ -70,6 +71,8 @@ class LockstepRunner {
   bool moving_ = false;
   double running_since_s_ = -1.0;
   double finished_at_s_ = -1.0;
+  int switched_off_stop_ = -1;  // the stop planting was last switched off at
+  double restart_at_s_ = -1.0;  // when the operator presses run again (-1: not pending)
 };
 
 }  // namespace planter::sim

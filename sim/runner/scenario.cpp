@@ -65,6 +65,10 @@ Scenario load_scenario(const std::string& path) {
       StopEvent e;
       e.at_m = stop.number("at_m", 0.0, 0.0, p.route.distance_m, "m");
       e.duration_s = stop.number("duration_s", 5.0, 0.0, 3600.0, "s");
+      e.planting_off = stop.boolean("planting_off", false);
+      // Off and on again needs the disc to stop and the start delay to pass within the stop.
+      if (e.planting_off && e.duration_s < p.start_delay_s + 5.0)
+        stop.fail("duration_s", "must be at least start_delay_s + 5 s with planting_off = true");
       stop.reject_unknown_keys();
       p.route.stops.push_back(e);
     }

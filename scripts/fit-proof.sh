@@ -26,22 +26,29 @@ base() {  # base NOISE_N
       "$root/scenarios/zhangqiu-field.toml"
 }
 passed=0
+exact=0
 total=0
-run_case() {  # run_case NAME NOISE EXPECT [effects lines...]
-  local name=$1 noise=$2 expect=$3
+run_case() {  # run_case NAME NOISE EXPECT [--base-sed SED_EXPR] [effects lines...]
+  local name=$1 noise=$2 expect=$3 base_sed=""
   shift 3
+  if [ "${1:-}" = --base-sed ]; then
+    base_sed=$2
+    shift 2
+  fi
+  total=$((total + 1))
   # The effect keys go at the end, under [effects] (the base's last table).
-  { base "$noise"; printf '%s\n' "$@"; } >"$out/$name.toml"
+  { base "$noise" | sed -e "$base_sed"; printf '%s\n' "$@"; } >"$out/$name.toml"
   "$sim" run "$out/$name.toml" --out "$out/$name" >/dev/null 2>"$out/$name.sim.err" || {
     echo "FAIL $name: planter-sim failed: $(head -1 "$out/$name.sim.err")"
-    total=$((total + 1))
     return
   }
   "$fit" "$out/$name/recording.csv" --out "$out/$name/fit" --json >"$out/$name/fit.stdout" 2>&1
-  total=$((total + 1))
-  if /usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/$name/fit/fit.json" "$name" "$expect"; then
+  local line
+  if line=$(/usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/$name/fit/fit.json" "$name" "$expect"); then
     passed=$((passed + 1))
+    [[ $line == *"also named"* ]] || exact=$((exact + 1))
   fi
+  echo "$line"
 }
 for noise in 0.5 2.0 5.0; do
   run_case "clean-noise-$noise" "$noise" clean
@@ -53,25 +60,25 @@ run_case force-drift 1.0 "clamp_force:sensor drift:drift_per_s=0.05" "force_drif
 run_case vibration 1.0 "clamp_force:periodic disturbance (vibration):amplitude=6,frequency_hz=7" \
   "vibration_hz = 7.0" "vibration_force_N = 6.0"
 run_case disc-coulomb 1.0 "disc_torque:Coulomb friction:coulomb=2" "disc_coulomb_Nm = 2.0"
+run_case disc-stribeck 1.0 "disc_torque:Stribeck friction:stribeck_extra=3,stribeck_speed=0.05" \
+  "disc_stribeck_Nm = 3.0" "disc_stribeck_radps = 0.05"
+run_case disc-dead-zone 1.0 "omega:dead zone:width=0.1" "disc_deadzone_radps = 0.1"
 run_case command-delay 1.0 "omega:transport delay:delay_s=0.3" "command_delay_s = 0.3"
 run_case slip-with-draft 1.0 "v_wheel:wheel slip growing with draft load:slip_per_kN=0.05" \
   "slip_per_kN = 5.0"
+# The soil wheel is larger than the board was calibrated for: 0.162 m against 0.15464 m.
+run_case wheel-radius 1.0 "v_wheel:wrong effective wheel radius:radius_error=-0.04546" \
+  --base-sed "s|^wheel_radius_m = .*|wheel_radius_m = 0.162|"
 run_case depth-sag 1.0 "depth_mm:actuator compliance (sag) under load:sag_per_kN=8" \
   "depth_sag_mm_per_kN = 8.0"
 run_case pair-relaxation-delay 1.0 \
   "clamp_force:viscoelastic relaxation (creep) of the clamp:fraction=0.3;omega:transport delay:delay_s=0.15" \
   "clamp_relaxation_frac = 0.3" "clamp_relaxation_tau_s = 3.0" "command_delay_s = 0.15"
+run_case pair-offset-vibration 1.0 \
+  "clamp_force:sensor offset:offset=8;clamp_force:periodic disturbance (vibration):amplitude=6,frequency_hz=7" \
+  "force_offset_N = 8.0" "vibration_hz = 7.0" "vibration_force_N = 6.0"
 # Terrain the depth wheel follows is no effect of the library: it must be reported as an
 # unexplained residual on depth_mm, not forced onto a wrong name.
-terrain_case() {
-  total=$((total + 1))
-  { base 1.0 | sed "s|^roughness_mm = .*|roughness_mm = 6.0|"; } >"$out/terrain.toml"
-  "$sim" run "$out/terrain.toml" --out "$out/terrain" >/dev/null 2>&1
-  "$fit" "$out/terrain/recording.csv" --out "$out/terrain/fit" --json >/dev/null 2>&1
-  if /usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/terrain/fit/fit.json" terrain \
-    "unexplained:depth_mm"; then
-    passed=$((passed + 1))
-  fi
-}
-terrain_case
+run_case terrain 1.0 "unexplained:depth_mm" --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|"
+echo "of the $passed that pass, $exact name nothing beyond what was hidden"
 echo "planter-fit blind proof: $passed of $total cases pass"

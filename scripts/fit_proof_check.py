@@ -53,9 +53,17 @@ def main():
             if before <= 0 or after > 0.5 * before:
                 problems.append("%s held-out RMS %.4g -> %.4g (less than a 50 %% drop)"
                                 % (output, before, after))
+    # Names beyond the hidden effects do not fail a case (a hidden friction does slow the disc
+    # and hold it at rest), but they are shown: a clean answer names nothing else.
+    wanted = set()
+    if expect not in ("clean",) and not expect.startswith("unexplained:"):
+        wanted = {":".join(item.split(":")[:2]) for item in expect.split(";")}
+    extra = [f for f in found if f not in wanted]
     verdict = "PASS" if not problems else "FAIL"
-    print("%-4s %-28s found: %s%s" % (verdict, case, ", ".join(found) or "nothing",
-                                       "" if not problems else "  [" + "; ".join(problems) + "]"))
+    print("%-4s %-24s found: %s%s%s" % (
+        verdict, case, ", ".join(f for f in found if f in wanted) or "nothing",
+        "; also named: " + ", ".join(extra) if extra and wanted else "",
+        "" if not problems else "  [" + "; ".join(problems) + "]"))
     return 0 if not problems else 1
 
 

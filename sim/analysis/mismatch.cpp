@@ -163,7 +163,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   // an improvement in one of three contiguous calibration blocks with no block worse, or on
   // the held-out part, and no loss on the held-out part. (Closed-loop records excite some effects
   // only at starts and stops, so the held-out part alone may not see them.)
-  auto block_improvement = [&](const ChannelFit& base, const ChannelFit& with) {
+  auto block_improvement = [&](const ChannelFit& base, const ChannelFit& with, double noise) {
     std::vector<double> gains;
     const std::size_t end = split.calibration_end;
     for (int b = 0; b < 3; ++b) {
@@ -174,7 +174,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
         s1 += (with.prediction[k] - y[k]) * (with.prediction[k] - y[k]);
       }
       // Below the noise a block has nothing to gain or lose (a stretch at rest fits to zero).
-      const double floor = rep.noise_rms * rep.noise_rms * static_cast<double>(to - from);
+      const double floor = noise * noise * static_cast<double>(to - from);
       s0 = std::max(s0, floor);
       s1 = std::max(s1, floor);
       gains.push_back(s0 > 0 ? 1.0 - std::sqrt(s1 / s0) : 0.0);
@@ -193,6 +193,9 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   auto try_effects = [&](const ChannelFit& base, std::vector<Effect> start) {
     std::vector<Candidate> out;
     const std::vector<double> base_e = residual_of(base.prediction, y);
+    // The noise under this base: from its residual, so that an effect already modelled (a
+    // vibration near the thinned Nyquist rate) no longer counts as noise.
+    const double noise = std::min(rep.noise_rms, noise_rms(base_e, split.calibration_end));
     for (const EffectSpec* spec : ch.candidates(r)) {
       bool used = false;
       for (const auto& s : start) used = used || s.spec == spec;
@@ -202,8 +205,13 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       Candidate c;
       c.effect = spec->name;
       c.fit = fit_channel(ch, r, split, base.nominal, fx);
-      // The nominal fit may have bent its parameters to mimic the effect (relaxation
-      // looks like a softer law): start once more from the data's own guess.
+      // The base fit may have bent its parameters to mimic the effect (an offset looks like
+      // a contact point below the open clamp, relaxation like a softer law): start once more
+      // from the data's own guess, and for relaxation from several time constants.
+      {
+        ChannelFit alt = fit_channel(ch, r, split, ch.initial_guess(r), fx);
+        if (alt.bic < c.fit.bic) c.fit = std::move(alt);
+      }
       if (spec->kind == EffectKind::kRelaxation) {
         for (double tau : {0.5, 3.0, 15.0}) {
           fx.back().values = {0.2, tau};
@@ -214,10 +222,10 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       c.delta_bic = c.fit.bic - base.bic;
       c.held_out_improvement =
           base.rms_held_out > 0 ? 1.0 - c.fit.rms_held_out / base.rms_held_out : 0.0;
-      c.block_improvement = block_improvement(base, c.fit);
+      c.block_improvement = block_improvement(base, c.fit, noise);
       // The share of the residual beyond the noise that the effect accounts for: a real
       // mechanism explains the shape of what is left, a wrong name only bends it a little.
-      const double noise2 = rep.noise_rms * rep.noise_rms;
+      const double noise2 = noise * noise;
       const double before2 = base.rms_calibration * base.rms_calibration;
       const double after2 = c.fit.rms_calibration * c.fit.rms_calibration;
       c.explained = before2 > noise2 ? (before2 - after2) / (before2 - noise2) : 0.0;
@@ -249,6 +257,9 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   // (not white), and a real share of the output's size in the held-out part: half a percent
   // of its RMS (below that it is a numerical detail of the model, not physics to act on).
   // Its size, not its spread: a stop in the held-out part must not hide a residual.
+  // The noise is re-estimated under the final model: what it now explains is not noise.
+  rep.noise_rms = std::min(
+      rep.noise_rms, noise_rms(residual_of(rep.final_fit.prediction, y), split.calibration_end));
   const double left = rep.final_fit.rms_held_out;
   double mean_square = 0;
   const std::size_t from = split.calibration_end, n = y.size() - from;

@@ -39,7 +39,7 @@ struct Candidate {
 struct ChannelReport {
   const ChannelModel* channel = nullptr;
   ChannelFit nominal;
-  double noise_rms = 0.0;  // white measurement noise estimated from second differences
+  double noise_rms = 0.0;  // white measurement noise: second differences of the final residual
   Location location;
   std::vector<Candidate> ranked;  // single effects, best BIC first
   std::vector<Candidate> chosen;  // accepted (one or two)

@@ -9,7 +9,8 @@
 namespace planter::sim {
 
 // Disc drive train: a velocity loop (first-order lag T_d, saturation) on the disc inertia with
-// viscous damping; optional Coulomb friction, backlash and command delay.
+// viscous damping; optional Coulomb and Stribeck friction, backlash, a dead zone and a command
+// delay.
 class DiscDriveModel {
  public:
   explicit DiscDriveModel(const DriveModelConfig& d, const Effects& e) : d_(d), e_(e) {}
@@ -22,6 +23,7 @@ class DiscDriveModel {
       while (delayed_.size() > n + 1) delayed_.pop_front();
       omega_target = delayed_.front();
     }
+    if (std::abs(omega_target) < e_.disc_deadzone_radps) omega_target = 0.0;
     const double target =
         enabled ? std::clamp(omega_target, -d_.disc_omega_max_radps, d_.disc_omega_max_radps) : 0.0;
     const double tau = quick_stop ? 0.02 : d_.disc_time_constant_s;
@@ -29,14 +31,15 @@ class DiscDriveModel {
     const double gain = d_.disc_inertia_kgm2 / tau;
     double torque =
         enabled || quick_stop ? gain * (target - omega_) + d_.disc_damping_Nms * target : 0.0;
-    const double friction =
-        e_.disc_coulomb_Nm * (std::abs(omega_) > 1e-4 ? std::copysign(1.0, omega_) : 0.0);
+    const double stribeck_speed = omega_ / e_.disc_stribeck_radps;
+    const double dry =
+        e_.disc_coulomb_Nm + e_.disc_stribeck_Nm * std::exp(-stribeck_speed * stribeck_speed);
+    const double friction = dry * (std::abs(omega_) > 1e-4 ? std::copysign(1.0, omega_) : 0.0);
     double accel = (torque - d_.disc_damping_Nms * omega_ - friction) / d_.disc_inertia_kgm2;
-    if (std::abs(omega_) <= 1e-4 && std::abs(torque) <= e_.disc_coulomb_Nm) accel = 0.0;  // stuck
+    if (std::abs(omega_) <= 1e-4 && std::abs(torque) <= dry) accel = 0.0;  // stuck
     const double previous = omega_;
     omega_ += accel * dt_s;
-    if (previous != 0.0 && omega_ * previous < 0.0 && std::abs(torque) <= e_.disc_coulomb_Nm)
-      omega_ = 0.0;
+    if (previous != 0.0 && omega_ * previous < 0.0 && std::abs(torque) <= dry) omega_ = 0.0;
     torque_Nm_ = torque;
     motor_angle_rad_ += omega_ * dt_s;
     // Backlash: the disc follows the motor only when the play is taken up.

@@ -81,6 +81,9 @@ struct DriveModelConfig {
 
 struct Effects {
   double disc_coulomb_Nm = 0.0;        // friction in the disc drive train
+  double disc_stribeck_Nm = 0.0;       // extra friction near standstill (Stribeck) ...
+  double disc_stribeck_radps = 0.05;   // ... fading over this speed
+  double disc_deadzone_radps = 0.0;    // the drive ignores speed set-points below this
   double disc_backlash_rad = 0.0;      // gear play between motor and disc
   double command_delay_s = 0.0;        // transport delay of the disc speed command
   double slip_per_kN = 0.0;            // wheel slip growing with opener draft (% per kN)

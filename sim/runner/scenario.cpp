@@ -150,6 +150,9 @@ Scenario load_scenario(const std::string& path) {
     e.force_offset_N = t->number("force_offset_N", 0.0, -100.0, 100.0, "N");
     e.force_gain_pct = t->number("force_gain_pct", 0.0, -50.0, 50.0, "%");
     e.force_drift_N_per_min = t->number("force_drift_N_per_min", 0.0, -10.0, 10.0, "N/min");
+    e.disc_stribeck_Nm = t->number("disc_stribeck_Nm", 0.0, 0.0, 100.0, "N*m");
+    e.disc_stribeck_radps = t->number("disc_stribeck_radps", 0.05, 0.001, 10.0, "rad/s");
+    e.disc_deadzone_radps = t->number("disc_deadzone_radps", 0.0, 0.0, 1.0, "rad/s");
     t->reject_unknown_keys();
   }
   if (auto t = root.table("controller")) {

@@ -36,10 +36,13 @@ Layout layout(std::vector<double>& nominal, std::vector<Effect>& effects,
 }
 
 // Residual rows: the calibration samples, thinned to at most ~4000 rows.
-std::vector<std::size_t> rows(std::size_t end) {
+// The calibration rows the fit sees: at most about 4000, none from a left-out fold.
+std::vector<std::size_t> rows(const Split& split) {
+  const std::size_t end = split.calibration_end;
   const std::size_t stride = std::max<std::size_t>(1, end / 4000);
   std::vector<std::size_t> out;
-  for (std::size_t k = 0; k < end; k += stride) out.push_back(k);
+  for (std::size_t k = 0; k < end; k += stride)
+    if (k < split.fold_from || k >= split.fold_to) out.push_back(k);
   return out;
 }
 
@@ -75,7 +78,7 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
              std::vector<double>& nominal, std::vector<Effect>& effects, double huber,
              std::vector<double>* sd) {
   const std::vector<double>& y = r.at(ch.output());
-  const std::vector<std::size_t> at = rows(split.calibration_end);
+  const std::vector<std::size_t> at = rows(split);
   auto* functor = new SimulationError{&ch, &r, &y, &at, nominal, effects, nullptr};
   Layout lay = layout(functor->nominal, functor->effects, ch.nominal_params(), false);
   functor->lay = &lay;
@@ -273,9 +276,21 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
   fit.rms_held_out = rms(fit.prediction, y, split.calibration_end, y.size());
   fit.parameters = static_cast<int>(fit.nominal.size());
   for (const auto& e : fit.effects) fit.parameters += static_cast<int>(e.values.size());
-  const double n = static_cast<double>(rows(split.calibration_end).size());
+  const double n = static_cast<double>(rows(split).size());
   fit.bic = n * std::log(std::max(rss, 1e-300) / n) + fit.parameters * std::log(n);
   return fit;
+}
+
+double fold_rms(const ChannelModel& ch, const Recording& r, const Split& split,
+                const ChannelFit& fit) {
+  const std::vector<double>& y = r.at(ch.output());
+  std::vector<double> nominal = fit.nominal;
+  std::vector<Effect> effects = fit.effects;
+  const double huber = 3.0 * robust_scale(fit.prediction, y, split.calibration_end);
+  solve(ch, r, split, nominal, effects, huber, nullptr);
+  std::vector<double> pred;
+  ch.simulate(r, nominal, effects, pred);
+  return rms(pred, y, split.fold_from, split.fold_to);
 }
 
 }  // namespace planter::analysis

@@ -10,6 +10,9 @@ namespace planter::analysis {
 
 struct Split {
   std::size_t calibration_end = 0;  // samples [0, end) fit; [end, n) is held out
+  // A cross-validation fold: samples [fold_from, fold_to) of the calibration part left out.
+  std::size_t fold_from = 0;
+  std::size_t fold_to = 0;
 };
 
 struct ChannelFit {
@@ -26,6 +29,11 @@ struct ChannelFit {
 
 ChannelFit fit_channel(const ChannelModel& channel, const Recording& r, const Split& split,
                        const std::vector<double>& nominal_start, std::vector<Effect> effects);
+
+// The fit refitted with a fold left out (split.fold_from..fold_to), starting from `fit`, the
+// grid parameters kept; returns the RMS error it then makes on the fold.
+double fold_rms(const ChannelModel& channel, const Recording& r, const Split& split,
+                const ChannelFit& fit);
 
 // A candidate effect with starting values fitted to this channel's nominal residual.
 Effect initial_effect(const EffectSpec& spec, const Recording& r,

@@ -69,7 +69,7 @@ std::string fit_json(const FitReport& r, double wall_s) {
       ch["ranked"].push_back({{"effect", cand.effect},
                               {"delta_bic", cand.delta_bic},
                               {"held_out_improvement", cand.held_out_improvement},
-                              {"block_improvement", cand.block_improvement},
+                              {"cv_improvement", cand.cv_improvement},
                               {"explained", cand.explained}});
     }
     const Location& l = c.location;
@@ -152,9 +152,11 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
         h << " " << e.spec->params[k].name << " = " << e.values[k];
       h << "</p>";
     }
-    h << "<table><tr><th>candidate</th><th>&Delta;BIC</th><th>held-out improvement</th></tr>";
+    h << "<table><tr><th>candidate</th><th>&Delta;BIC</th><th>explained</th>"
+         "<th>blocked CV</th><th>held-out improvement</th></tr>";
     for (const auto& cand : c.ranked)
       h << "<tr><td>" << cand.effect << "</td><td>" << cand.delta_bic << "</td><td>"
+        << 100.0 * cand.explained << " %</td><td>" << 100.0 * cand.cv_improvement << " %</td><td>"
         << 100.0 * cand.held_out_improvement << " %</td></tr>";
     h << "</table><p>Where the nominal residual is: whiteness violations "
       << 100.0 * c.location.whiteness_violations << " % of lags; input correlation "

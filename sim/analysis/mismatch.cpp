@@ -160,34 +160,37 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   rep.location = locate(ch, r, e, split.calibration_end, rep.noise_rms);
 
   // Earning its parameters: a clear BIC gain, half of the residual beyond noise explained,
-  // an improvement in one of three contiguous calibration blocks with no block worse, or on
-  // the held-out part, and no loss on the held-out part. (Closed-loop records excite some effects
-  // only at starts and stops, so the held-out part alone may not see them.)
-  auto block_improvement = [&](const ChannelFit& base, const ChannelFit& with, double noise) {
-    std::vector<double> gains;
-    const std::size_t end = split.calibration_end;
-    for (int b = 0; b < 3; ++b) {
-      const std::size_t from = end * b / 3, to = end * (b + 1) / 3;
-      double s0 = 0, s1 = 0;
-      for (std::size_t k = from; k < to; ++k) {
-        s0 += (base.prediction[k] - y[k]) * (base.prediction[k] - y[k]);
-        s1 += (with.prediction[k] - y[k]) * (with.prediction[k] - y[k]);
-      }
-      // Below the noise a block has nothing to gain or lose (a stretch at rest fits to zero).
-      const double floor = noise * noise * static_cast<double>(to - from);
-      s0 = std::max(s0, floor);
-      s1 = std::max(s1, floor);
-      gains.push_back(s0 > 0 ? 1.0 - std::sqrt(s1 / s0) : 0.0);
+  // a gain in blocked cross-validation (or on the held-out part), and no loss on the held-out
+  // part. (Closed-loop records excite some effects only at starts and stops, so the held-out
+  // part alone may not see them.)
+  // Blocked cross-validation: each of three contiguous calibration blocks is left out in
+  // turn; base and candidate are refitted without it and judged on it.
+  const std::size_t end = split.calibration_end;
+  auto fold_errors = [&](const ChannelFit& fit, double noise) {
+    std::vector<double> out;
+    for (std::size_t b = 0; b < 3; ++b) {
+      Split fold = split;
+      fold.fold_from = end * b / 3;
+      fold.fold_to = end * (b + 1) / 3;
+      // Below the noise a fold has nothing to gain or lose (a stretch at rest fits to zero).
+      out.push_back(std::max(fold_rms(ch, r, fold, fit), noise));
     }
-    // The best block must gain, and no block may lose: an effect excited only at a start or
-    // a stop shows in one block, but a wrong one costs somewhere else.
+    return out;
+  };
+  auto blocked_cv = [&](const std::vector<double>& base_errors, const ChannelFit& with,
+                        double noise) {
+    const std::vector<double> with_errors = fold_errors(with, noise);
+    std::vector<double> gains;
+    for (std::size_t b = 0; b < base_errors.size(); ++b)
+      gains.push_back(base_errors[b] > 0 ? 1.0 - with_errors[b] / base_errors[b] : 0.0);
+    // The best fold must gain, and no fold may lose: an effect excited only at a start or
+    // a stop shows in one fold, but a wrong one costs somewhere else.
     std::sort(gains.begin(), gains.end());
     return gains.front() < -0.02 ? gains.front() : gains.back();
   };
   auto earns = [&](const Candidate& c) {
     return c.delta_bic < -o.min_delta_bic && c.explained >= o.min_explained &&
-           (c.block_improvement >= o.min_improvement ||
-            c.held_out_improvement >= o.min_improvement) &&
+           (c.cv_improvement >= o.min_improvement || c.held_out_improvement >= o.min_improvement) &&
            c.held_out_improvement > -0.02;
   };
   auto try_effects = [&](const ChannelFit& base, std::vector<Effect> start) {
@@ -196,6 +199,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     // The noise under this base: from its residual, so that an effect already modelled (a
     // vibration near the thinned Nyquist rate) no longer counts as noise.
     const double noise = std::min(rep.noise_rms, noise_rms(base_e, split.calibration_end));
+    const std::vector<double> base_fold_errors = fold_errors(base, noise);
     for (const EffectSpec* spec : ch.candidates(r)) {
       bool used = false;
       for (const auto& s : start) used = used || s.spec == spec;
@@ -222,7 +226,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       c.delta_bic = c.fit.bic - base.bic;
       c.held_out_improvement =
           base.rms_held_out > 0 ? 1.0 - c.fit.rms_held_out / base.rms_held_out : 0.0;
-      c.block_improvement = block_improvement(base, c.fit, noise);
+      c.cv_improvement = blocked_cv(base_fold_errors, c.fit, noise);
       // The share of the residual beyond the noise that the effect accounts for: a real
       // mechanism explains the shape of what is left, a wrong name only bends it a little.
       const double noise2 = noise * noise;

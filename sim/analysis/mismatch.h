@@ -31,7 +31,7 @@ struct Candidate {
   std::string effect;
   double delta_bic = 0.0;             // against the model it would extend
   double held_out_improvement = 0.0;  // 1 - rms_after / rms_before on the held-out part
-  double block_improvement = 0.0;     // the best of 3 calibration blocks (or a loss)
+  double cv_improvement = 0.0;        // blocked cross-validation: the best of 3 folds (or a loss)
   double explained = 0.0;  // share of the calibration residual beyond noise it accounts for
   ChannelFit fit;
 };
@@ -50,7 +50,7 @@ struct ChannelReport {
 
 struct FitOptions {
   double held_out_fraction = 0.3;
-  double min_improvement = 0.10;  // a block's RMS must fall by at least this share
+  double min_improvement = 0.10;  // a fold's RMS must fall by at least this share
   double min_delta_bic = 20.0;
   double min_explained = 0.5;
   double min_unexplained_share = 0.005;  // of the output's held-out RMS, to call a residual

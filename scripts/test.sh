@@ -37,4 +37,10 @@ scripts/cross-test.sh
 echo "== fuzzing (libFuzzer, bounded): CAN frames, command and log lines, board files"
 scripts/fuzz.sh 60 "$root/build-fuzz"
 echo "== host-in-the-loop on a real kernel (qemu VM: vcan0, gpio-sim)"
-scripts/vm-hil-test.sh "$root/build"
+# The emulated machine (TCG, no KVM) stalls when the shared host is busy: lost encoder edges,
+# late loop wake-ups. A failed run is printed in full and the stage runs once more; the
+# second run decides.
+if ! scripts/vm-hil-test.sh "$root/build"; then
+  echo "== host-in-the-loop failed (above); running it once more, and that run decides"
+  scripts/vm-hil-test.sh "$root/build"
+fi

@@ -56,7 +56,7 @@ def main():
     # Names beyond the hidden effects do not fail a case (a hidden friction does slow the disc
     # and hold it at rest), but they are shown: a clean answer names nothing else.
     wanted = set()
-    if expect not in ("clean",) and not expect.startswith("unexplained:"):
+    if expect != "clean" and not expect.startswith("unexplained:"):
         wanted = {":".join(item.split(":")[:2]) for item in expect.split(";")}
     extra = [f for f in found if f not in wanted]
     verdict = "PASS" if not problems else "FAIL"

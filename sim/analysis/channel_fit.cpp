@@ -35,7 +35,6 @@ Layout layout(std::vector<double>& nominal, std::vector<Effect>& effects,
   return l;
 }
 
-// Residual rows: the calibration samples, thinned to at most ~4000 rows.
 // The calibration rows the fit sees: at most about 4000, none from a left-out fold.
 std::vector<std::size_t> rows(const Split& split) {
   const std::size_t end = split.calibration_end;

@@ -155,7 +155,9 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   for (const auto& m : o.start_model)
     if (m.channel == &ch) given = &m;
   const std::vector<Effect> known = given ? given->effects : std::vector<Effect>{};
-  rep.nominal = fit_channel(ch, r, split, given ? given->nominal : ch.initial_guess(r), known);
+  // The data's own rough guess: the nominal fit's start, and a second start for candidates.
+  const std::vector<double> data_guess = ch.initial_guess(r);
+  rep.nominal = fit_channel(ch, r, split, given ? given->nominal : data_guess, known);
   const std::vector<double> e = residual_of(rep.nominal.prediction, y);
   rep.location = locate(ch, r, e, split.calibration_end, rep.noise_rms);
 
@@ -213,13 +215,13 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       // a contact point below the open clamp, relaxation like a softer law): start once more
       // from the data's own guess, and for relaxation from several time constants.
       {
-        ChannelFit alt = fit_channel(ch, r, split, ch.initial_guess(r), fx);
+        ChannelFit alt = fit_channel(ch, r, split, data_guess, fx);
         if (alt.bic < c.fit.bic) c.fit = std::move(alt);
       }
       if (spec->kind == EffectKind::kRelaxation) {
         for (double tau : {0.5, 3.0, 15.0}) {
           fx.back().values = {0.2, tau};
-          ChannelFit alt = fit_channel(ch, r, split, ch.initial_guess(r), fx);
+          ChannelFit alt = fit_channel(ch, r, split, data_guess, fx);
           if (alt.bic < c.fit.bic) c.fit = std::move(alt);
         }
       }

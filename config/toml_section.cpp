@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "config/input_file.h"
+
 namespace planter::config {
 namespace {
 std::string format_number(double v) {
@@ -106,6 +108,11 @@ std::string TomlSection::string(const std::string& key, const std::string& fallb
   if (n == nullptr) return fallback;
   auto s = n->value_exact<std::string>();
   if (!s) fail(key, "must be a string");
+  // Names and paths go into CSV metadata lines, HTML titles and messages: one line each.
+  for (const char c : *s) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
+      fail(key, "must not hold control characters (newline, tab, ...)");
+  }
   return *s;
 }
 
@@ -118,6 +125,10 @@ std::vector<std::string> TomlSection::strings(const std::string& key) {
   for (const auto& item : *a) {
     auto s = item.value_exact<std::string>();
     if (!s) fail(key, "must be an array of strings");
+    for (const char c : *s) {
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
+        fail(key, "must not hold control characters (newline, tab, ...)");
+    }
     out.push_back(*s);
   }
   return out;
@@ -162,12 +173,9 @@ void TomlSection::reject_unknown_keys() const {
 }
 
 TomlDocument::TomlDocument(const std::string& file) : file_(file) {
-  std::ifstream in(file);
-  if (!in) throw ConfigError(file, 0, "", "cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
+  const std::string text = read_input_file(file);
   try {
-    table_ = std::make_unique<toml::table>(toml::parse(buffer.str(), file));
+    table_ = std::make_unique<toml::table>(toml::parse(text, file));
   } catch (const toml::parse_error& e) {
     throw ConfigError(file, static_cast<int>(e.source().begin.line), "",
                       std::string(e.description()));

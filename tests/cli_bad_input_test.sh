@@ -5,12 +5,12 @@ sim=$1 src=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail=0
-expect() {  # expect NAME PATTERN -- command...
+expect() {  # expect NAME PATTERN -- command...   (exit code 2, or $want_rc)
   local name=$1 pattern=$2
   shift 3
   out=$("$@" 2>&1)
   rc=$?
-  if [ "$rc" -ne 2 ] || ! grep -qE "$pattern" <<<"$out"; then
+  if [ "$rc" -ne "${want_rc:-2}" ] || ! grep -qE "$pattern" <<<"$out"; then
     echo "FAIL $name: exit $rc, output: $out"
     fail=1
   else
@@ -27,6 +27,53 @@ sed "s|^stops = .*|stops = [{ at_m = 14.2, duration_s = 6.0, planting_off = true
 expect short-planting-off-stop "p.toml:[0-9]+: 'route.stops\[0\].duration_s': must be at least start_delay_s \+ 5 s" -- "$sim" run "$tmp/p.toml" --out "$tmp/o"
 printf '[scenario\n' >"$tmp/broken.toml"
 expect syntax "broken.toml:1:" -- "$sim" run "$tmp/broken.toml" --out "$tmp/o"
-expect missing-file "cannot open file" -- "$sim" run "$tmp/none.toml" --out "$tmp/o"
+expect missing-file "none.toml: no such file" -- "$sim" run "$tmp/none.toml" --out "$tmp/o"
 expect bad-option "" -- "$sim" run
+
+# Inputs that are not regular files are refused at once, never opened for a blocking read.
+mkfifo "$tmp/fifo.toml"
+expect fifo "fifo.toml: is a FIFO, not a regular file" -- timeout 10 "$sim" run "$tmp/fifo.toml" --out "$tmp/o"
+mkdir "$tmp/dir.toml"
+expect directory "dir.toml: is a directory, not a file" -- "$sim" run "$tmp/dir.toml" --out "$tmp/o"
+# A scenario saved with a UTF-8 byte-order mark (Windows editors) loads; the run must succeed.
+printf '\xef\xbb\xbf' >"$tmp/bom.toml"
+sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|; s|^distance_m = .*|distance_m = 1.0|; s|^stops = .*|stops = []|" \
+  "$src/scenarios/zhangqiu-field.toml" >>"$tmp/bom.toml"
+want_rc=0 expect bom-scenario "wrote $tmp/bom-out/" -- "$sim" run "$tmp/bom.toml" --quiet --out "$tmp/bom-out"
+
+# Outputs: a whole set or nothing. A write that fails (file size limit: EFBIG, as a full disk
+# gives ENOSPC) exits 1 naming the file and leaves no output directory behind.
+want_rc=1 expect write-fails "recording.csv: |cannot be written|write failed" -- \
+  bash -c "trap '' XFSZ; ulimit -f 64; exec \"$sim\" run \"$tmp/bom.toml\" --quiet --out \"$tmp/full\""
+if [ -e "$tmp/full" ] || compgen -G "$tmp/full.partial-*" >/dev/null; then
+  echo "FAIL write-fails: left $(ls -d "$tmp"/full*)"; fail=1
+fi
+# A second run replaces the first run's set whole; the manifest names every file.
+want_rc=0 expect rerun "wrote" -- "$sim" run "$tmp/bom.toml" --quiet --out "$tmp/bom-out"
+for f in recording.csv seedlings.csv summary.json report.html; do
+  grep -q "\"$f\": $(stat -c %s "$tmp/bom-out/$f")" "$tmp/bom-out/run.json" || {
+    echo "FAIL manifest: $f missing or of another size in run.json"; fail=1; }
+done
+# --out over a directory holding something else is refused unless --force.
+mkdir "$tmp/mine" && echo keep >"$tmp/mine/notes.txt"
+want_rc=1 expect foreign-out "mine: holds files that are not the output of .planter-sim run. .*--force" -- \
+  "$sim" run "$tmp/bom.toml" --quiet --out "$tmp/mine"
+[ -f "$tmp/mine/notes.txt" ] || { echo "FAIL foreign-out: notes.txt was removed"; fail=1; }
+echo x >"$tmp/afile"
+want_rc=1 expect out-is-file "afile: exists and is not a directory" -- "$sim" run "$tmp/bom.toml" --quiet --out "$tmp/afile"
+# User strings are escaped in HTML: a scenario named </script> cannot end a script element.
+sed 's|^name = .*|name = "x</script><b>y"|' "$tmp/bom.toml" >"$tmp/html.toml"
+want_rc=0 expect html-name "wrote" -- "$sim" run "$tmp/html.toml" --quiet --out "$tmp/html-out"
+if grep -q "</script><b>y" "$tmp/html-out/report.html"; then
+  echo "FAIL html-name: the name reached report.html unescaped"; fail=1
+fi
+# A newline in a name would break the recording's metadata line: refused with its key.
+sed 's|^name = .*|name = "two\\nlines"|' "$tmp/bom.toml" >"$tmp/nl.toml"
+expect newline-name "nl.toml:[0-9]+: 'scenario.name': " -- "$sim" run "$tmp/nl.toml" --quiet --out "$tmp/nl-out"
+# A route longer than max_duration_s is said to be cut short, in the output and summary.json.
+sed 's|^\[scenario\]|[scenario]\nmax_duration_s = 20.0|' "$tmp/bom.toml" >"$tmp/cut.toml"
+want_rc=0 expect route-cut "note: the route was not finished within max_duration_s = 20 s" -- \
+  "$sim" run "$tmp/cut.toml" --quiet --out "$tmp/cut-out"
+grep -q '"route_complete": false' "$tmp/cut-out/summary.json" || {
+  echo "FAIL route-cut: summary.json does not say route_complete false"; fail=1; }
 exit $fail

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "config/config_error.h"
+#include "config/output_set.h"
 #include "sim/analysis/fit_outputs.h"
 #include "sim/analysis/model_file.h"
 
@@ -67,6 +68,8 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_option("--out", out, "output directory (fit.json, report.html, model.toml)");
   app.add_flag("--json", json, "print fit.json instead of the summary");
+  bool force = false;
+  app.add_flag("--force", force, "replace --out even if it holds something other than a fit");
   app.add_option("--jobs", jobs, "channels analysed at once")->check(CLI::Range(1, 256));
   try {
     app.parse(argc, argv);
@@ -77,6 +80,7 @@ int main(int argc, char** argv) {
   try {
     const auto t0 = std::chrono::steady_clock::now();
     const Recording rec = load_recording(file);
+    planter::config::OutputSet outputs(out, "planter-fit", force);  // refuses before the work
     FitOptions o;
     o.jobs = jobs;
     if (!model.empty()) o.start_model = load_augmented_model(model);
@@ -93,7 +97,7 @@ int main(int argc, char** argv) {
     }
     const double pass =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - p0).count();
-    const std::string fit_text = write_fit_outputs(out, rep, analysed, wall);
+    const std::string fit_text = write_fit_outputs(outputs, rep, analysed, wall);
     if (json)
       std::fputs(fit_text.c_str(), stdout);
     else

@@ -37,11 +37,15 @@ constexpr std::uint32_t kTimeout = 0x05040000;
 constexpr std::uint32_t kBadCommand = 0x05040001;
 constexpr std::uint32_t kWriteOnly = 0x06010001;
 constexpr std::uint32_t kReadOnly = 0x06010002;
+constexpr std::uint32_t kUnsupportedAccess = 0x06010000;
 constexpr std::uint32_t kNoObject = 0x06020000;
+constexpr std::uint32_t kCannotMap = 0x06040041;
+constexpr std::uint32_t kMapLength = 0x06040042;
 constexpr std::uint32_t kLength = 0x06070010;
 constexpr std::uint32_t kNoSubIndex = 0x06090011;
 constexpr std::uint32_t kValueRange = 0x06090030;
 constexpr std::uint32_t kGeneral = 0x08000000;
+constexpr std::uint32_t kCannotStore = 0x08000020;
 constexpr std::uint32_t kDeviceState = 0x08000022;
 }  // namespace abort_code
 

@@ -4,7 +4,7 @@ namespace planter::canopen {
 
 int PdoMapping::total_bits() const {
   int bits = 0;
-  for (std::uint8_t i = 0; i < count; ++i) bits += entries[i].bits;
+  for (std::size_t i = 0; i < count && i < kMaxEntries; ++i) bits += entries[i].bits;
   return bits;
 }
 
@@ -18,6 +18,7 @@ bool PdoMapping::valid() const {
 }
 
 std::uint8_t pdo_pack(const PdoMapping& mapping, const std::uint64_t* values, std::uint8_t* data) {
+  if (!mapping.valid()) return 0;
   int byte = 0;
   for (std::uint8_t i = 0; i < mapping.count; ++i) {
     const int n = mapping.entries[i].bits / 8;
@@ -28,7 +29,7 @@ std::uint8_t pdo_pack(const PdoMapping& mapping, const std::uint64_t* values, st
 
 bool pdo_unpack(const PdoMapping& mapping, const std::uint8_t* data, std::uint8_t dlc,
                 std::uint64_t* values) {
-  if (mapping.total_bits() > 8 * dlc) return false;
+  if (!mapping.valid() || mapping.total_bits() > 8 * dlc) return false;
   int byte = 0;
   for (std::uint8_t i = 0; i < mapping.count; ++i) {
     const int n = mapping.entries[i].bits / 8;

@@ -1,6 +1,7 @@
 #pragma once
 // PDO mapping and byte packing (byte-aligned entries of 8, 16 or 32 bits, little-endian).
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace planter::canopen {
@@ -30,9 +31,14 @@ struct PdoMapping {
   [[nodiscard]] bool valid() const;
 };
 
-// values[i] is the raw value of entries[i]. Returns the DLC.
+// The payload of one classic CAN frame: a mapping never packs more than this.
+constexpr std::size_t kPdoMaxBytes = 8;
+
+// values[i] is the raw value of entries[i]; data holds kPdoMaxBytes. Returns the DLC, or 0 with
+// nothing written when the mapping is not valid() (a mapping taken from the bus or an SDO write
+// can claim any length: it must never write past the frame).
 std::uint8_t pdo_pack(const PdoMapping& mapping, const std::uint64_t* values, std::uint8_t* data);
-// False (and nothing written) when the frame is shorter than the mapping.
+// False (and nothing written) when the mapping is not valid() or the frame is shorter than it.
 bool pdo_unpack(const PdoMapping& mapping, const std::uint8_t* data, std::uint8_t dlc,
                 std::uint64_t* values);
 

@@ -159,6 +159,9 @@ std::uint32_t SdoServer::write_value(ObjectEntry& entry, const std::uint8_t* dat
     if (n != entry.size) return abort_code::kLength;
     std::uint64_t v = 0;
     for (std::size_t i = 0; i < n; ++i) v |= static_cast<std::uint64_t>(data[i]) << (8 * i);
+    if (rules_ != nullptr) {
+      if (const std::uint32_t code = rules_->check_write(entry, v); code != 0) return code;
+    }
     entry.value = v;
   }
   ++writes_;

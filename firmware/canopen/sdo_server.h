@@ -8,9 +8,20 @@
 
 namespace planter::canopen {
 
+// The device's rules for a value written over SDO (CiA 301: PDO mapping, store signature;
+// a profile's value ranges). Returns 0 to accept, or the SDO abort code that refuses it.
+class SdoWriteRules {
+ public:
+  virtual ~SdoWriteRules() = default;
+  [[nodiscard]] virtual std::uint32_t check_write(const ObjectEntry& entry,
+                                                  std::uint64_t value) const = 0;
+};
+
 class SdoServer {
  public:
-  SdoServer(std::uint8_t node_id, ObjectDictionary& od) : node_id_(node_id), od_(od) {}
+  // rules may be null: every write of the right length is then accepted.
+  SdoServer(std::uint8_t node_id, ObjectDictionary& od, const SdoWriteRules* rules = nullptr)
+      : node_id_(node_id), od_(od), rules_(rules) {}
   // Returns true when the frame was an SDO request for this node (answered or aborted).
   bool on_frame(const hal::CanFrame& frame, hal::CanBus& bus);
   void set_node_id(std::uint8_t node_id) { node_id_ = node_id; }
@@ -24,6 +35,7 @@ class SdoServer {
 
   std::uint8_t node_id_;
   ObjectDictionary& od_;
+  const SdoWriteRules* rules_;
   // Segmented transfer in progress.
   ObjectEntry* segment_entry_ = nullptr;
   bool segment_upload_ = false;

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "config/durable_file.h"
+#include "config/output_set.h"
 #include "sim/analysis/model_file.h"
 #include "sim/report/svg_plot.h"
 
@@ -177,13 +177,13 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
   return h.str();
 }
 
-std::string write_fit_outputs(const std::string& dir, const FitReport& r, const Recording& rec,
+std::string write_fit_outputs(config::OutputSet& out, const FitReport& r, const Recording& rec,
                               double wall_s) {
-  std::filesystem::create_directories(dir);
   const std::string json = fit_json(r, wall_s);
-  config::write_output_file(dir + "/fit.json", json);
-  config::write_output_file(dir + "/model.toml", fit_model_toml(r));
-  config::write_output_file(dir + "/report.html", fit_report_html(r, rec));
+  out.write("fit.json", json);
+  out.write("model.toml", fit_model_toml(r));
+  out.write("report.html", fit_report_html(r, rec));
+  out.commit();
   return json;
 }
 

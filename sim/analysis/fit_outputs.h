@@ -5,6 +5,7 @@
 // augmented model, which `planter-sim replay` runs).
 #include <string>
 
+#include "config/output_set.h"
 #include "sim/analysis/mismatch.h"
 
 namespace planter::analysis {
@@ -12,9 +13,9 @@ namespace planter::analysis {
 std::string fit_json(const FitReport& r, double wall_s);
 std::string fit_model_toml(const FitReport& r);
 std::string fit_report_html(const FitReport& r, const Recording& rec);
-// Writes all three into dir and returns fit.json's text; throws std::runtime_error naming a
-// file that cannot be written.
-std::string write_fit_outputs(const std::string& dir, const FitReport& r, const Recording& rec,
+// Writes all three into the output set, commits it (the old set or the new, never a mix) and
+// returns fit.json's text; throws std::runtime_error naming a file that cannot be written.
+std::string write_fit_outputs(config::OutputSet& out, const FitReport& r, const Recording& rec,
                               double wall_s);
 
 }  // namespace planter::analysis

@@ -3,9 +3,10 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <set>
 #include <sstream>
+
+#include "config/input_file.h"
 
 namespace planter::analysis {
 namespace {
@@ -36,7 +37,8 @@ std::string trim(const std::string& s) {
 Recording parse_recording(const std::string& text, const std::string& file, std::size_t min_rows) {
   Recording r;
   r.file = file;
-  std::istringstream in(text);
+  // A CSV saved on Windows may start with a UTF-8 byte-order mark: it is not part of "t".
+  std::istringstream in(config::starts_with_utf8_bom(text) ? text.substr(3) : text);
   std::string line;
   int line_no = 0;
   std::vector<std::string> header;
@@ -62,7 +64,8 @@ Recording parse_recording(const std::string& text, const std::string& file, std:
           throw RecordingError(file, line_no,
                                "header: column " + std::to_string(c + 1) + " has no name");
         if (!seen.insert(name).second)
-          throw RecordingError(file, line_no, "header: column '" + name + "' appears twice");
+          throw RecordingError(file, line_no,
+                               "header: column '" + config::excerpt(name) + "' appears twice");
         if (name == "t") t_col = static_cast<int>(c);
         if (name == "state") state_col = static_cast<int>(c);
       }
@@ -92,18 +95,23 @@ Recording parse_recording(const std::string& text, const std::string& file, std:
       char* end = nullptr;
       errno = 0;
       const double v = std::strtod(cell.c_str(), &end);
-      if (cell.empty() || end != cell.c_str() + cell.size() || errno == ERANGE)
+      // ERANGE with a tiny result is underflow (1e-310 reads as a denormal or 0: a number).
+      const bool overflow = errno == ERANGE && std::fabs(v) == HUGE_VAL;
+      if (cell.empty() || end != cell.c_str() + cell.size() || overflow)
         throw RecordingError(file, line_no,
-                             "column '" + header[c] + "': '" + cell + "' is not a number");
+                             "column '" + config::excerpt(header[c]) + "': '" +
+                                 config::excerpt(cell) + "' is not a number");
       if (!std::isfinite(v))
-        throw RecordingError(
-            file, line_no,
-            "column '" + header[c] + "': " + cell + " (NaN or infinite values are not allowed)");
+        throw RecordingError(file, line_no,
+                             "column '" + config::excerpt(header[c]) +
+                                 "': " + config::excerpt(cell) +
+                                 " (NaN or infinite values are not allowed)");
       if (static_cast<int>(c) == t_col) {
         if (!r.t.empty() && v <= r.t.back())
-          throw RecordingError(file, line_no,
-                               "time " + cell + " s does not increase (previous row: " +
-                                   std::to_string(r.t.back()) + " s)");
+          throw RecordingError(
+              file, line_no,
+              "time " + config::excerpt(cell) +
+                  " s does not increase (previous row: " + std::to_string(r.t.back()) + " s)");
         r.t.push_back(v);
       } else {
         columns[c]->push_back(v);
@@ -119,11 +127,8 @@ Recording parse_recording(const std::string& text, const std::string& file, std:
 }
 
 Recording load_recording(const std::string& path, std::size_t min_rows) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw RecordingError(path, 0, "cannot be read");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return parse_recording(s.str(), path, min_rows);
+  // The checks of every input (no FIFO, no directory, the reason when missing); no size cap.
+  return parse_recording(config::read_input_file(path, SIZE_MAX), path, min_rows);
 }
 
 }  // namespace planter::analysis

@@ -7,8 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "config/config_error.h"
+#include "config/output_set.h"
 #include "hal/linux/hal_error.h"
 #include "sim/apps/replay.h"
 #include "sim/hil/realtime_devices.h"
@@ -47,11 +49,25 @@ void print_summary(const Summary& s) {
   std::printf("final state         %s (faults 0x%x)\n", s.final_state.c_str(), s.faults);
 }
 
-int run_scenario(const std::string& scenario_path, const std::string& out_dir, bool quiet) {
+std::string seedlings_csv(const SeedlingProcess& process) {
+  std::ostringstream csv;
+  csv << "x_m,release_t,diameter_mm,length_mm,strength_N,peak_force_N,damaged,tilt_deg,sigma_"
+         "at_release\n";
+  for (const Seedling& s : process.seedlings()) {
+    if (!s.planted) continue;
+    csv << s.x_m << ',' << s.release_time_s << ',' << s.diameter_mm << ',' << s.length_mm << ','
+        << s.strength_N << ',' << s.peak_force_N << ',' << (s.damaged ? 1 : 0) << ',' << s.tilt_deg
+        << ',' << s.sigma_at_release << '\n';
+  }
+  return csv.str();
+}
+
+int run_scenario(const std::string& scenario_path, const std::string& out_dir, bool quiet,
+                 bool force) {
   const Scenario scenario = load_scenario(scenario_path);
-  fs::create_directories(out_dir);
+  config::OutputSet out(out_dir, "planter-sim run", force);
   LockstepRunner runner(scenario);
-  RecordingWriter recording((fs::path(out_dir) / "recording.csv").string(),
+  RecordingWriter recording(out.path("recording.csv"), out.shown("recording.csv"),
                             {{"source", "planter-sim"},
                              {"scenario", scenario.name},
                              {"board", scenario.board.name},
@@ -65,33 +81,27 @@ int run_scenario(const std::string& scenario_path, const std::string& out_dir, b
   });
   const Summary summary = runner.run();
   recording.close();
-  std::ofstream((fs::path(out_dir) / "summary.json").string()) << summary.to_json() << "\n";
-  std::ofstream seedlings((fs::path(out_dir) / "seedlings.csv").string());
-  seedlings << "x_m,release_t,diameter_mm,length_mm,strength_N,peak_force_N,damaged,tilt_deg,sigma_"
-               "at_release\n";
-  for (const Seedling& s : runner.plant().seedlings().seedlings()) {
-    if (!s.planted) continue;
-    seedlings << s.x_m << ',' << s.release_time_s << ',' << s.diameter_mm << ',' << s.length_mm
-              << ',' << s.strength_N << ',' << s.peak_force_N << ',' << (s.damaged ? 1 : 0) << ','
-              << s.tilt_deg << ',' << s.sigma_at_release << '\n';
-  }
-  write_report_html((fs::path(out_dir) / "report.html").string(), scenario, summary, series,
-                    runner.plant().seedlings());
+  out.write("summary.json", summary.to_json() + "\n");
+  out.write("seedlings.csv", seedlings_csv(runner.plant().seedlings()));
+  out.write("report.html", report_html(scenario, summary, series, runner.plant().seedlings()));
+  out.commit();
   if (!quiet) print_summary(summary);
+  for (const auto& note : summary.notes) std::printf("note: %s\n", note.c_str());
   std::printf("wrote %s/{recording.csv,seedlings.csv,summary.json,report.html}\n", out_dir.c_str());
   return 0;
 }
 
 // The paper's Box-Behnken design on contact area, disc speed and depth (15 runs), each a
 // shortened run of the scenario, so a user sees how uprightness and force respond.
-int run_sweep(const std::string& scenario_path, const std::string& out_dir, double distance_m) {
+int run_sweep(const std::string& scenario_path, const std::string& out_dir, double distance_m,
+              bool force) {
   const Scenario base = load_scenario(scenario_path);
-  fs::create_directories(out_dir);
+  config::OutputSet out(out_dir, "planter-sim sweep", force);
   const double area[3] = {105, 255, 405}, omega[3] = {0.15, 0.25, 0.35}, depth[3] = {40, 100, 160};
   const int design[15][3] = {{-1, -1, 0}, {1, -1, 0}, {-1, 1, 0}, {1, 1, 0},   {-1, 0, -1},
                              {1, 0, -1},  {-1, 0, 1}, {1, 0, 1},  {0, -1, -1}, {0, 1, -1},
                              {0, -1, 1},  {0, 1, 1},  {0, 0, 0},  {0, 0, 0},   {0, 0, 0}};
-  std::ofstream csv((fs::path(out_dir) / "sweep.csv").string());
+  std::ostringstream csv;
   csv << "run,contact_area_mm2,disc_speed_radps,depth_mm,sigma,uprightness_pct,damage_pct,seedling_"
          "peak_force_mean_N,"
          "clamp_force_max_N,spacing_mean_mm\n";
@@ -114,6 +124,8 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, doub
         << ',' << r.damage_pct << ',' << r.seedling_peak_force_mean_N << ',' << r.clamp_force_max_N
         << ',' << r.spacing_mean_mm << '\n';
   }
+  out.write("sweep.csv", csv.str());
+  out.commit();
   std::printf("wrote %s/sweep.csv\n", out_dir.c_str());
   return 0;
 }
@@ -143,16 +155,18 @@ int main(int argc, char** argv) {
   CLI::App app{"planter-sim: the transplanter's plant model and lockstep simulation runner"};
   app.require_subcommand(1);
   std::string scenario, out = "out";
-  bool quiet = false;
+  bool quiet = false, force = false;
   double sweep_distance = 3.0;
   auto* run = app.add_subcommand("run", "run a scenario: recording.csv, summary.json, report.html");
   run->add_option("scenario", scenario, "scenario file (TOML)")->required();
   run->add_option("--out", out, "output directory")->capture_default_str();
   run->add_flag("--quiet", quiet, "do not print the summary");
+  run->add_flag("--force", force, "replace --out even if it holds something other than a run");
   auto* sweep =
       app.add_subcommand("sweep", "the paper's Box-Behnken design (area x disc speed x depth)");
   sweep->add_option("scenario", scenario, "base scenario file (TOML)")->required();
   sweep->add_option("--out", out, "output directory")->capture_default_str();
+  sweep->add_flag("--force", force, "replace --out even if it holds something other than a sweep");
   sweep->add_option("--distance", sweep_distance, "metres per run")
       ->capture_default_str()
       ->check(CLI::Range(0.5, 100.0));
@@ -175,6 +189,8 @@ int main(int argc, char** argv) {
   replay->add_option("model", model, "model.toml from planter-fit")->required();
   replay->add_option("recording", recording, "recording CSV")->required();
   replay->add_option("--out", out, "output directory (replay.csv)")->capture_default_str();
+  replay->add_flag("--force", force,
+                   "replace --out even if it holds something other than a replay");
 #endif
   try {
     app.parse(argc, argv);
@@ -183,11 +199,11 @@ int main(int argc, char** argv) {
     return rc == 0 ? 0 : 2;
   }
   try {
-    if (*run) return run_scenario(scenario, out, quiet);
-    if (*sweep) return run_sweep(scenario, out, sweep_distance);
+    if (*run) return run_scenario(scenario, out, quiet, force);
+    if (*sweep) return run_sweep(scenario, out, sweep_distance, force);
     if (*devices) return run_devices(scenario, devices_board, devices_options);
 #ifdef PLANTER_WITH_REPLAY
-    if (*replay) return run_replay(model, recording, out);
+    if (*replay) return run_replay(model, recording, out, force);
   } catch (const analysis::RecordingError& e) {
     std::fprintf(stderr, "planter-sim: %s\n", e.what());
     return 2;

@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <sstream>
 
-#include "config/durable_file.h"
+#include "config/output_set.h"
 #include "sim/analysis/model_file.h"
 
 namespace planter::sim {
 
 int run_replay(const std::string& model_path, const std::string& recording_path,
-               const std::string& out_dir) {
+               const std::string& out_dir, bool force) {
   using namespace analysis;
   const std::vector<ModelChannel> model = load_augmented_model(model_path);
   const Recording rec = load_recording(recording_path);
@@ -50,10 +50,10 @@ int run_replay(const std::string& model_path, const std::string& recording_path,
     }
     csv << '\n';
   }
-  std::filesystem::create_directories(out_dir);
-  const std::string path = out_dir + "/replay.csv";
-  config::write_output_file(path, csv.str());
-  std::printf("wrote %s\n", path.c_str());
+  config::OutputSet out(out_dir, "planter-sim replay", force);
+  out.write("replay.csv", csv.str());
+  out.commit();
+  std::printf("wrote %s/replay.csv\n", out_dir.c_str());
   return 0;
 }
 

@@ -9,7 +9,7 @@ using canopen::Access;
 CanopenDevice::CanopenDevice(const DeviceIdentity& id, hal::CanBus& bus)
     : identity_(id),
       bus_(bus),
-      sdo_(id.node_id, od_),
+      sdo_(id.node_id, od_, this),
       lss_({id.vendor_id, id.product_code, id.revision, id.serial}, id.node_id) {
   od_.add(0x1000, 0, 4, Access::kConst, id.device_type);
   od_.add(0x1001, 0, 1, Access::kReadOnly, 0);
@@ -46,13 +46,85 @@ CanopenDevice::CanopenDevice(const DeviceIdentity& id, hal::CanBus& bus)
 
 namespace {
 
+// 0x1010:1 takes only this signature ("save", CiA 301 7.5.2.13).
+constexpr std::uint64_t kSaveSignature = 0x65766173;
+constexpr std::uint32_t kPdoInvalid = 0x80000000u;
+
+bool is_mapping_object(std::uint16_t index) {
+  return (index >= 0x1600 && index <= 0x1603) || (index >= 0x1A00 && index <= 0x1A03);
+}
+
+bool is_pdo_comm_object(std::uint16_t index) {
+  return (index >= 0x1400 && index <= 0x1403) || (index >= 0x1800 && index <= 0x1803);
+}
+
 bool is_comm_object(std::uint16_t index) {
-  return index == 0x1017 || (index >= 0x1400 && index <= 0x1403) ||
-         (index >= 0x1600 && index <= 0x1603) || (index >= 0x1800 && index <= 0x1803) ||
-         (index >= 0x1A00 && index <= 0x1A03);
+  return index == 0x1017 || is_pdo_comm_object(index) || is_mapping_object(index);
+}
+
+// The communication object (0x14xx/0x18xx) of a mapping object (0x16xx/0x1Axx).
+std::uint16_t comm_of_mapping(std::uint16_t map_index) {
+  return static_cast<std::uint16_t>(map_index - 0x200);
 }
 
 }  // namespace
+
+std::uint32_t CanopenDevice::check_write(const canopen::ObjectEntry& entry,
+                                         std::uint64_t value) const {
+  namespace ac = canopen::abort_code;
+  if (entry.index == 0x1010 && entry.sub == 1)
+    return value == kSaveSignature ? 0 : ac::kCannotStore;
+  if (entry.index == 0x1003 && entry.sub == 0) return value == 0 ? 0 : ac::kValueRange;
+  if (is_mapping_object(entry.index)) return check_mapping_write(entry, value);
+  if (is_pdo_comm_object(entry.index) && entry.sub == 1) {
+    // CiA 301 7.5.2.35: the COB-ID of a valid PDO cannot change; invalidate it first.
+    const std::uint64_t now = entry.value;
+    const bool valid_now = (now & kPdoInvalid) == 0;
+    const bool stays_valid = (value & kPdoInvalid) == 0;
+    if (valid_now && stays_valid && (value & 0x7FF) != (now & 0x7FF)) return ac::kValueRange;
+    if (stays_valid && (value & 0x7FF) == 0) return ac::kValueRange;
+  }
+  if (is_pdo_comm_object(entry.index) && entry.sub == 2) {
+    if (value > 240 && value < 254) return ac::kValueRange;  // 241-253 reserved
+  }
+  return check_profile_write(entry, value);
+}
+
+std::uint32_t CanopenDevice::check_mapping_write(const canopen::ObjectEntry& entry,
+                                                 std::uint64_t value) const {
+  namespace ac = canopen::abort_code;
+  // CiA 301 7.5.2.36: a mapping changes only while its PDO is invalid, and its entries only
+  // while sub 0 is 0; sub 0 is then set to the number of entries, each checked again.
+  const auto comm = comm_of_mapping(entry.index);
+  if ((od_.get(comm, 1) & kPdoInvalid) == 0) return ac::kUnsupportedAccess;
+  const bool receive = entry.index < 0x1A00;
+  if (entry.sub != 0) {
+    if (od_.get(entry.index, 0) != 0) return ac::kUnsupportedAccess;
+    return value == 0 ? 0 : check_mapped_object(static_cast<std::uint32_t>(value), receive);
+  }
+  if (value > canopen::PdoMapping::kMaxEntries) return ac::kMapLength;
+  unsigned bits = 0;
+  for (std::uint8_t i = 1; i <= value; ++i) {
+    const auto mapped = static_cast<std::uint32_t>(od_.get(entry.index, i));
+    if (const auto code = check_mapped_object(mapped, receive); code != 0) return code;
+    bits += mapped & 0xFF;
+  }
+  return bits <= 8 * canopen::kPdoMaxBytes ? 0 : ac::kMapLength;
+}
+
+std::uint32_t CanopenDevice::check_mapped_object(std::uint32_t mapping_value, bool receive) const {
+  namespace ac = canopen::abort_code;
+  const auto e = canopen::PdoEntry::from_mapping_value(mapping_value);
+  const canopen::ObjectEntry* object = od_.find(e.index, e.sub);
+  if (object == nullptr) return od_.has_index(e.index) ? ac::kNoSubIndex : ac::kNoObject;
+  // This device maps whole numeric objects only (8, 16 or 32 bits).
+  if (object->size == 0 || object->size > 4 || e.bits != 8 * object->size) return ac::kCannotMap;
+  const bool readable = object->access != canopen::Access::kWriteOnly;
+  const bool writable = object->access == canopen::Access::kReadWrite ||
+                        object->access == canopen::Access::kWriteOnly;
+  if (receive ? !writable : !readable) return ac::kCannotMap;
+  return 0;
+}
 
 void CanopenDevice::set_node_id(std::uint8_t node_id) {
   identity_.node_id = node_id;
@@ -81,7 +153,6 @@ void CanopenDevice::reset_communication(std::int64_t now_ns) {
 
 void CanopenDevice::after_sdo_write() {
   // 0x1010:1 = "save" stores the communication parameters; the entry reads 1 again after.
-  constexpr std::uint64_t kSaveSignature = 0x65766173;
   if (od_.get(0x1010, 1) == kSaveSignature) {
     stored_comm_.clear();
     for (std::uint16_t index = 0x1017; index <= 0x1A03; ++index) {

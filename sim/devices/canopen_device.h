@@ -24,7 +24,7 @@ struct DeviceIdentity {
   std::string name;
 };
 
-class CanopenDevice {
+class CanopenDevice : private canopen::SdoWriteRules {
  public:
   static constexpr std::uint8_t kErrorHistoryDepth = 8;
   CanopenDevice(const DeviceIdentity& identity, hal::CanBus& bus);
@@ -50,8 +50,19 @@ class CanopenDevice {
   virtual void on_rpdo() {}
   // Restores the application's defaults on reset node.
   virtual void on_reset() {}
+  // The profile's own refusals of an SDO write (0 accepts), after the CiA 301 rules.
+  [[nodiscard]] virtual std::uint32_t check_profile_write(const canopen::ObjectEntry& /*entry*/,
+                                                          std::uint64_t /*value*/) const {
+    return 0;
+  }
 
  private:
+  // CiA 301's rules for the communication objects, then check_profile_write.
+  [[nodiscard]] std::uint32_t check_write(const canopen::ObjectEntry& entry,
+                                          std::uint64_t value) const override;
+  [[nodiscard]] std::uint32_t check_mapping_write(const canopen::ObjectEntry& entry,
+                                                  std::uint64_t value) const;
+  [[nodiscard]] std::uint32_t check_mapped_object(std::uint32_t mapping_value, bool receive) const;
   void handle(const hal::CanFrame& frame, std::int64_t now_ns);
   void reset_communication(std::int64_t now_ns);
   void on_sync();

@@ -26,6 +26,17 @@ Cia402DriveDevice::Cia402DriveDevice(const DeviceIdentity& identity, hal::CanBus
   o.add(c402::kSupportedModes, 0, 4, Access::kConst, (1u << 0) | (1u << 2) | (1u << 5));
 }
 
+std::uint32_t Cia402DriveDevice::check_profile_write(const canopen::ObjectEntry& entry,
+                                                     std::uint64_t value) const {
+  if (entry.index != c402::kModesOfOperation) return 0;
+  // CiA 402 6.2.x: 0x6502 bit (mode - 1) says which positive modes the drive has; 0 = none.
+  const auto mode = static_cast<std::int8_t>(value);
+  if (mode == 0) return 0;
+  const auto supported = od().get(c402::kSupportedModes, 0);
+  if (mode > 0 && mode <= 32 && (supported & (1ull << (mode - 1))) != 0) return 0;
+  return canopen::abort_code::kValueRange;
+}
+
 std::int8_t Cia402DriveDevice::mode() const {
   return static_cast<std::int8_t>(od().get(c402::kModesOfOperation, 0));
 }

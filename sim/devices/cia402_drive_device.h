@@ -27,6 +27,8 @@ class Cia402DriveDevice final : public CanopenDevice {
  protected:
   void on_rpdo() override;
   void on_reset() override;
+  [[nodiscard]] std::uint32_t check_profile_write(const canopen::ObjectEntry& entry,
+                                                  std::uint64_t value) const override;
 
  private:
   void publish_status();

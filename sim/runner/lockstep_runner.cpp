@@ -1,6 +1,7 @@
 #include "sim/runner/lockstep_runner.h"
 
 #include <chrono>
+#include <cstdio>
 
 namespace planter::sim {
 LockstepRunner::LockstepRunner(const Scenario& scenario)
@@ -106,6 +107,14 @@ Summary LockstepRunner::run() {
                        (static_cast<double>(bus_.bitrate_bps()) * s.sim_seconds);
   s.faults = controller_->faults();
   s.final_state = supervisor_state_name(controller_->state());
+  s.route_complete = finished_at_s_ >= 0.0;
+  if (!s.route_complete) {
+    char note[160];
+    std::snprintf(note, sizeof note,
+                  "the route was not finished within max_duration_s = %g s: %.2f of %.2f m driven",
+                  scenario_.max_duration_s, s.distance_m, scenario_.plant.route.distance_m);
+    s.notes.emplace_back(note);
+  }
   return s;
 }
 

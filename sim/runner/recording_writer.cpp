@@ -1,15 +1,19 @@
 #include "sim/runner/recording_writer.h"
 
+#include <cerrno>
+#include <cstring>
 #include <stdexcept>
 
 #include "config/recording_format.h"
 
 namespace planter::sim {
 
-RecordingWriter::RecordingWriter(const std::string& path,
+RecordingWriter::RecordingWriter(const std::string& path, const std::string& shown_path,
                                  const std::vector<std::pair<std::string, std::string>>& metadata)
-    : file_(std::fopen(path.c_str(), "w")), path_(path) {
-  if (file_ == nullptr) throw std::runtime_error(path + ": cannot open for writing");
+    : file_(std::fopen(path.c_str(), "w")), path_(shown_path) {
+  if (file_ == nullptr) {
+    throw std::runtime_error(path_ + ": cannot be written: " + std::strerror(errno));
+  }
   for (const auto& [k, v] : metadata) std::fprintf(file_, "# %s: %s\n", k.c_str(), v.c_str());
   std::fprintf(file_,
                "%s,v_ground,true_x_m,true_sigma,true_omega,true_clamp_force,"
@@ -32,10 +36,13 @@ void RecordingWriter::write(const TickRecord& r) {
 
 void RecordingWriter::close() {
   if (file_ == nullptr) return;
-  const bool failed = std::ferror(file_) != 0;
+  const bool failed = std::fflush(file_) != 0 || std::ferror(file_) != 0;
+  const int err = errno;
   const int rc = std::fclose(file_);
   file_ = nullptr;
-  if (failed || rc != 0) throw std::runtime_error(path_ + ": write failed");
+  if (failed || rc != 0) {
+    throw std::runtime_error(path_ + ": cannot be written: " + std::strerror(failed ? err : errno));
+  }
 }
 
 void ReportSeries::add(const TickRecord& r) {

@@ -12,8 +12,9 @@ namespace planter::sim {
 
 class RecordingWriter {
  public:
-  // Throws std::runtime_error when the file cannot be written.
-  RecordingWriter(const std::string& path,
+  // Throws std::runtime_error when the file cannot be written; messages name `shown_path`
+  // (the path the user will see, when `path` is a staging file).
+  RecordingWriter(const std::string& path, const std::string& shown_path,
                   const std::vector<std::pair<std::string, std::string>>& metadata);
   ~RecordingWriter();
   RecordingWriter(const RecordingWriter&) = delete;
@@ -34,7 +35,8 @@ struct ReportSeries {
   void add(const TickRecord& row);
 };
 
-void write_report_html(const std::string& path, const Scenario& scenario, const Summary& summary,
-                       const ReportSeries& series, const SeedlingProcess& seedlings);
+// The self-contained report.html; every user string in it is escaped.
+std::string report_html(const Scenario& scenario, const Summary& summary,
+                        const ReportSeries& series, const SeedlingProcess& seedlings);
 
 }  // namespace planter::sim

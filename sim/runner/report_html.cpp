@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sim/report/html_text.h"
 #include "sim/report/svg_plot.h"
 #include "sim/runner/recording_writer.h"
 
@@ -45,10 +46,10 @@ std::string histogram(const std::string& title, const std::vector<double>& value
 
 }  // namespace
 
-void write_report_html(const std::string& path, const Scenario& sc, const Summary& s,
-                       const ReportSeries& r, const SeedlingProcess& seedlings) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
+std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries& r,
+                        const SeedlingProcess& seedlings) {
+  using report::html_escape;
+  std::ostringstream out;
   std::vector<double> tilts, spacing, peaks;
   double last_x = -1;
   std::vector<double> xs;
@@ -66,14 +67,14 @@ void write_report_html(const std::string& path, const Scenario& sc, const Summar
   const double ceiling = s.clamp_ceiling_N;
   std::vector<double> ceiling_line(r.t.size(), ceiling);
   std::vector<double> sigma_line(r.t.size(), s.sigma_target);
-  out << "<!doctype html><html><head><meta charset='utf-8'><title>planter-sim: " << s.scenario
-      << "</title>"
+  out << "<!doctype html><html><head><meta charset='utf-8'><title>planter-sim: "
+      << html_escape(s.scenario) << "</title>"
       << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td{padding:2px 10px}"
       << "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style></"
          "head><body>"
-      << "<h1>Simulated run: " << s.scenario << "</h1><p>Scenario <code>" << sc.file
-      << "</code>, board <code>" << sc.board.name << "</code>, seed " << sc.seed
-      << ".</p><h2>Figures</h2><table>";
+      << "<h1>Simulated run: " << html_escape(s.scenario) << "</h1><p>Scenario <code>"
+      << html_escape(sc.file) << "</code>, board <code>" << html_escape(sc.board.name)
+      << "</code>, seed " << sc.seed << ".</p><h2>Figures</h2><table>";
   auto row = [&](const char* name, double v, const char* unit, const char* paper) {
     out << "<tr><td>" << name << "</td><td><b>" << v << "</b> " << unit << "</td><td>" << paper
         << "</td></tr>";
@@ -142,7 +143,7 @@ void write_report_html(const std::string& path, const Scenario& sc, const Summar
       << sc.plant.drive.force_noise_N << " N.</li>"
       << "<li>Sigma statistics use samples with true (or measured) ground speed above 0.02 "
          "m/s.</li></ul></body></html>";
-  if (!out) throw std::runtime_error(path + ": write failed");
+  return out.str();
 }
 
 }  // namespace planter::sim

@@ -101,6 +101,8 @@ std::string Summary::to_json() const {
   j["seedlings_damaged"] = seedlings_damaged;
   j["plot_counts"] = plot_counts;
   j["distance_m"] = distance_m;
+  j["route_complete"] = route_complete;
+  j["notes"] = notes;
   j["sim_seconds"] = sim_seconds;
   j["wall_seconds"] = wall_seconds;
   j["realtime_factor"] = realtime_factor;

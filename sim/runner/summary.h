@@ -30,6 +30,9 @@ struct Summary {
   std::uint64_t can_frames = 0;
   std::uint32_t faults = 0;
   std::string final_state;
+  bool route_complete = true;
+  // What a reader must know beyond the figures (a route cut short, ...).
+  std::vector<std::string> notes;
 
   [[nodiscard]] std::string to_json() const;
 };

@@ -1,0 +1,167 @@
+#include "config/output_set.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "config/durable_file.h"
+
+namespace planter::config {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw std::runtime_error(path + ": " + what);
+}
+
+// JSON string escaping for the manifest (names are ours; the tool string may hold quotes).
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(c));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+void fsync_path(const std::string& path, int flags) {
+  const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) fail(path, std::string("cannot be opened to sync: ") + std::strerror(errno));
+  const int rc = ::fsync(fd);
+  const int err = errno;
+  ::close(fd);
+  if (rc != 0) fail(path, std::string("cannot be synced: ") + std::strerror(err));
+}
+
+std::string parent_of(const std::string& dir) {
+  const fs::path p = fs::path(dir).lexically_normal();
+  const fs::path parent = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  return parent.empty() ? "." : parent.string();
+}
+
+// Staging directories of runs that were killed: `DIR.partial-<pid>` whose process is gone.
+void remove_abandoned_staging(const std::string& dir) {
+  const fs::path p = fs::path(dir).lexically_normal();
+  const std::string prefix = p.filename().string() + ".partial-";
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(parent_of(dir), ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string pid_text = name.substr(prefix.size());
+    if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::stol(pid_text);
+    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+      fs::remove_all(e.path(), ec);
+    }
+  }
+}
+
+}  // namespace
+
+bool output_dir_is_replaceable(const std::string& dir, const std::string& tool) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return true;
+  if (!fs::is_directory(dir, ec)) return false;
+  if (fs::is_empty(dir, ec)) return true;
+  std::ifstream in(dir + "/" + kRunManifest);
+  if (!in) return false;
+  std::string first;
+  std::getline(in, first);
+  return first == "{\"tool\": " + json_string(tool) + ",";
+}
+
+OutputSet::OutputSet(std::string dir, std::string tool, bool force)
+    : dir_(std::move(dir)), tool_(std::move(tool)) {
+  while (dir_.size() > 1 && dir_.back() == '/') dir_.pop_back();
+  std::error_code ec;
+  if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec))
+    fail(dir_, "exists and is not a directory");
+  if (!force && !output_dir_is_replaceable(dir_, tool_)) {
+    fail(dir_, "holds files that are not the output of '" + tool_ +
+                   "' (no run.json of it); choose another --out, or give --force to replace "
+                   "the directory");
+  }
+  const std::string parent = parent_of(dir_);
+  fs::create_directories(parent, ec);
+  if (ec) fail(parent, "cannot be created: " + ec.message());
+  remove_abandoned_staging(dir_);
+  staging_ = dir_ + ".partial-" + std::to_string(::getpid());
+  fs::remove_all(staging_, ec);
+  if (::mkdir(staging_.c_str(), 0755) != 0) {
+    fail(staging_, std::string("cannot be created: ") + std::strerror(errno));
+  }
+}
+
+OutputSet::~OutputSet() {
+  if (committed_) return;
+  std::error_code ec;
+  fs::remove_all(staging_, ec);
+}
+
+std::string OutputSet::path(const std::string& name) {
+  for (const auto& n : names_) {
+    if (n == name) return staging_ + "/" + name;
+  }
+  names_.push_back(name);
+  return staging_ + "/" + name;
+}
+
+void OutputSet::write(const std::string& name, const std::string& data) {
+  const std::string p = path(name);
+  if (!write_file_synced(p, data)) {
+    fail(dir_ + "/" + name, std::string("cannot be written: ") + std::strerror(errno));
+  }
+}
+
+void OutputSet::commit() {
+  std::string manifest = "{\"tool\": " + json_string(tool_) + ",\n \"files\": {";
+  for (std::size_t i = 0; i < names_.size(); ++i) {
+    const std::string p = staging_ + "/" + names_[i];
+    struct stat st {};
+    if (::stat(p.c_str(), &st) != 0) fail(dir_ + "/" + names_[i], "was not written");
+    fsync_path(p, O_RDONLY);
+    manifest += (i ? ", " : "") + json_string(names_[i]) + ": " + std::to_string(st.st_size);
+  }
+  manifest += "}}\n";
+  write(kRunManifest, manifest);
+  fsync_path(staging_, O_RDONLY | O_DIRECTORY);
+  std::error_code ec;
+  const bool existed = fs::exists(dir_, ec);
+  if (!existed) {
+    if (::rename(staging_.c_str(), dir_.c_str()) != 0) {
+      fail(dir_, std::string("cannot be created: ") + std::strerror(errno));
+    }
+  } else if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, dir_.c_str(), RENAME_EXCHANGE) !=
+             0) {
+    // A file system without RENAME_EXCHANGE: move the old set aside first. A reader between
+    // the two renames finds no directory, never a mix.
+    const std::string old = dir_ + ".old-" + std::to_string(::getpid());
+    if (::rename(dir_.c_str(), old.c_str()) != 0 || ::rename(staging_.c_str(), dir_.c_str()) != 0) {
+      fail(dir_, std::string("cannot be replaced: ") + std::strerror(errno));
+    }
+    fs::remove_all(old, ec);
+  }
+  committed_ = true;
+  fs::remove_all(staging_, ec);  // after an exchange: the old set
+  fsync_path(parent_of(dir_), O_RDONLY | O_DIRECTORY);
+}
+
+}  // namespace planter::config

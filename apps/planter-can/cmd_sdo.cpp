@@ -4,19 +4,24 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <sstream>
 
 #include "apps/planter-can/cmd_scan.h"
 #include "apps/planter-can/object_names.h"
 #include "apps/planter-can/sdo_session.h"
+#include "config/config_error.h"
+#include "config/input_file.h"
 #include "firmware/canopen/cob_id.h"
 #include "firmware/canopen/nmt.h"
 
 namespace planter::cantool {
 
 bool read_batch_file(const std::string& path, std::vector<SdoLine>& lines, std::string& error) {
-  std::ifstream in(path);
-  if (!in) {
-    error = path + ": cannot be read";
+  std::istringstream in;
+  try {
+    in.str(config::read_input_file(path));  // no FIFO or directory; a BOM is skipped
+  } catch (const config::ConfigError& e) {
+    error = e.what();
     return false;
   }
   std::string text;
@@ -157,10 +162,12 @@ int run_nmt(ToolContext& ctx, const std::string& command, const std::string& nod
     ctx.out << command << " " << who << ": confirmed, heartbeat says "
             << nmt_state_name(row->expect) << "\n";
   } else {
-    ctx.out << command << " " << who << ": sent; no heartbeat within 1 s confirmed "
-            << nmt_state_name(row->expect) << " (is the heartbeat off?)\n";
+    ctx.err << "planter-can: nmt: " << command << " " << who << ": sent, not confirmed: no "
+            << "heartbeat within 1 s says " << nmt_state_name(row->expect)
+            << " (no such node, or its heartbeat is off)\n";
   }
-  return kExitOk;
+  // README: a node that never answers is a timeout, exit 1; "all" has no one to confirm it.
+  return node == 0 || confirmed ? kExitOk : kExitFailed;
 }
 
 }  // namespace planter::cantool

@@ -6,17 +6,31 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <sstream>
 #include <vector>
 
 #include "apps/planter-can/bus_watch.h"
 #include "apps/planter-can/candump_log.h"
 #include "apps/planter-can/frame_decoder.h"
+#include "config/config_error.h"
+#include "config/durable_file.h"
+#include "config/input_file.h"
 #include "firmware/canopen/cob_id.h"
 
 namespace planter::cantool {
 namespace {
 
 bool stopped(const TrafficOptions& o) { return o.stop != nullptr && o.stop->load(); }
+
+// On `sim` nobody can press Ctrl-C in simulated time, and time runs as fast as the CPU: an
+// open-ended monitor or record would never end. Refused with a message (exit 2).
+bool open_ended_on_sim(ToolContext& ctx, const TrafficOptions& opt, const char* command) {
+  if (opt.duration_s > 0 || ctx.link.fixture() == nullptr) return false;
+  ctx.err << "planter-can: " << command
+          << ": on --iface sim time is simulated and never interrupted: give --duration S "
+             "(above 0)\n";
+  return true;
+}
 
 // Deadline from a duration; "forever" (until stopped) when 0.
 std::int64_t end_of(ToolLink& link, double duration_s) {
@@ -74,6 +88,7 @@ void print_summary(ToolContext& ctx, const BusWatch& watch, const FrameDecoder& 
 }  // namespace
 
 int run_monitor(ToolContext& ctx, const TrafficOptions& opt) {
+  if (open_ended_on_sim(ctx, opt, "monitor")) return kExitBadInput;
   const FrameDecoder decoder(ctx.board ? &ctx.board->controller : nullptr);
   BusWatch watch;
   const std::int64_t t0 = ctx.link.now_ns();
@@ -123,6 +138,7 @@ int run_monitor(ToolContext& ctx, const TrafficOptions& opt) {
 }
 
 int run_record(ToolContext& ctx, const std::string& path, const TrafficOptions& opt) {
+  if (open_ended_on_sim(ctx, opt, "record")) return kExitBadInput;
   std::ofstream out(path, std::ios::trunc);
   if (!out) {
     ctx.err << "planter-can: record: " << path << ": cannot be written\n";
@@ -146,9 +162,10 @@ int run_record(ToolContext& ctx, const std::string& path, const TrafficOptions& 
   }
   ctx.link.set_tap(outer);
   out.flush();
+  out.close();  // a full disk shows at the last flush or the close: both are checked
   progress.done();
   if (!out) {
-    ctx.err << "planter-can: record: " << path << ": write failed\n";
+    ctx.err << "planter-can: record: " << path << ": cannot be written (disk full?)\n";
     return kExitFailed;
   }
   if (ctx.json) {
@@ -162,6 +179,12 @@ int run_record(ToolContext& ctx, const std::string& path, const TrafficOptions& 
 namespace {
 
 bool read_log(const std::string& path, std::vector<LogRecord>& records, std::ostream& err) {
+  try {
+    config::require_regular_file(path);  // a FIFO would block, a directory reads as empty
+  } catch (const config::ConfigError& e) {
+    err << "planter-can: " << e.what() << "\n";
+    return false;
+  }
   std::ifstream in(path);
   if (!in) {
     err << "planter-can: " << path << ": cannot be read\n";
@@ -171,6 +194,7 @@ bool read_log(const std::string& path, std::vector<LogRecord>& records, std::ost
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
+    if (number == 1) config::strip_utf8_bom(line);  // else its first frame reads as a comment
     LogParse p = parse_log_line(line);
     if (p.kind == LogLineKind::kError) {
       err << "planter-can: " << path << ":" << number << ": " << p.error << "\n";
@@ -186,6 +210,15 @@ bool read_log(const std::string& path, std::vector<LogRecord>& records, std::ost
       records.push_back(std::move(p.record));
     }
   }
+  if (in.bad()) {
+    err << "planter-can: " << path << ":" << number << ": cannot be read\n";
+    return false;
+  }
+  if (records.empty()) {
+    err << "planter-can: " << path << ": no frame lines (candump -L: '(time) iface id#data'); "
+        << number << " line(s) read\n";
+    return false;
+  }
   return true;
 }
 
@@ -199,16 +232,21 @@ int run_replay(ToolContext& ctx, const std::string& path, const TrafficOptions& 
     return kExitBadInput;
   }
   const std::int64_t t0 = ctx.link.now_ns();
-  const std::int64_t log0 = records.empty() ? 0 : records.front().time_ns;
-  std::uint64_t sent = 0, refused = 0;
+  std::uint64_t sent = 0, refused = 0, shortened = 0;
   hal::CanFrame f;
   Progress progress(ctx.err, ctx.progress);
+  // Log time with every silence longer than max_gap_s cut to max_gap_s (a log spliced from
+  // two sessions, or a clock that jumped, would otherwise be replayed for hours).
+  const auto max_gap_ns = static_cast<std::int64_t>(opt.max_gap_s * 1e9);
+  std::int64_t log_elapsed_ns = 0, previous_ns = records.front().time_ns;
   for (const auto& r : records) {
     if (stopped(opt)) break;
     // In file order; a frame stamped a little before its predecessor goes right after it.
-    const auto at =
-        t0 + static_cast<std::int64_t>(
-                 static_cast<double>(std::max<std::int64_t>(0, r.time_ns - log0)) / opt.speed);
+    const std::int64_t gap = std::max<std::int64_t>(0, r.time_ns - previous_ns);
+    if (gap > max_gap_ns) ++shortened;
+    log_elapsed_ns += std::min(gap, max_gap_ns);
+    previous_ns = std::max(previous_ns, r.time_ns);
+    const auto at = t0 + static_cast<std::int64_t>(static_cast<double>(log_elapsed_ns) / opt.speed);
     while (ctx.link.now_ns() < at) ctx.link.receive_until(f, at);  // keep the rx queue drained
     if (r.frame.id & hal::CanFrame::kErrorFlag) continue;          // error frames are not sendable
     if (ctx.link.send(r.frame)) {
@@ -223,12 +261,17 @@ int run_replay(ToolContext& ctx, const std::string& path, const TrafficOptions& 
     ctx.out << nlohmann::json{{"file", path},
                               {"frames", records.size()},
                               {"sent", sent},
-                              {"refused", refused}}
+                              {"refused", refused},
+                              {"gaps_shortened", shortened}}
                    .dump(2)
             << "\n";
   } else {
     ctx.out << sent << " of " << records.size() << " frames replayed from " << path
             << (refused ? " (" + std::to_string(refused) + " refused by the bus)" : "") << "\n";
+    if (shortened > 0) {
+      ctx.out << shortened << " silence(s) longer than " << opt.max_gap_s << " s shortened to "
+              << opt.max_gap_s << " s\n";
+    }
   }
   return refused == 0 ? kExitOk : kExitFailed;
 }
@@ -263,14 +306,9 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
   const FrameDecoder decoder(&board->controller);
   std::array<double, kCount> values{};
   std::array<bool, kCount> seen{};
-  std::ofstream file;
-  if (!out_path.empty()) {
-    file.open(out_path, std::ios::trunc);
-    if (!file) {
-      err << "planter-can: decode: " << out_path << ": cannot be written\n";
-      return kExitBadInput;
-    }
-  }
+  // Built in memory and written whole at the end (temporary + rename): a bad log leaves an
+  // existing CSV as it was, and a full disk leaves no half file.
+  std::ostringstream file;
   std::ostream& csv = out_path.empty() ? out : file;
   // One row per SYNC: the values the controller had for that cycle.
   std::size_t syncs = 0;
@@ -334,6 +372,10 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
     last_row_ns = r.time_ns;
   }
   if (!out_path.empty()) {
+    if (!config::write_file_atomic(out_path, file.str())) {
+      err << "planter-can: decode: " << out_path << ": cannot be written\n";
+      return kExitFailed;
+    }
     out << rows << " rows (one per SYNC) from " << records.size() << " frames written to "
         << out_path << "\n";
   }

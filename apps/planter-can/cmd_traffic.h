@@ -15,6 +15,7 @@ struct TrafficOptions {
   bool summary_only = false;
   double summary_every_s = 0.0;             // monitor: rate table this often (0 = at the end only)
   double speed = 1.0;                       // replay
+  double max_gap_s = 10.0;                  // replay: longer silences in a log are shortened
   const std::atomic<bool>* stop = nullptr;  // set by SIGINT/SIGTERM
 };
 

@@ -125,6 +125,10 @@ int main(int argc, char** argv) {
   std::string replay_path;
   auto* c_replay = app.add_subcommand("replay", "send a candump log back onto the bus, timed");
   c_replay->add_option("file", replay_path)->required();
+  c_replay
+      ->add_option("--max-gap", traffic.max_gap_s, "silences longer than this (s) are shortened")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001, 3600.0));
   c_replay->add_option("--speed", traffic.speed, "time factor (2 = twice as fast)")
       ->check(CLI::Range(0.001, 1000.0));
 
@@ -234,58 +238,72 @@ int main(int argc, char** argv) {
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
 
-  if (c_scan->parsed()) {
-    scan.listen_ns = std::int64_t{listen_ms} * 1'000'000;
-    scan.probe = !no_probe;
-    return run_scan(ctx, scan);
-  }
-  if (c_info->parsed()) return run_info(ctx, info_node);
-  if (c_sdo->parsed()) {
-    std::vector<SdoLine> lines;
-    if (!sdo_file.empty()) {
-      std::string error;
-      if (!read_batch_file(sdo_file, lines, error)) return fail(kExitBadInput, error);
+  // The command, then the session log's own check: a log that could not be written fails
+  // the run (exit 1), whatever the command said.
+  auto run_command = [&]() -> int {
+    if (c_scan->parsed()) {
+      scan.listen_ns = std::int64_t{listen_ms} * 1'000'000;
+      scan.probe = !no_probe;
+      return run_scan(ctx, scan);
     }
-    if (!sdo_words.empty()) {
-      std::string text;
-      for (const auto& w : sdo_words) text += (text.empty() ? "" : " ") + w;
-      lines.push_back({"command line", text});
-    }
-    if (lines.empty())
-      return fail(kExitBadInput, "sdo: give a command (NODE r IDX SUB [TYPE]) or -f FILE");
-    return run_sdo(ctx, lines);
-  }
-  if (c_nmt->parsed()) return run_nmt(ctx, nmt_command, nmt_node);
-  if (c_lss->parsed()) {
-    if (!lss_identity.empty()) {
-      std::array<std::uint32_t, 4> id{};
-      for (std::size_t i = 0; i < 4; ++i) {
-        const auto v = parse_integer(lss_identity[i]);
-        if (!v || *v < 0 || *v > 0xFFFFFFFF)
-          return fail(kExitBadInput,
-                      "lss: --identity value '" + lss_identity[i] + "' is not a 32-bit number");
-        id[i] = static_cast<std::uint32_t>(*v);
+    if (c_info->parsed()) return run_info(ctx, info_node);
+    if (c_sdo->parsed()) {
+      std::vector<SdoLine> lines;
+      if (!sdo_file.empty()) {
+        std::string error;
+        if (!read_batch_file(sdo_file, lines, error)) return fail(kExitBadInput, error);
       }
-      lss.identity = id;
+      if (!sdo_words.empty()) {
+        std::string text;
+        for (const auto& w : sdo_words) text += (text.empty() ? "" : " ") + w;
+        lines.push_back({"command line", text});
+      }
+      if (lines.empty())
+        return fail(kExitBadInput, "sdo: give a command (NODE r IDX SUB [TYPE]) or -f FILE");
+      return run_sdo(ctx, lines);
     }
-    lss.timeout_ns = std::int64_t{lss_timeout_ms} * 1'000'000;
-    return run_lss(ctx, lss);
+    if (c_nmt->parsed()) return run_nmt(ctx, nmt_command, nmt_node);
+    if (c_lss->parsed()) {
+      if (!lss_identity.empty()) {
+        std::array<std::uint32_t, 4> id{};
+        for (std::size_t i = 0; i < 4; ++i) {
+          const auto v = parse_integer(lss_identity[i]);
+          if (!v || *v < 0 || *v > 0xFFFFFFFF)
+            return fail(kExitBadInput,
+                        "lss: --identity value '" + lss_identity[i] + "' is not a 32-bit number");
+          id[i] = static_cast<std::uint32_t>(*v);
+        }
+        lss.identity = id;
+      }
+      lss.timeout_ns = std::int64_t{lss_timeout_ms} * 1'000'000;
+      return run_lss(ctx, lss);
+    }
+    if (c_configure->parsed()) {
+      configure.store = !no_store;
+      return run_configure(ctx, configure);
+    }
+    if (c_monitor->parsed()) return run_monitor(ctx, traffic);
+    if (c_record->parsed()) return run_record(ctx, record_path, traffic);
+    if (c_replay->parsed()) return run_replay(ctx, replay_path, traffic);
+    if (c_cal->parsed()) {
+      calibrate.write = !no_write;
+      return run_calibrate(ctx, calibrate, std::cin);
+    }
+    if (c_check->parsed()) {
+      check.listen_ns = static_cast<std::int64_t>(check_listen_s * 1e9);
+      check.encoder = !skip_encoder;
+      return run_check(ctx, check, std::cin);
+    }
+    return fail(kExitBadInput, "no command (planter-can --help lists them)");
+  };
+  const int rc = run_command();
+  if (session_writer) {
+    link->set_tap(nullptr);
+    session_file.flush();
+    session_file.close();
+    if (!session_file) {
+      return fail(kExitFailed, "--record: " + session_log + ": cannot be written (disk full?)");
+    }
   }
-  if (c_configure->parsed()) {
-    configure.store = !no_store;
-    return run_configure(ctx, configure);
-  }
-  if (c_monitor->parsed()) return run_monitor(ctx, traffic);
-  if (c_record->parsed()) return run_record(ctx, record_path, traffic);
-  if (c_replay->parsed()) return run_replay(ctx, replay_path, traffic);
-  if (c_cal->parsed()) {
-    calibrate.write = !no_write;
-    return run_calibrate(ctx, calibrate, std::cin);
-  }
-  if (c_check->parsed()) {
-    check.listen_ns = static_cast<std::int64_t>(check_listen_s * 1e9);
-    check.encoder = !skip_encoder;
-    return run_check(ctx, check, std::cin);
-  }
-  return fail(kExitBadInput, "no command (planter-can --help lists them)");
+  return rc;
 }

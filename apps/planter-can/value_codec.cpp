@@ -2,6 +2,7 @@
 
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -134,6 +135,15 @@ std::optional<std::vector<std::uint8_t>> encode_value(const ValueType& type, std
       const double d = std::strtod(s.c_str(), &end);
       if (s.empty() || end != s.c_str() + s.size()) {
         why = "a real number";
+        return std::nullopt;
+      }
+      // A process value is finite: nan and inf would reach a device as a set-point, and
+      // 1e39 would silently become +inf in 32 bits.
+      const double max = type.bytes == 4 ? static_cast<double>(std::numeric_limits<float>::max())
+                                         : std::numeric_limits<double>::max();
+      if (!std::isfinite(d) || std::fabs(d) > max) {
+        why = type.bytes == 4 ? "a finite real number within +-3.4e38 (r32)"
+                              : "a finite real number (r64)";
         return std::nullopt;
       }
       if (type.bytes == 4) {

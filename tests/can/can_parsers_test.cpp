@@ -98,6 +98,12 @@ TEST(Cia309, ErrorsNameTheBadToken) {
   EXPECT_EQ(error("5 w 0x1017 0 u16 70000"),
             "token 6 '70000': expected an unsigned integer from 0 to 65535");
   EXPECT_EQ(error("5 w 0x1017 0 u16"), "token 6 '<end of line>': expected a value of type u16");
+  // Reals a device would take as +inf or NaN are refused, not encoded.
+  EXPECT_EQ(error("3 w 0x6126 1 r32 1e39"),
+            "token 6 '1e39': expected a finite real number within +-3.4e38 (r32)");
+  EXPECT_EQ(error("3 w 0x6126 1 r32 nan"),
+            "token 6 'nan': expected a finite real number within +-3.4e38 (r32)");
+  EXPECT_EQ(error("3 w 0x6126 1 r64 -inf"), "token 6 '-inf': expected a finite real number (r64)");
   EXPECT_EQ(error("5 w 0x1017 0 i8 -129"), "token 6 '-129': expected an integer from -128 to 127");
   EXPECT_EQ(error("128 r 0x1000 0"),
             "token 1 '128': expected a node-ID from 1 to 127 (0 = all, NMT only)");

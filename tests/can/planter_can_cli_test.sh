@@ -29,8 +29,8 @@ expect 2 "is not a node-ID" -- --iface sim --board "$board" info plough
 expect 2 "--iface is required" -- --board "$board" scan
 expect 2 "needs --board or --sim-scenario" -- --iface sim scan
 expect 2 "nosuch0" -- --iface nosuch0 scan
-expect 2 "cannot be read" -- --iface sim --board "$board" sdo -f "$work/missing.txt"
-expect 2 "cannot be read" -- --board "$board" decode "$work/missing.log"
+expect 2 "missing.txt: no such file" -- --iface sim --board "$board" sdo -f "$work/missing.txt"
+expect 2 "missing.log: no such file" -- --board "$board" decode "$work/missing.log"
 printf '(9.000000) can0 702#05\n(8.999000) can0 702#05\n(2.500000) can0 702#05\n' >"$work/backwards.log"
 expect 2 "backwards.log:3: time goes back by more than 1 s" -- --board "$board" decode "$work/backwards.log"
 printf '(1.000000) can0 702#05\n(2.000000) can0 7020#05\n' >"$work/badid.log"
@@ -41,5 +41,41 @@ expect 2 "is not a calibration" -- --iface sim --board "$board" calibrate weight
 expect 2 "out of range 1-127" -- --iface sim --board "$board" lss assign 200
 expect 0 "4 node(s) on sim" -- --iface sim --board "$board" scan
 expect 1 "FAIL  SYNC rate" -- --iface sim --board "$board" check --skip-encoder
+
+# Inputs that are not files, or hold no frames, are refused (exit 2), never blocked on or
+# reported as "0 of 0 frames replayed".
+mkfifo "$work/fifo.log" "$work/fifo.txt"
+expect 2 "fifo.txt: is a FIFO, not a regular file" -- --iface sim --board "$board" sdo -f "$work/fifo.txt"
+expect 2 "fifo.log: is a FIFO, not a regular file" -- --iface sim --board "$board" replay "$work/fifo.log"
+mkdir "$work/dir.log"
+expect 2 "dir.log: is a directory, not a file" -- --iface sim --board "$board" replay "$work/dir.log"
+: >"$work/empty.log"
+expect 2 "empty.log: no frame lines" -- --iface sim --board "$board" replay "$work/empty.log"
+head -c 4096 /dev/urandom | tr -d '(' >"$work/garbage.log"
+expect 2 "garbage.log: no frame lines" -- --iface sim --board "$board" replay "$work/garbage.log"
+# Windows files: a UTF-8 byte-order mark does not hide the first frame or the first command.
+printf '\xef\xbb\xbf(1.000000) can0 702#05\n(1.100000) can0 702#05\n' >"$work/bom.log"
+expect 0 "2 of 2 frames replayed" -- --iface sim --board "$board" replay "$work/bom.log"
+printf '\xef\xbb\xbf2 r 0x1000 0 u32\r\n' >"$work/bom.txt"
+expect 0 "^402$" -- --iface sim --board "$board" sdo -f "$work/bom.txt"
+# A silence of 11 days in a log is shortened (and said), not replayed for hours.
+printf '(1.000000) can0 702#05\n(1000001.000000) can0 702#05\n' >"$work/gap.log"
+expect 0 "1 silence(s) longer than 10 s shortened" -- --iface sim --board "$board" replay "$work/gap.log"
+# Open-ended monitor/record on simulated time would never end: refused.
+expect 2 "give --duration S" -- --iface sim --board "$board" monitor --duration 0
+expect 2 "give --duration S" -- --iface sim --board "$board" record "$work/r.log"
+# An NMT command nobody confirms is a timeout (exit 1), as the README says.
+expect 1 "not confirmed" -- --iface sim --board "$board" nmt start 100
+# decode -o: a bad log leaves the existing CSV as it was; an unwritable -o exits 1.
+echo "keep" >"$work/existing.csv"
+expect 2 "backwards.log:3" -- --board "$board" decode "$work/backwards.log" -o "$work/existing.csv"
+[ "$(cat "$work/existing.csv")" = keep ] || { echo "FAIL: decode -o changed existing.csv"; fails=$((fails + 1)); }
+printf '(1.000000) can0 080#\n(1.010000) can0 080#\n' >"$work/sync.log"
+mkdir "$work/outdir"
+expect 1 "outdir: cannot be written" -- --board "$board" decode "$work/sync.log" -o "$work/outdir"
+# The session log (--record) on a full disk: exit 1 naming it, not a silent empty log.
+if [ -w /dev/full ]; then
+  expect 1 "--record: /dev/full: cannot be written" -- --iface sim --board "$board" --record /dev/full scan
+fi
 [ "$fails" -eq 0 ] && echo "planter-can command line: all cases behave"
 exit "$fails"

@@ -1,7 +1,9 @@
 #include "config/board_config.h"
 
+#include <cstdio>
 #include <set>
 
+#include "config/board_checks.h"
 #include "config/toml_section.h"
 
 namespace planter::config {
@@ -27,7 +29,8 @@ canopen::PdoMapping parse_pdo(TomlSection& node, const std::string& key) {
   return m;
 }
 
-void parse_node(TomlSection& nodes, NodeRole role, NodeConfig& out, std::set<int>& ids) {
+void parse_node(TomlSection& nodes, NodeRole role, NodeConfig& out, std::set<int>& ids,
+                const ControllerConfig& c) {
   auto t = nodes.table(node_role_name(role));
   if (!t) {
     throw ConfigError(nodes.file(), nodes.line(), nodes.dotted(node_role_name(role)),
@@ -51,6 +54,7 @@ void parse_node(TomlSection& nodes, NodeRole role, NodeConfig& out, std::set<int
     out.tpdo[static_cast<std::size_t>(k)] = parse_pdo(*t, "tpdo" + std::to_string(k + 1));
     out.rpdo[static_cast<std::size_t>(k)] = parse_pdo(*t, "rpdo" + std::to_string(k + 1));
   }
+  check_node_scaling(*t, out, c);
   t->reject_unknown_keys();
 }
 
@@ -70,7 +74,9 @@ BoardConfig load_board(const std::string& path) {
   b.toolchain = board->string("toolchain", "native");
   board->reject_unknown_keys();
 
+  int bitrate_line = 1;
   if (auto can = root.table("can")) {
+    bitrate_line = can->line_of("bitrate");
     b.can_interface = can->string("interface", "sim");
     c.can.bitrate_bps = static_cast<std::uint32_t>(can->integer("bitrate", 500000, 10000, 1000000));
     c.can.sync_period_ns = can->integer("sync_period_ms", 10, 1, 1000) * 1'000'000;
@@ -168,9 +174,25 @@ BoardConfig load_board(const std::string& path) {
         "table is missing (disc_drive, roller_actuator, depth_actuator, force_sensor)");
   std::set<int> ids;
   for (std::size_t i = 0; i < kNodeCount; ++i)
-    parse_node(*nodes, static_cast<NodeRole>(i), c.nodes[i], ids);
+    parse_node(*nodes, static_cast<NodeRole>(i), c.nodes[i], ids, c);
   nodes->reject_unknown_keys();
   root.reject_unknown_keys();
+  // CiA 301 leaves the budget to the integrator; above 100 % frames queue without bound, and
+  // above half the bus a retransmission or a spare node's traffic already delays the PDOs.
+  b.planned_bus_load_pct = planned_bus_load_pct(c);
+  char load[200];
+  std::snprintf(load, sizeof load,
+                "the board's SYNC, PDOs and heartbeats need %.0f %% of %u bit/s every %.1f ms",
+                b.planned_bus_load_pct, c.can.bitrate_bps,
+                static_cast<double>(c.can.sync_period_ns) * 1e-6);
+  if (b.planned_bus_load_pct > 100.0) {
+    throw ConfigError(
+        path, bitrate_line, "can.bitrate",
+        std::string(load) + "; at most 100 % (raise the bit rate or the SYNC period)");
+  }
+  if (b.planned_bus_load_pct > 50.0) {
+    b.warnings.push_back(path + ": " + load + " (over the 50 % guideline)");
+  }
   return b;
 }
 

@@ -2,6 +2,7 @@
 // A board file (boards/<board>/board.toml): the machine's buses, lines, nodes and loop
 // settings. Loaded and validated once at start; the firmware only sees ControllerConfig.
 #include <string>
+#include <vector>
 
 #include "firmware/controller/controller_config.h"
 
@@ -34,6 +35,8 @@ struct BoardConfig {
   GpioLines gpio;
   RealtimeConfig realtime;
   ControllerConfig controller;
+  double planned_bus_load_pct = 0;    // config/board_checks.h
+  std::vector<std::string> warnings;  // in range but doubtful; tools print them at start
 };
 
 // Throws ConfigError on any problem.

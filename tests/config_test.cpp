@@ -99,3 +99,34 @@ TEST(ScenarioConfig, FieldScenarioLoads) {
   ASSERT_EQ(s.plant.route.stops.size(), 1u);
   EXPECT_DOUBLE_EQ(s.plant.effects.disc_coulomb_Nm, 0.0);  // effects are off by default
 }
+
+// Values inside their ranges whose arithmetic is wrong: refused with the key and the limit.
+TEST(BoardConfig, ScalingThatWrapsOrRoundsToZeroIsRefused) {
+  const std::string wraps =
+      error_of(board_with("counts_per_unit = 32595.0", "counts_per_unit = 1e9"));
+  EXPECT_NE(wraps.find("'nodes.disc_drive.counts_per_unit': 1e+09 makes the disc"),
+            std::string::npos)
+      << wraps;
+  EXPECT_NE(wraps.find("32-bit object"), std::string::npos) << wraps;
+  const std::string coarse =
+      error_of(board_with("counts_per_unit = 32595.0", "counts_per_unit = 1e-6"));
+  EXPECT_NE(coarse.find("makes one count 1e+06 rad/s of disc speed"), std::string::npos) << coarse;
+  EXPECT_EQ(error_of(kBoard), "");
+}
+
+TEST(BoardConfig, BusLoadOverTheBitRateIsRefusedAndOverHalfWarned) {
+  // 10 kbit/s with a 1 ms SYNC: the board, which "planted normally" at 9576 %.
+  const std::string e = error_of(
+      board_with("bitrate = 500000\nsync_period_ms = 10", "bitrate = 10000\nsync_period_ms = 1"));
+  EXPECT_NE(e.find("'can.bitrate': the board's SYNC, PDOs and heartbeats need"), std::string::npos)
+      << e;
+  EXPECT_NE(e.find("at most 100 %"), std::string::npos) << e;
+  const auto b = planter::config::load_board(kBoard);
+  EXPECT_GT(b.planned_bus_load_pct, 10.0);
+  EXPECT_LT(b.planned_bus_load_pct, 30.0);
+  EXPECT_TRUE(b.warnings.empty());
+  const auto busy = planter::config::load_board(board_with("bitrate = 500000", "bitrate = 125000"));
+  EXPECT_GT(busy.planned_bus_load_pct, 50.0);
+  ASSERT_EQ(busy.warnings.size(), 1u);
+  EXPECT_NE(busy.warnings[0].find("over the 50 % guideline"), std::string::npos);
+}

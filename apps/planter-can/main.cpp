@@ -181,6 +181,7 @@ int main(int argc, char** argv) {
   const bool have_board = !board_path.empty();
   try {
     if (have_board) board = config::load_board(board_path);
+    for (const auto& w : board.warnings) std::cerr << "planter-can: warning: " << w << "\n";
   } catch (const config::ConfigError& e) {
     return fail(kExitBadInput, e.what());
   }

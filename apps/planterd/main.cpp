@@ -114,6 +114,7 @@ int main(int argc, char** argv) {
                 static_cast<long long>(start_wall.tv_sec), start_wall.tv_nsec / 1000);
   try {
     board = config::load_board(opt.board);
+    for (const auto& w : board.warnings) std::fprintf(stderr, "planterd: warning: %s\n", w.c_str());
     hw = std::make_unique<daemon::BoardHardware>(board);
     if (!opt.record.empty()) {
       recording = std::make_unique<daemon::CrashSafeRecording>(

@@ -160,6 +160,14 @@ std::uint32_t Controller::check_faults(std::int64_t now_ns, std::int64_t dt_ns) 
       std::abs(telemetry_.v_wheel_mps) > s.ground_speed_plausible_max_mps) {
     faults |= fault::kSensorImplausible;
   }
+  const double omega_expected =
+      cfg_.sigma.sigma * std::abs(telemetry_.v_wheel_mps) / cfg_.sigma.disc_radius_m;
+  if (std::abs(telemetry_.omega_radps) > omega_expected + s.disc_plausible_margin_radps) {
+    disc_implausible_ns_ += dt_ns;
+  } else {
+    disc_implausible_ns_ = 0;
+  }
+  if (disc_implausible_ns_ > s.disc_implausible_ns) faults |= fault::kSensorImplausible;
   return faults;
 }
 

@@ -72,6 +72,7 @@ class Controller {
   bool nodes_started_ = false;
   std::int64_t commissioning_start_ns_ = 0;
   std::uint32_t consecutive_overruns_ = 0;
+  std::int64_t disc_implausible_ns_ = 0;  // how long the disc has turned against the ground
   SupervisorState previous_state_ = SupervisorState::kBoot;
   std::array<std::uint32_t, kNodeCount> boot_ups_seen_{};
 };

@@ -88,6 +88,11 @@ struct SupervisorConfig {
   std::int64_t pdo_stale_ns = 100'000'000;  // no fresh TPDO for this long -> fault
   std::int64_t boot_timeout_ns = 5'000'000'000;
   double stopped_omega_radps = 0.01;
+  // The disc may turn this much faster than sigma * v / R (starts, angle catch-up) for at most
+  // disc_implausible_ns before a fault: beyond that a scale, wiring or control error is turning
+  // the disc against the ground (at standstill it throws seedlings on the headland).
+  double disc_plausible_margin_radps = 0.3;
+  std::int64_t disc_implausible_ns = 1'000'000'000;
 };
 
 struct ControllerConfig {

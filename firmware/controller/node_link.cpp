@@ -1,5 +1,8 @@
 #include "firmware/controller/node_link.h"
 
+#include <algorithm>
+#include <cstdint>
+
 #include "firmware/canopen/cob_id.h"
 
 namespace planter {
@@ -130,10 +133,18 @@ bool NodeLink::on_frame(const hal::CanFrame& f, std::int64_t now_ns, hal::CanBus
       const int s = tpdo_slots_[k][i];
       if (s >= 0) set_value(s, canopen::sign_extend(raw[i], cfg_.tpdo[k].entries[i].bits));
     }
-    last_tpdo_ns_ = now_ns;
+    last_tpdo_ns_[k] = now_ns;
     return true;
   }
   return false;
+}
+
+std::int64_t NodeLink::last_tpdo_ns() const {
+  std::int64_t oldest = INT64_MAX;
+  for (std::size_t k = 0; k < 4; ++k) {
+    if (cfg_.tpdo[k].count > 0) oldest = std::min(oldest, last_tpdo_ns_[k]);
+  }
+  return oldest == INT64_MAX ? 0 : oldest;
 }
 
 void NodeLink::send_rpdos(hal::CanBus& bus) {

@@ -39,7 +39,10 @@ class NodeLink {
   [[nodiscard]] const NodeConfig& config() const { return cfg_; }
   canopen::HeartbeatConsumer& heartbeat() { return heartbeat_; }
   [[nodiscard]] const canopen::HeartbeatConsumer& heartbeat() const { return heartbeat_; }
-  [[nodiscard]] std::int64_t last_tpdo_ns() const { return last_tpdo_ns_; }
+  // When the stalest of the node's mapped TPDOs last arrived: every process value must keep
+  // coming, not just one of the node's PDOs (a TPDO the node never sends leaves its values
+  // at 0, which must fault as stale, not read as a standing disc).
+  [[nodiscard]] std::int64_t last_tpdo_ns() const;
   [[nodiscard]] std::uint16_t last_emcy_code() const { return last_emcy_code_; }
   [[nodiscard]] std::uint32_t emcy_count() const { return emcy_count_; }
   [[nodiscard]] std::uint32_t bad_pdo_count() const { return bad_pdo_; }
@@ -74,7 +77,7 @@ class NodeLink {
   std::array<std::uint8_t, 8> read_buffer_{};
   BootState boot_state_ = BootState::kIdle;
   char boot_error_ = 0;
-  std::int64_t last_tpdo_ns_ = 0;
+  std::array<std::int64_t, 4> last_tpdo_ns_{};  // per TPDO
   std::uint16_t last_emcy_code_ = 0;
   std::uint32_t emcy_count_ = 0;
   std::uint32_t bad_pdo_ = 0;

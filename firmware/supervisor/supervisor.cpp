@@ -2,6 +2,13 @@
 
 namespace planter {
 
+const char* fault::name(int bit) {
+  static constexpr const char* kNames[kCount] = {
+      "heartbeat lost", "drive fault", "emergency (EMCY)", "implausible sensor", "stale PDO",
+      "loop overrun",   "boot failed", "bus-off",          "unexpected boot-up"};
+  return bit >= 0 && bit < kCount ? kNames[bit] : "";
+}
+
 const char* supervisor_state_name(SupervisorState s) {
   switch (s) {
     case SupervisorState::kBoot:

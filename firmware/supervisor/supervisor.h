@@ -26,6 +26,9 @@ constexpr std::uint32_t kOverrun = 1u << 5;
 constexpr std::uint32_t kBootFailed = 1u << 6;
 constexpr std::uint32_t kBusOff = 1u << 7;
 constexpr std::uint32_t kUnexpectedBootUp = 1u << 8;
+constexpr int kCount = 9;
+// The name of fault bit `bit` (0-based), in the operator's words; "" past the last.
+const char* name(int bit);
 }  // namespace fault
 
 struct SupervisorInputs {

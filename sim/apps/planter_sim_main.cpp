@@ -2,6 +2,7 @@
 // `devices` runs the plant in real time on a real CAN bus and gpio-sim for host-in-the-loop.
 #include <CLI/CLI.hpp>
 #include <atomic>
+#include <bit>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -46,7 +47,12 @@ void print_summary(const Summary& s) {
               s.depth_mean_mm, s.depth_rms_error_mm, s.depth_target_mm);
   std::printf("CAN bus             %llu frames, load %.1f %%\n",
               static_cast<unsigned long long>(s.can_frames), s.can_bus_load_pct);
-  std::printf("final state         %s (faults 0x%x)\n", s.final_state.c_str(), s.faults);
+  std::printf("final state         %s (faults 0x%x", s.final_state.c_str(), s.faults);
+  for (int bit = 0; bit < fault::kCount; ++bit) {
+    if ((s.faults >> bit) & 1u)
+      std::printf("%s%s", bit == std::countr_zero(s.faults) ? ": " : ", ", fault::name(bit));
+  }
+  std::printf(")\n");
 }
 
 std::string seedlings_csv(const SeedlingProcess& process) {
@@ -65,6 +71,8 @@ std::string seedlings_csv(const SeedlingProcess& process) {
 int run_scenario(const std::string& scenario_path, const std::string& out_dir, bool quiet,
                  bool force) {
   const Scenario scenario = load_scenario(scenario_path);
+  for (const auto& w : scenario.board.warnings)
+    std::fprintf(stderr, "planter-sim: warning: %s\n", w.c_str());
   config::OutputSet out(out_dir, "planter-sim run", force);
   LockstepRunner runner(scenario);
   RecordingWriter recording(out.path("recording.csv"), out.shown("recording.csv"),

@@ -34,6 +34,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 struct Common {
   std::string params;
   std::string out;
+  bool force = false;
+  long max_steps = 2'000'000;  // 100x the defaults' 18000: minutes, not hours
   double speedup = 0.0;
   double diameter_mm = 0.0;
 };
@@ -43,16 +45,27 @@ dem::CompressionSetup load_setup(const Common& c) {
       c.params.empty() ? dem::CompressionSetup{} : dem::load_compression_setup(c.params);
   if (c.speedup > 0.0) s.speedup = c.speedup;
   if (c.diameter_mm > 0.0) s.seedling.diameter_m = c.diameter_mm * 1e-3;
+  // The cost before the run: a 1e-8 s step or speedup 1 is hours of work per compression.
+  const long steps = dem::compression_steps(s);
+  if (steps > c.max_steps) {
+    throw config::ConfigError(
+        c.params.empty() ? "planter-dem" : c.params, 0, "",
+        "one compression would take " + std::to_string(steps) + " steps (time_step_s " +
+            std::to_string(s.time_step_s) + ", speedup " + std::to_string(s.speedup) +
+            "; the defaults take " + std::to_string(dem::compression_steps({})) +
+            "); raise time_step_s or --speedup, or allow it with --max-steps");
+  }
   return s;
 }
 
 int compress(const Common& c) {
   dem::CompressionRun run;
   run.setup = load_setup(c);
+  config::OutputSet out(c.out, "planter-dem compress", c.force);
   const auto t0 = std::chrono::steady_clock::now();
   run.result = dem::run_compression(run.setup);
   run.wall_s = seconds_since(t0);
-  dem::write_compression_outputs(c.out, run);
+  dem::write_compression_outputs(out, run);
   const auto& r = run.result;
   std::printf("seedling: %d particles, %d bonds; %ld steps of %g s; platen %g m/min (%gx)\n",
               r.particles, r.bonds, r.steps, run.setup.time_step_s,
@@ -118,13 +131,14 @@ int calibrate(const Common& c, double target_N, double target_mm, int jobs, int 
 
 int reduce(const Common& c, const std::vector<double>& diameters_mm, int jobs) {
   const dem::CompressionSetup base = load_setup(c);
+  config::OutputSet out(c.out, "planter-dem reduce", c.force);
   const auto t0 = std::chrono::steady_clock::now();
   const dem::ReducedOrderFit fit = dem::fit_reduced_order(base, diameters_mm, jobs);
-  std::filesystem::create_directories(c.out);
   const std::string path = c.out + "/seedling_force.toml";
   const std::string source =
       "from " + (c.params.empty() ? std::string("the paper's parameters") : c.params);
-  config::write_output_file(path, dem::reduced_order_toml(fit, source));
+  out.write("seedling_force.toml", dem::reduced_order_toml(fit, source));
+  out.commit();
   std::printf("diameter   peak force   at      elastic fit rms\n");
   for (const auto& dc : fit.curves) {
     std::printf("%6.2f mm  %8.1f N  %5.2f mm  %6.2f N%s\n", dc.diameter_mm, dc.result.peak_force_N,
@@ -154,6 +168,12 @@ int main(int argc, char** argv) {
     sub->add_option("--params", common.params, "parameter file (TOML); default: the paper's")
         ->check(CLI::ExistingFile);
     sub->add_option("--out", common.out, "output directory")->required();
+    sub->add_flag("--force", common.force,
+                  "replace --out even if it holds something other than this command's output");
+    sub->add_option("--max-steps", common.max_steps,
+                    "refuse a compression longer than this many time steps")
+        ->capture_default_str()
+        ->check(CLI::Range(1L, 1'000'000'000'000L));
     sub->add_option("--speedup", common.speedup, "platen speed over the paper's 0.2 m/min")
         ->check(CLI::Range(1.0, 500.0));
     sub->add_option("--diameter-mm", common.diameter_mm, "seedling diameter")

@@ -41,8 +41,7 @@ std::string compression_result_json(const CompressionRun& run) {
   return j.dump(2) + "\n";
 }
 
-void write_compression_outputs(const std::string& dir, const CompressionRun& run) {
-  std::filesystem::create_directories(dir);
+void write_compression_outputs(config::OutputSet& out, const CompressionRun& run) {
   const CompressionResult& r = run.result;
   std::ostringstream csv;
   csv << "displacement_mm,force_N,broken_bonds\n";
@@ -52,9 +51,9 @@ void write_compression_outputs(const std::string& dir, const CompressionRun& run
                   p.broken_bonds);
     csv << line;
   }
-  config::write_output_file(dir + "/curve.csv", csv.str());
-  config::write_output_file(dir + "/result.json", compression_result_json(run));
-  config::write_output_file(dir + "/params.toml", compression_setup_toml(run.setup));
+  out.write("curve.csv", csv.str());
+  out.write("result.json", compression_result_json(run));
+  out.write("params.toml", compression_setup_toml(run.setup));
 
   std::vector<double> x, f, broken;
   double f_max = 1.0, b_max = 1.0;
@@ -91,7 +90,8 @@ void write_compression_outputs(const std::string& dir, const CompressionRun& run
                            {{&broken, "#555", "broken"}}, 0.0, b_max)
        << "<p>Curve: <code>curve.csv</code>; parameters: <code>params.toml</code>.</p>"
        << "</body></html>\n";
-  config::write_output_file(dir + "/report.html", html.str());
+  out.write("report.html", html.str());
+  out.commit();
 }
 
 }  // namespace planter::dem

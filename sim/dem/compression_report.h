@@ -3,6 +3,7 @@
 // self-contained report.html with the force-displacement plot.
 #include <string>
 
+#include "config/output_set.h"
 #include "sim/dem/compression_test.h"
 
 namespace planter::dem {
@@ -14,7 +15,8 @@ struct CompressionRun {
 };
 
 // Throws std::runtime_error naming the file when one cannot be written.
-void write_compression_outputs(const std::string& dir, const CompressionRun& run);
+// Writes curve.csv, result.json, params.toml and report.html into the set and commits it.
+void write_compression_outputs(config::OutputSet& out, const CompressionRun& run);
 // result.json's content (also one line of a calibration's run cache).
 std::string compression_result_json(const CompressionRun& run);
 

@@ -61,6 +61,10 @@ CompressionWorld make_compression_world(const CompressionSetup& s) {
   return c;
 }
 
+long compression_steps(const CompressionSetup& s) {
+  return std::lround(s.stroke_m / (s.platen_speed_mps * s.speedup) / s.time_step_s);
+}
+
 CompressionResult run_compression(const CompressionSetup& s) {
   CompressionWorld c = make_compression_world(s);
   DemWorld& world = c.world;
@@ -71,7 +75,7 @@ CompressionResult run_compression(const CompressionSetup& s) {
   CompressionResult r;
   r.particles = built.particles;
   r.bonds = built.bonds;
-  const long total_steps = std::lround(s.stroke_m / speed / s.time_step_s);
+  const long total_steps = compression_steps(s);
   const long per_sample = std::max(1L, total_steps / std::max(1, s.samples));
   double force_sum = 0.0;
   double work_J = 0.0;

@@ -57,6 +57,8 @@ CompressionWorld make_compression_world(const CompressionSetup& setup);
 
 // Runs the test; deterministic for a given setup.
 CompressionResult run_compression(const CompressionSetup& setup);
+// The number of time steps run_compression takes: the stroke at the platen's (sped-up) speed.
+[[nodiscard]] long compression_steps(const CompressionSetup& setup);
 
 // The first peak of a curve (or its maximum when the force never falls by `drop_fraction`).
 void find_first_peak(CompressionResult& r, double drop_fraction);

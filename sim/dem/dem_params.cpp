@@ -30,6 +30,12 @@ std::string material_toml(const char* name, const ContactMaterial& m) {
 CompressionSetup load_compression_setup(const std::string& path) {
   config::TomlDocument doc(path);
   config::TomlSection root = doc.root();
+  // An empty file would run the paper's defaults while the user believes their file was used.
+  if (root.keys().empty()) {
+    throw config::ConfigError(path, 1, "",
+                              "holds no parameters (tables seedling, material, bonds, contacts, "
+                              "test); leave --params out to run the defaults");
+  }
   CompressionSetup s;
   if (auto t = root.table("seedling")) {
     SeedlingGeometry& g = s.seedling;

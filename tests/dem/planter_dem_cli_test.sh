@@ -28,5 +28,14 @@ expect 2 "out" -- compress
 expect 2 "speedup" -- compress --out "$work/o" --speedup 0
 expect 2 "jobs" -- calibrate --out "$work/o" --jobs 0
 expect 2 "diameters" -- reduce --out "$work/o" --diameters-mm 8.3,abc
+# An empty parameter file is refused (it would run the defaults under the file's name), and a
+# run whose cost is hours is refused before it starts, with the estimate.
+: >"$work/empty.toml"
+expect 2 "empty.toml:1: holds no parameters" -- compress --params "$work/empty.toml" --out "$work/o"
+printf '[test]\ntime_step_s = 1e-8\n' >"$work/tiny_step.toml"
+expect 2 "one compression would take 3600000 steps" -- compress --params "$work/tiny_step.toml" --out "$work/o"
+mkfifo "$work/fifo.toml"
+expect 2 "fifo.toml: is a FIFO, not a regular file" -- compress --params "$work/fifo.toml" --out "$work/o"
+[ -e "$work/o" ] && { echo "FAIL: refused runs left $work/o"; fails=$((fails + 1)); }
 [ "$fails" -eq 0 ] && echo "planter-dem bad input: all rejected with exit 2 and a message"
 exit "$fails"

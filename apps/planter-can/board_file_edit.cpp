@@ -3,12 +3,14 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "config/board_config.h"
 #include "config/config_error.h"
 #include "config/durable_file.h"
+#include "config/input_file.h"
 
 namespace planter::cantool {
 namespace {
@@ -76,23 +78,33 @@ bool edit_board_text(std::string& text, const std::vector<BoardEdit>& edits, std
   return true;
 }
 
-bool write_board_edits(const std::string& path, const std::vector<BoardEdit>& edits,
-                       std::string& error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    error = path + ": cannot be read";
+bool write_board_edits(const std::string& link_path, const std::vector<BoardEdit>& edits,
+                       std::string& error, std::string* backup_written) {
+  // Edit the file a symlink names, so /etc/planter/board.toml -> boards/x/board.toml stays a link.
+  std::error_code ec;
+  const std::string path = std::filesystem::canonical(link_path, ec).string();
+  if (ec) {
+    error = link_path + ": cannot be resolved: " + ec.message();
     return false;
   }
-  std::stringstream buf;
-  buf << in.rdbuf();
-  const std::string original = buf.str();
+  std::string original;
+  try {
+    original = config::read_input_file(path);
+  } catch (const config::ConfigError& e) {
+    error = e.what();
+    return false;
+  }
   std::string text = original;
   if (!edit_board_text(text, edits, error)) {
     error = path + ": " + error;
     return false;
   }
   const std::string tmp = path + ".tmp";
-  const std::string backup = path + ".bak";
+  std::string backup = path + ".bak";
+  for (int n = 2; std::filesystem::exists(backup, ec) || std::filesystem::is_symlink(backup, ec);
+       ++n) {
+    backup = path + ".bak." + std::to_string(n);
+  }
   if (!config::write_file_synced(tmp, text)) {
     error = tmp + ": cannot be written";
     ::unlink(tmp.c_str());
@@ -115,6 +127,7 @@ bool write_board_edits(const std::string& path, const std::vector<BoardEdit>& ed
     ::unlink(tmp.c_str());
     return false;
   }
+  if (backup_written != nullptr) *backup_written = backup;
   return true;
 }
 

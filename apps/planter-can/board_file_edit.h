@@ -16,8 +16,10 @@ struct BoardEdit {
 // Applies the edits to the file's text; a key missing from its table is added at its end.
 // False with `error` set when a table is missing.
 bool edit_board_text(std::string& text, const std::vector<BoardEdit>& edits, std::string& error);
-// The whole transaction; false with `error` set, the original file untouched.
+// The whole transaction; false with `error` set, the original file untouched. A symlink is
+// followed: the file it names is edited and the link stays. The old text is kept as FILE.bak,
+// or FILE.bak.2, .3, ... when earlier backups exist (none is overwritten); `backup` names it.
 bool write_board_edits(const std::string& path, const std::vector<BoardEdit>& edits,
-                       std::string& error);
+                       std::string& error, std::string* backup = nullptr);
 
 }  // namespace planter::cantool

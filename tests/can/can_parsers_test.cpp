@@ -1,7 +1,9 @@
 // The tool's parsers and decoders, and SDO transfers against a server that misbehaves.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <deque>
+#include <filesystem>
 #include <functional>
 
 #include "apps/planter-can/board_file_edit.h"
@@ -257,6 +259,39 @@ TEST(BoardFileEdit, ChangesOnlyTheKeysAndKeepsComments) {
             "[nodes.force_sensor]\nid = 5\nzero_counts = 31\n");
   EXPECT_FALSE(edit_board_text(text, {{"soil", "x", "1"}}, error));
   EXPECT_EQ(error, "table [soil] is missing");
+}
+
+// A board reached through a symlink (as /etc/planter/board.toml may be) stays a link, and a
+// second calibration keeps the first one's backup.
+TEST(BoardFileEdit, FollowsSymlinksAndNeverOverwritesABackup) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("planter-edit-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(PLANTER_SOURCE_DIR "/boards/host-sim/board.toml", dir / "board.toml");
+  fs::create_symlink(dir / "board.toml", dir / "link.toml");
+  const double original =
+      config::load_board((dir / "board.toml").string()).controller.encoder.wheel_radius_m;
+  std::string error, backup;
+  ASSERT_TRUE(write_board_edits((dir / "link.toml").string(),
+                                {{"encoder", "wheel_radius_m", "0.1546"}}, error, &backup))
+      << error;
+  EXPECT_TRUE(fs::is_symlink(dir / "link.toml"));
+  EXPECT_EQ(backup, (dir / "board.toml.bak").string());
+  ASSERT_TRUE(write_board_edits((dir / "link.toml").string(),
+                                {{"encoder", "wheel_radius_m", "0.1551"}}, error, &backup))
+      << error;
+  EXPECT_EQ(backup, (dir / "board.toml.bak.2").string());
+  EXPECT_TRUE(fs::is_symlink(dir / "link.toml"));
+  EXPECT_DOUBLE_EQ(
+      config::load_board((dir / "board.toml.bak").string()).controller.encoder.wheel_radius_m,
+      original);
+  EXPECT_DOUBLE_EQ(
+      config::load_board((dir / "board.toml.bak.2").string()).controller.encoder.wheel_radius_m,
+      0.1546);
+  EXPECT_DOUBLE_EQ(
+      config::load_board((dir / "link.toml").string()).controller.encoder.wheel_radius_m, 0.1551);
+  fs::remove_all(dir);
 }
 
 }  // namespace

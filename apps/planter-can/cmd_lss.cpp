@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "apps/planter-can/sdo_session.h"
 #include "firmware/canopen/cob_id.h"
 #include "firmware/canopen/lss.h"
 #include "firmware/canopen/nmt.h"
@@ -115,6 +116,16 @@ int run_lss(ToolContext& ctx, const LssOptions& opt) {
   if (opt.action == "assign" && (opt.new_id < 1 || opt.new_id > 127)) {
     ctx.err << "planter-can: lss assign: node-ID " << opt.new_id << " is out of range 1-127\n";
     return kExitBadInput;
+  }
+  if (opt.action == "assign") {
+    // Two nodes with one ID answer each other's SDOs and PDOs: refuse an ID already in use.
+    SdoSession sdo(ctx.link, ctx.sdo_timeout_ns);
+    if (sdo.read(static_cast<std::uint8_t>(opt.new_id), 0x1000, 0).ok()) {
+      ctx.err << "planter-can: lss assign: node-ID " << opt.new_id
+              << " is already used by a node on the bus (it answered a read of 0x1000); "
+                 "choose a free ID (planter-can scan lists them)\n";
+      return kExitFailed;
+    }
   }
   std::array<std::uint32_t, 4> id{};
   if (opt.identity) {

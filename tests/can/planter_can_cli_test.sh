@@ -39,6 +39,9 @@ printf '[can]\nbitrate = 5\n' >"$work/bad.toml"
 expect 2 "bad.toml" -- --iface sim --board "$work/bad.toml" scan
 expect 2 "is not a calibration" -- --iface sim --board "$board" calibrate weight
 expect 2 "out of range 1-127" -- --iface sim --board "$board" lss assign 200
+# Node 2 (the disc drive) is on the bus: a second node with ID 2 is refused.
+expect 1 "node-ID 2 is already used by a node on the bus" -- --iface sim --board "$board" lss assign 2
+expect 0 "unconfigured -> 9, stored, boot-up seen" -- --iface sim --board "$board" lss assign 9
 expect 0 "4 node(s) on sim" -- --iface sim --board "$board" scan
 expect 1 "FAIL  SYNC rate" -- --iface sim --board "$board" check --skip-encoder
 

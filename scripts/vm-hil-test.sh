@@ -11,7 +11,7 @@ build=$(cd "${1:-$root/build}" && pwd)
 "$root/scripts/vm/prepare.sh" "$build/vm-cache"
 run_dir="$build/vm-hil"
 rm -rf "$run_dir" && mkdir -p "$run_dir"
-"$root/scripts/vm/run.sh" "$build/vm-cache" "$run_dir" 600 \
+PLANTER_VM_SHOW="$root:$build" "$root/scripts/vm/run.sh" "$build/vm-cache" "$run_dir" 600 \
   sh "$root/tests/hil/guest_hil_test.sh" "$root" "$build" 2>&1 |
   grep -v -e '^\s*$' -e 'SeaBIOS' -e 'Booting from ROM' -e 'reboot: Power down' | tr -d '\033' |
   sed 's/^c\[?7l\[2J\(\[0m\)\?//'

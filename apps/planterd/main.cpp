@@ -22,6 +22,7 @@
 #include "firmware/controller/controller.h"
 #include "hal/linux/hal_error.h"
 #include "hal/linux/rt_loop.h"
+#include "hal/linux/tick_trace.h"
 
 namespace {
 
@@ -141,6 +142,8 @@ int main(int argc, char** argv) {
   sigaddset(&signals, SIGUSR1);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
+  hal::linux_backend::TickTrace trace;  // per-tick phase times, dumped on an overrun
+  hw->controller_hal().tick_probe = &trace;
   Controller controller(board.controller, hw->controller_hal());
   daemon::SpscQueue<Row> rows(4096);
   Shared shared;
@@ -179,6 +182,7 @@ int main(int argc, char** argv) {
     std::int64_t link_up_since = -1;
     std::int64_t next_reset_ns = 0;
     loop.run([&](std::int64_t now, std::int64_t dt) {
+      trace.begin(now, loop.last_late_ns(), dt);
       if (opt.resume_after_link_loss) {
         // Reconnect and resume: only for faults the link loss explains, once it is back.
         const std::uint32_t downs = hw->can().link_down_count();
@@ -232,6 +236,12 @@ int main(int argc, char** argv) {
         shared.status = t;
         shared.status_mutex.unlock();
       }
+      trace.phase_done(hal::TickPhase::kHandOff);
+      // An overrun as the supervisor counts it: every one must be explainable from the log.
+      if (dt > board.controller.supervisor.overrun_threshold_ns ||
+          loop.last_late_ns() >= rt_config.period_ns) {
+        trace.capture_overrun();
+      }
       shared.ticks.fetch_add(1, std::memory_order_release);
       if (stop_at_ns < 0) return true;
       // Safe stop: the drives are brought to rest by the controller; leave once they are.
@@ -284,6 +294,9 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "planterd: %s: write failed; recording stopped\n", opt.record.c_str());
         recording_ok = false;
       }
+    }
+    if (const std::string overrun = trace.take_report(); !overrun.empty()) {
+      std::fprintf(stderr, "planterd: %s", overrun.c_str());
     }
     Telemetry status;
     {

@@ -42,6 +42,7 @@ void Controller::tick(std::int64_t now_ns, std::int64_t dt_ns) {
   read_bus(now_ns);
   read_encoder(now_ns);
   read_process_values();
+  mark(hal::TickPhase::kReceive);
 
   SupervisorInputs in;
   in.estop = hal_.estop.asserted();
@@ -69,9 +70,11 @@ void Controller::tick(std::int64_t now_ns, std::int64_t dt_ns) {
     previous_state_ = state;
   }
   if (state == SupervisorState::kCommissioning) run_commissioning(now_ns);
+  mark(hal::TickPhase::kControl);
 
   write_outputs(static_cast<double>(dt_ns) * 1e-9);
   send_sync();
+  mark(hal::TickPhase::kTransmit);
 
   telemetry_.time_ns = now_ns;
   telemetry_.state = state;

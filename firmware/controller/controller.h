@@ -38,6 +38,9 @@ class Controller {
   [[nodiscard]] std::uint32_t faults() const { return supervisor_.latched_faults(); }
 
  private:
+  void mark(hal::TickPhase phase) {
+    if (hal_.tick_probe != nullptr) hal_.tick_probe->phase_done(phase);
+  }
   NodeLink& link(NodeRole role) { return links_[static_cast<std::size_t>(role)]; }
   void read_bus(std::int64_t now_ns);
   void read_encoder(std::int64_t now_ns);

@@ -66,6 +66,7 @@ class RtLoop {
       const std::int64_t now = monotonic_now_ns();
       const std::int64_t late = now - next_ns;
       latency_.add(late);
+      last_late_ns_ = late;
       if (late >= config_.period_ns) {
         ++overruns_;
         next_ns += (late / config_.period_ns) * config_.period_ns;
@@ -80,6 +81,8 @@ class RtLoop {
   [[nodiscard]] const LatencyHistogram& latency() const { return latency_; }
   [[nodiscard]] std::uint64_t overruns() const { return overruns_; }
   [[nodiscard]] std::uint64_t ticks() const { return ticks_; }
+  // How late the current tick's wake-up was.
+  [[nodiscard]] std::int64_t last_late_ns() const { return last_late_ns_; }
   [[nodiscard]] const RtLoopConfig& config() const { return config_; }
 
  private:
@@ -94,6 +97,7 @@ class RtLoop {
   LatencyHistogram latency_;
   std::uint64_t overruns_ = 0;
   std::uint64_t ticks_ = 0;
+  std::int64_t last_late_ns_ = 0;
   int dma_latency_fd_ = -1;
 };
 

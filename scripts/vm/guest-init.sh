@@ -2,7 +2,8 @@
 # /init of the test VM: loads CAN and gpio-sim, mounts the host's root read-only (9p) and the
 # run directory writable at the same path, brings up vcan0 and a gpio-sim chip, then runs
 # $planter_out/guest-cmd.sh chrooted into the host's root. Its exit code goes back in
-# $planter_out/guest-exit. planter_out comes from the kernel command line.
+# $planter_out/guest-exit. planter_out and planter_show (host paths, ':'-separated, that must
+# stay visible, e.g. a checkout under /tmp) come from the kernel command line.
 export PATH=/bin:/sbin
 mount -t proc proc /proc
 mount -t sysfs sys /sys
@@ -17,10 +18,20 @@ finish() {
   poweroff -f
 }
 mount -t 9p -o trans=virtio,version=9p2000.L,ro,msize=262144 host /host || { say "9p host mount failed"; poweroff -f; }
-mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 out "/host$planter_out" ||
-  { say "9p out mount failed"; poweroff -f; }
+# The guest's writable scratch (tmpfs on /tmp and /run) would hide host paths under them: keep
+# a view of the host's own tree and bind the paths the run needs back on top of the scratch.
+mkdir -p /hostview && mount -o bind /host /hostview
 mount -t tmpfs tmp /host/tmp
 mount -t tmpfs run /host/run
+for p in $(echo "$planter_show" | tr ':' ' '); do
+  case "$p" in
+    /tmp/* | /run/*)
+      mkdir -p "/host$p" && mount -o bind "/hostview$p" "/host$p" || say "cannot show $p" ;;
+  esac
+done
+mkdir -p "/host$planter_out" 2>/dev/null
+mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 out "/host$planter_out" ||
+  { say "9p out mount failed"; poweroff -f; }
 mount -o bind /proc /host/proc
 mount -o bind /sys /host/sys
 mount -o bind /dev /host/dev

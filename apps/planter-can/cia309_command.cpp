@@ -1,5 +1,7 @@
 #include "apps/planter-can/cia309_command.h"
 
+#include "config/input_file.h"
+
 namespace planter::cantool {
 namespace {
 
@@ -9,7 +11,8 @@ bool is_integer(const std::string& t) { return parse_integer(t).has_value(); }
 
 std::string Cia309Error::text() const {
   if (token_number == 0) return expected;
-  return "token " + std::to_string(token_number) + " '" + token + "': expected " + expected;
+  return "token " + std::to_string(token_number) + " '" + config::excerpt(token) + "': expected " +
+         expected;
 }
 
 std::vector<std::string> split_tokens(std::string_view line) {

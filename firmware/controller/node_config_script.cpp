@@ -36,9 +36,18 @@ void build_node_config_script(const NodeConfig& cfg, std::uint16_t heartbeat_ms,
   // SYNC consumer: the TPDOs below are sent on every SYNC (COB-ID 0x80, CiA 301).
   out.add({true, 0x1005, 0, 4, canopen::kSyncCobId, 0, 'J'});
   auto configure = [&out](std::uint16_t comm, std::uint16_t map, std::uint16_t cob,
-                          const canopen::PdoMapping& m, std::uint8_t transmission) {
+                          const canopen::PdoMapping& m, std::uint8_t transmission,
+                          bool node_transmits) {
     out.add({true, comm, 1, 4, 0x80000000u | cob, 0, 'J'});
     if (m.count == 0) return;  // left invalid
+    // Every object a TPDO maps must exist on the node: a device that accepts any mapping would
+    // otherwise send zeros for it all run long (a standing disc, sigma 0, and no fault).
+    if (node_transmits) {
+      for (std::uint8_t i = 0; i < m.count; ++i) {
+        out.add({false, m.entries[i].index, m.entries[i].sub,
+                 static_cast<std::uint8_t>(m.entries[i].bits / 8), 0, 0, 'J'});
+      }
+    }
     out.add({true, map, 0, 1, 0, 0, 'J'});
     for (std::uint8_t i = 0; i < m.count; ++i) {
       out.add(
@@ -50,9 +59,11 @@ void build_node_config_script(const NodeConfig& cfg, std::uint16_t heartbeat_ms,
   };
   for (std::uint16_t k = 0; k < 4; ++k) {
     configure(static_cast<std::uint16_t>(0x1800 + k), static_cast<std::uint16_t>(0x1A00 + k),
-              static_cast<std::uint16_t>(canopen::kTpdoBase[k] + cfg.node_id), cfg.tpdo[k], 1);
+              static_cast<std::uint16_t>(canopen::kTpdoBase[k] + cfg.node_id), cfg.tpdo[k], 1,
+              true);
     configure(static_cast<std::uint16_t>(0x1400 + k), static_cast<std::uint16_t>(0x1600 + k),
-              static_cast<std::uint16_t>(canopen::kRpdoBase[k] + cfg.node_id), cfg.rpdo[k], 255);
+              static_cast<std::uint16_t>(canopen::kRpdoBase[k] + cfg.node_id), cfg.rpdo[k], 255,
+              false);
   }
   // Heartbeat last, so its watch starts from a configured node.
   out.add({true, 0x1017, 0, 2, heartbeat_ms, 0, 'K'});

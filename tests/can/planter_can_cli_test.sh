@@ -80,5 +80,9 @@ expect 1 "outdir: cannot be written" -- --board "$board" decode "$work/sync.log"
 if [ -w /dev/full ]; then
   expect 1 "--record: /dev/full: cannot be written" -- --iface sim --board "$board" --record /dev/full scan
 fi
+# A board whose TPDO maps an object the node does not have: configure names the step and the
+# abort (the controller's boot runs the same script, so it faults with boot error J).
+sed 's|tpdo2 = \["6064:00:32", "6077:00:16"\]|tpdo2 = ["6064:00:32", "2077:00:16"]|' "$board" >"$work/badmap.toml"
+expect 1 "2 r 0x2077 0 u16): abort 0x06020000" -- --iface sim --board "$work/badmap.toml" configure
 [ "$fails" -eq 0 ] && echo "planter-can command line: all cases behave"
 exit "$fails"

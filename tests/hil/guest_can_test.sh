@@ -14,7 +14,7 @@ CAN="$B/apps/planter-can/planter-can --iface vcan0 --board d-board.toml --no-pro
 note() { echo "hil-can: $*"; }
 rm -f d.candump d.candump.stop
 
-(while [ ! -f d.candump.stop ]; do candump -L vcan0 >> d.candump 2>/dev/null; sleep 0.01; done) & REC=$!
+(while [ ! -f d.candump.stop ]; do candump -L -r 8388608 vcan0 >> d.candump 2>/dev/null; sleep 0.01; done) & REC=$!
 "$SIM" devices "$R/scenarios/hil-commissioning.toml" --board d-board.toml --can vcan0 \
   --gpio planter-sim --duration 95 > d-devices.out 2> d-devices.log & DEV=$!
 sleep 1
@@ -49,11 +49,11 @@ touch d.candump.stop; pkill -x candump; wait $REC
 
 # The recorded log back onto the bus: by canplayer (can-utils) and by planter-can replay.
 rm -f d-canplayer.candump d-replay.candump
-candump -L vcan0 > d-canplayer.candump & C=$!
+candump -L -r 8388608 vcan0 > d-canplayer.candump & C=$!
 sleep 0.3
 canplayer -I d-record.log; echo $? > d-canplayer.rc
 sleep 0.3; kill $C; wait $C 2>/dev/null
-candump -L vcan0 > d-replay.candump & C=$!
+candump -L -r 8388608 vcan0 > d-replay.candump & C=$!
 sleep 0.3
 $CAN replay d-record.log > d-replay.out 2>&1; echo $? > d-replay.rc
 sleep 0.3; kill $C; wait $C 2>/dev/null

@@ -196,6 +196,13 @@ bool read_log(const std::string& path, std::vector<LogRecord>& records, std::ost
     ++number;
     if (number == 1) config::strip_utf8_bom(line);  // else its first frame reads as a comment
     LogParse p = parse_log_line(line);
+    if (p.kind == LogLineKind::kError && in.eof()) {
+      // The last line has no newline and does not parse: a recorder stopped mid-line (a kill
+      // or a power cut). The frames before it are whole; only that line is lost.
+      err << "planter-can: " << path << ":" << number
+          << ": the last line is cut (the recording stopped mid-line): ignored\n";
+      break;
+    }
     if (p.kind == LogLineKind::kError) {
       err << "planter-can: " << path << ":" << number << ": " << p.error << "\n";
       return false;

@@ -61,6 +61,11 @@ printf '\xef\xbb\xbf(1.000000) can0 702#05\n(1.100000) can0 702#05\n' >"$work/bo
 expect 0 "2 of 2 frames replayed" -- --iface sim --board "$board" replay "$work/bom.log"
 printf '\xef\xbb\xbf2 r 0x1000 0 u32\r\n' >"$work/bom.txt"
 expect 0 "^402$" -- --iface sim --board "$board" sdo -f "$work/bom.txt"
+# A log cut mid-line (a recorder killed while writing): the whole frames are used, the cut line
+# is said and skipped; a bad line that ends in a newline is still refused.
+printf '(1.000000) can0 702#05\n(1.100000) can0 702#05\n(1.2000' >"$work/cut.log"
+expect 0 "2 of 2 frames replayed" -- --iface sim --board "$board" replay "$work/cut.log"
+expect 0 "cut.log:3: the last line is cut" -- --iface sim --board "$board" replay "$work/cut.log"
 # A silence of 11 days in a log is shortened (and said), not replayed for hours.
 printf '(1.000000) can0 702#05\n(1000001.000000) can0 702#05\n' >"$work/gap.log"
 expect 0 "1 silence(s) longer than 10 s shortened" -- --iface sim --board "$board" replay "$work/gap.log"

@@ -34,6 +34,21 @@ SimLink::SimLink(const sim::Scenario& scenario, const SimLinkOptions& options)
     hal_ = std::make_unique<hal::ControllerHal>(
         hal::ControllerHal{ep, controller_edges_, estop_, lamp_});
     controller_ = std::make_unique<Controller>(scenario_.board.controller, *hal_);
+    // planterd has been running when the engineer plugs in: let it boot the nodes first, so the
+    // tool's first SDO request does not meet the controller's boot SDOs on the same node.
+    const std::int64_t limit =
+        scenario_.board.controller.supervisor.boot_timeout_ns + 1'000'000'000;
+    while (clock_.now_ns() < limit) {
+      const SupervisorState s = controller_->state();
+      if (s == SupervisorState::kReady || s == SupervisorState::kRunning ||
+          s == SupervisorState::kFault) {
+        break;
+      }
+      advance();
+    }
+    hal::CanFrame f;
+    while (endpoint_->receive(f)) {
+    }  // the tool was not listening yet
   }
 }
 

@@ -85,7 +85,7 @@ int run_lss(ToolContext& ctx, const LssOptions& opt) {
   nlohmann::json j{{"action", opt.action}};
   if (opt.action == "inquire") {
     if (!opt.identity) {
-      ctx.err << "planter-can: lss inquire needs --vendor, --product, --revision and --serial\n";
+      ctx.err << "planter-can: lss inquire needs --identity VENDOR PRODUCT REVISION SERIAL\n";
       return kExitBadInput;
     }
     if (!switch_selective(link, *opt.identity, opt.timeout_ns)) {

@@ -73,9 +73,9 @@ with open(sys.argv[1], "w") as f:
         f.write("%.2f,%.4f,%.5f\n" % (k * 0.01, cmd, w + 0.002 * math.sin(k * 1.7)))
 EOF
 kill_points planter-fit "$work/fit" -- "$fit" "$work/drive.csv" --jobs 1 --out "$work/fit"
-# The calibrated seedling, 60 mm long at 500x the platen speed: a run of a fraction of a second
+# The calibrated seedling, 24 mm long at 500x the platen speed: a run of a tenth of a second
 # (seconds under the sanitizers), long enough to be killed mid-way.
-{ cat "$src/models/seedling_dem.toml"; printf '\n[seedling]\nlength_mm = 60\n'; } >"$work/short.toml"
+{ cat "$src/models/seedling_dem.toml"; printf '\n[seedling]\nlength_mm = 24\n'; } >"$work/short.toml"
 kill_points "planter-dem compress" "$work/dem" -- "$dem" compress --params "$work/short.toml" \
   --speedup 500 --out "$work/dem"
 kill_points "planter-dem reduce" "$work/red" -- "$dem" reduce --params "$work/short.toml" \

@@ -103,16 +103,20 @@ bool TomlSection::boolean(const std::string& key, bool fallback) {
   return *b;
 }
 
+void TomlSection::reject_control_characters(const std::string& key, const std::string& s) const {
+  // Names and paths go into CSV metadata lines, HTML titles and messages: one line each.
+  for (const char c : s) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
+      fail(key, "must not hold control characters (newline, tab, ...)");
+  }
+}
+
 std::string TomlSection::string(const std::string& key, const std::string& fallback) {
   const toml::node* n = get(key);
   if (n == nullptr) return fallback;
   auto s = n->value_exact<std::string>();
   if (!s) fail(key, "must be a string");
-  // Names and paths go into CSV metadata lines, HTML titles and messages: one line each.
-  for (const char c : *s) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
-      fail(key, "must not hold control characters (newline, tab, ...)");
-  }
+  reject_control_characters(key, *s);
   return *s;
 }
 
@@ -125,10 +129,7 @@ std::vector<std::string> TomlSection::strings(const std::string& key) {
   for (const auto& item : *a) {
     auto s = item.value_exact<std::string>();
     if (!s) fail(key, "must be an array of strings");
-    for (const char c : *s) {
-      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
-        fail(key, "must not hold control characters (newline, tab, ...)");
-    }
+    reject_control_characters(key, *s);
     out.push_back(*s);
   }
   return out;

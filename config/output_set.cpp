@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "config/durable_file.h"
@@ -22,24 +23,6 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
   throw std::runtime_error(path + ": " + what);
-}
-
-// JSON string escaping for the manifest (names are ours; the tool string may hold quotes).
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(c));
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
 }
 
 void fsync_path(const std::string& path, int flags) {
@@ -83,9 +66,8 @@ bool output_dir_is_replaceable(const std::string& dir, const std::string& tool) 
   if (fs::is_empty(dir, ec)) return true;
   std::ifstream in(dir + "/" + kRunManifest);
   if (!in) return false;
-  std::string first;
-  std::getline(in, first);
-  return first == "{\"tool\": " + json_string(tool) + ",";
+  const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
+  return manifest.is_object() && manifest.value("tool", std::string()) == tool;
 }
 
 OutputSet::OutputSet(std::string dir, std::string tool, bool force)
@@ -132,16 +114,15 @@ void OutputSet::write(const std::string& name, const std::string& data) {
 }
 
 void OutputSet::commit() {
-  std::string manifest = "{\"tool\": " + json_string(tool_) + ",\n \"files\": {";
-  for (std::size_t i = 0; i < names_.size(); ++i) {
-    const std::string p = staging_ + "/" + names_[i];
+  nlohmann::json manifest{{"tool", tool_}, {"files", nlohmann::json::object()}};
+  for (const std::string& name : names_) {
+    const std::string p = staging_ + "/" + name;
     struct stat st {};
-    if (::stat(p.c_str(), &st) != 0) fail(dir_ + "/" + names_[i], "was not written");
+    if (::stat(p.c_str(), &st) != 0) fail(dir_ + "/" + name, "was not written");
     fsync_path(p, O_RDONLY);
-    manifest += (i ? ", " : "") + json_string(names_[i]) + ": " + std::to_string(st.st_size);
+    manifest["files"][name] = st.st_size;
   }
-  manifest += "}}\n";
-  write(kRunManifest, manifest);
+  write(kRunManifest, manifest.dump(1) + "\n");
   fsync_path(staging_, O_RDONLY | O_DIRECTORY);
   std::error_code ec;
   const bool existed = fs::exists(dir_, ec);

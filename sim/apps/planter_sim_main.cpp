@@ -68,11 +68,19 @@ std::string seedlings_csv(const SeedlingProcess& process) {
   return csv.str();
 }
 
-int run_scenario(const std::string& scenario_path, const std::string& out_dir, bool quiet,
-                 bool force) {
-  const Scenario scenario = load_scenario(scenario_path);
+// The scenario (with another board if one is given), its board's warnings printed once: every
+// subcommand runs a board, so every one says what is in range but doubtful about it.
+Scenario load_scenario_warned(const std::string& scenario_path, const std::string& board_path) {
+  Scenario scenario = load_scenario(scenario_path);
+  if (!board_path.empty()) scenario.board = config::load_board(board_path);
   for (const auto& w : scenario.board.warnings)
     std::fprintf(stderr, "planter-sim: warning: %s\n", w.c_str());
+  return scenario;
+}
+
+int run_scenario(const std::string& scenario_path, const std::string& out_dir, bool quiet,
+                 bool force) {
+  const Scenario scenario = load_scenario_warned(scenario_path, "");
   config::OutputSet out(out_dir, "planter-sim run", force);
   LockstepRunner runner(scenario);
   RecordingWriter recording(out.path("recording.csv"), out.shown("recording.csv"),
@@ -103,7 +111,7 @@ int run_scenario(const std::string& scenario_path, const std::string& out_dir, b
 // shortened run of the scenario, so a user sees how uprightness and force respond.
 int run_sweep(const std::string& scenario_path, const std::string& out_dir, double distance_m,
               bool force) {
-  const Scenario base = load_scenario(scenario_path);
+  const Scenario base = load_scenario_warned(scenario_path, "");
   config::OutputSet out(out_dir, "planter-sim sweep", force);
   const double area[3] = {105, 255, 405}, omega[3] = {0.15, 0.25, 0.35}, depth[3] = {40, 100, 160};
   const int design[15][3] = {{-1, -1, 0}, {1, -1, 0}, {-1, 1, 0}, {1, 1, 0},   {-1, 0, -1},
@@ -143,8 +151,7 @@ void on_signal(int) { g_stop = true; }
 
 int run_devices(const std::string& scenario_path, const std::string& board_path,
                 RealtimeDevicesOptions options) {
-  Scenario scenario = load_scenario(scenario_path);
-  if (!board_path.empty()) scenario.board = config::load_board(board_path);
+  const Scenario scenario = load_scenario_warned(scenario_path, board_path);
   std::signal(SIGTERM, on_signal);
   std::signal(SIGINT, on_signal);
   const RealtimeDevicesResult r = run_realtime_devices(scenario, options, g_stop);

@@ -2,14 +2,45 @@
 
 #include <cstdio>
 
+#include "firmware/io/signal_table.h"
+
 namespace planter::config {
 
+std::string controller_columns() {
+  std::string head;
+  for (const SignalDecl& s : kSignals) {
+    if (!s.recorded) continue;
+    if (!head.empty()) head += ',';
+    head += s.column;
+  }
+  return head;
+}
+
 int format_controller_columns(char* out, std::size_t size, double t_s, const Telemetry& c) {
-  return std::snprintf(
-      out, size, "%.3f,%lld,%.5f,%.5f,%.5f,%.5f,%.4f,%.4f,%.2f,%.4f,%.2f,%.3f,%.3f,%.2f,%s", t_s,
-      static_cast<long long>(c.wheel_counts), c.v_wheel_mps, c.omega_cmd_radps, c.omega_radps,
-      c.disc_angle_rad, c.disc_torque_Nm, c.sigma, c.clamp_force_cmd_N, c.clamp_pos_mm,
-      c.clamp_force_N, c.depth_cmd_mm, c.depth_mm, c.depth_force_N, supervisor_state_name(c.state));
+  std::size_t used = 0;
+  int total = 0;
+  for (const SignalDecl& s : kSignals) {
+    if (!s.recorded) continue;
+    char* at = used < size ? out + used : nullptr;
+    const std::size_t room = used < size ? size - used : 0;
+    const char* sep = total == 0 ? "" : ",";
+    int n = 0;
+    if (s.source == SignalSource::kClock) {
+      n = std::snprintf(at, room, "%s%.*f", sep, s.decimals, t_s);
+    } else if (s.source == SignalSource::kSupervisor) {
+      n = std::snprintf(at, room, "%s%s", sep, supervisor_state_name(c.state));
+    } else if (s.measured != nullptr) {
+      n = std::snprintf(at, room, "%s%.*f", sep, s.decimals, c.*s.measured);
+    } else if (s.commanded != nullptr) {
+      n = std::snprintf(at, room, "%s%.*f", sep, s.decimals, c.*s.commanded);
+    } else {  // the encoder's count
+      n = std::snprintf(at, room, "%s%lld", sep, static_cast<long long>(c.wheel_counts));
+    }
+    if (n < 0) return n;
+    total += n;
+    used += static_cast<std::size_t>(n);
+  }
+  return total;
 }
 
 }  // namespace planter::config

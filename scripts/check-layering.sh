@@ -5,7 +5,7 @@ set -u
 root=${1:-$(dirname "$0")/..}
 bad=$(grep -rnE '^\s*#\s*include\s*[<"]' "$root/firmware" |
   grep -vE '#\s*include\s*"(firmware/|planter/hal/)' |
-  grep -vE '#\s*include\s*<(algorithm|array|cmath|cstddef|cstdint|cstdio|limits|span|string|vector|utility|type_traits)>' || true)
+  grep -vE '#\s*include\s*<(algorithm|array|cmath|cstddef|cstdint|cstdio|limits|span|string|string_view|vector|utility|type_traits)>' || true)
 if [ -n "$bad" ]; then
   echo "layering: firmware/ includes a header outside the standard library and the HAL interfaces:"
   echo "$bad"

@@ -7,7 +7,7 @@
 
 #include "apps/planter-can/sdo_session.h"
 #include "firmware/canopen/nmt.h"
-#include "firmware/controller/node_config_script.h"
+#include "firmware/io/node_config_script.h"
 
 namespace planter::cantool {
 namespace {

@@ -33,7 +33,7 @@ SimLink::SimLink(const sim::Scenario& scenario, const SimLinkOptions& options)
     auto& ep = bus_.add_endpoint(512);
     hal_ = std::make_unique<hal::ControllerHal>(
         hal::ControllerHal{ep, controller_edges_, estop_, lamp_});
-    controller_ = std::make_unique<Controller>(scenario_.board.controller, *hal_);
+    controller_ = std::make_unique<ControlCycle>(scenario_.board.controller, *hal_);
     // planterd has been running when the engineer plugs in: let it boot the nodes first, so the
     // tool's first SDO request does not meet the controller's boot SDOs on the same node.
     const std::int64_t limit =

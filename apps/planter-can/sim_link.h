@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "apps/planter-can/tool_link.h"
-#include "firmware/controller/controller.h"
+#include "firmware/controller/control_cycle.h"
 #include "hal/sim/sim_clock.h"
 #include "hal/sim/sim_gpio.h"
 #include "hal/sim/virtual_can_bus.h"
@@ -42,7 +42,7 @@ class SimLink final : public ToolLink, public SimFixture {
   void advance();
   hal::sim::VirtualCanBus& bus() { return bus_; }
   sim::PlantRig& rig() { return *rig_; }
-  [[nodiscard]] const Controller* controller() const { return controller_.get(); }
+  [[nodiscard]] const ControlCycle* controller() const { return controller_.get(); }
   [[nodiscard]] const sim::Scenario& scenario() const { return scenario_; }
 
  protected:
@@ -65,7 +65,7 @@ class SimLink final : public ToolLink, public SimFixture {
   hal::sim::SimDigitalInput estop_;
   hal::sim::SimDigitalOutput lamp_;
   std::unique_ptr<hal::ControllerHal> hal_;
-  std::unique_ptr<Controller> controller_;
+  std::unique_ptr<ControlCycle> controller_;
   std::int64_t next_tick_ns_ = 0;
   bool moving_ = false;
 };

@@ -69,7 +69,7 @@ CrashSafeRecording::CrashSafeRecording(const std::string& path,
   if (fd_ < 0) throw io_error(path, "cannot create");
   std::string head;
   for (const std::string& m : metadata) head += "# " + m + "\n";
-  head += config::kControllerColumns;
+  head += config::controller_columns();
   head += "\n";
   if (!config::write_all(fd_, head.data(), head.size()) || fdatasync(fd_) != 0)
     throw io_error(path, "cannot write the header");

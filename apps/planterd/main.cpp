@@ -19,7 +19,7 @@
 #include "apps/planterd/spsc_queue.h"
 #include "config/commissioning.h"
 #include "config/config_error.h"
-#include "firmware/controller/controller.h"
+#include "firmware/controller/control_cycle.h"
 #include "hal/linux/hal_error.h"
 #include "hal/linux/rt_loop.h"
 #include "hal/linux/tick_trace.h"
@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
 
   hal::linux_backend::TickTrace trace;  // per-tick phase times, dumped on an overrun
   hw->controller_hal().tick_probe = &trace;
-  Controller controller(board.controller, hw->controller_hal());
+  ControlCycle controller(board.controller, hw->controller_hal());
   daemon::SpscQueue<Row> rows(4096);
   Shared shared;
   if (!opt.commissioned_stamp.empty()) {

@@ -1,9 +1,18 @@
 #pragma once
 // Furrow depth: a rate-limited set-point ramp plus integral trim on the measured depth, so a
 // constant offset (actuator compliance under soil draft) is taken out.
-#include "firmware/controller/controller_config.h"
 
 namespace planter {
+
+struct DepthLoopConfig {
+  double target_mm = 102.0;
+  double rate_mm_per_s = 20.0;
+  double ki_per_s = 0.5;
+  double trim_max_mm = 15.0;
+  double min_mm = 0.0;
+  double max_mm = 170.0;
+  double raised_mm = 0.0;  // opener position out of the ground
+};
 
 class FurrowDepthLoop {
  public:

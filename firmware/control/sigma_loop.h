@@ -1,9 +1,15 @@
 #pragma once
 // Disc speed follows ground speed by distance travelled: the disc angle is held at
 // sigma * distance / R, so sigma = R*omega/v holds through acceleration, stops and restarts.
-#include "firmware/controller/controller_config.h"
 
 namespace planter {
+
+struct SigmaLoopConfig {
+  double sigma = 1.5;
+  double disc_radius_m = 0.300;
+  double angle_gain_per_s = 3.0;  // disc angle error -> speed correction
+  double omega_max_radps = 1.2;
+};
 
 class SigmaLoop {
  public:

@@ -31,6 +31,22 @@ constexpr int kCount = 9;
 const char* name(int bit);
 }  // namespace fault
 
+struct SupervisorConfig {
+  std::int64_t overrun_threshold_ns = 15'000'000;  // a tick later than this is an overrun
+  std::uint32_t overruns_to_fault = 3;             // consecutive overruns before a fault
+  double force_plausible_min_N = -20.0;
+  double force_plausible_max_N = 400.0;
+  double ground_speed_plausible_max_mps = 1.0;
+  std::int64_t pdo_stale_ns = 100'000'000;  // no fresh TPDO for this long -> fault
+  std::int64_t boot_timeout_ns = 5'000'000'000;
+  double stopped_omega_radps = 0.01;
+  // The disc may turn this much faster than sigma * v / R (starts, angle catch-up) for at most
+  // disc_implausible_ns before a fault: beyond that a scale, wiring or control error is turning
+  // the disc against the ground (at standstill it throws seedlings on the headland).
+  double disc_plausible_margin_radps = 0.3;
+  std::int64_t disc_implausible_ns = 1'000'000'000;
+};
+
 struct SupervisorInputs {
   bool estop = false;
   bool nodes_ready = false;  // every node booted, configured, operational, drives enabled

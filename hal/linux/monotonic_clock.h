@@ -5,8 +5,6 @@
 
 #include <cstdint>
 
-#include "planter/hal/clock.h"
-
 namespace planter::hal::linux_backend {
 
 inline std::int64_t timespec_ns(const timespec& ts) {
@@ -25,10 +23,5 @@ inline std::int64_t realtime_now_ns() {
   clock_gettime(CLOCK_REALTIME, &ts);
   return timespec_ns(ts);
 }
-
-class MonotonicClock final : public Clock {
- public:
-  [[nodiscard]] std::int64_t now_ns() const override { return monotonic_now_ns(); }
-};
 
 }  // namespace planter::hal::linux_backend

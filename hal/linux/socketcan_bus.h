@@ -25,7 +25,12 @@ class SocketCanBus final : public CanBus {
 
   bool send(const CanFrame& frame) override;
   bool receive(CanFrame& frame) override;
-  [[nodiscard]] CanBusCounters counters() const override { return counters_; }
+  [[nodiscard]] CanBusCounters counters() const override {
+    CanBusCounters c = counters_;
+    c.link_up = link_up();
+    c.link_downs = link_downs_;
+    return c;
+  }
 
   // Kernel timestamp of the last frame receive() returned (hardware when the adapter gives
   // one, else software), CLOCK_REALTIME ns for software stamps (what candump prints).

@@ -1,5 +1,5 @@
 #pragma once
-#include "firmware/util/fixed_ring.h"
+#include "hal/sim/fixed_ring.h"
 #include "planter/hal/gpio.h"
 
 namespace planter::hal::sim {

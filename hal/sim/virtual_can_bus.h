@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "firmware/util/fixed_ring.h"
+#include "hal/sim/fixed_ring.h"
 #include "planter/hal/can_bus.h"
 
 namespace planter::hal::sim {
@@ -20,8 +20,13 @@ class VirtualCanEndpoint final : public CanBus {
   bool receive(CanFrame& frame) override;
   [[nodiscard]] CanBusCounters counters() const override;
 
-  // Unplugged: frames sent are lost and nothing is received (a node that stops answering).
-  void set_unplugged(bool unplugged) { unplugged_ = unplugged; }
+  // Unplugged: frames sent are lost and nothing is received (a node that stops answering, or
+  // the controller's own cable pulled: its counters then read the link down).
+  void set_unplugged(bool unplugged) {
+    if (unplugged && !unplugged_) ++counters_.link_downs;
+    unplugged_ = unplugged;
+    counters_.link_up = !unplugged;
+  }
   [[nodiscard]] bool unplugged() const { return unplugged_; }
   [[nodiscard]] std::size_t pending() const { return rx_.size(); }
 

@@ -12,7 +12,7 @@ LockstepRunner::LockstepRunner(const Scenario& scenario)
   controller_endpoint_ = &bus_.add_endpoint(512);
   hal_ = std::make_unique<hal::ControllerHal>(
       hal::ControllerHal{*controller_endpoint_, encoder_, estop_, lamp_});
-  controller_ = std::make_unique<Controller>(cfg, *hal_);
+  controller_ = std::make_unique<ControlCycle>(cfg, *hal_);
   rig_ = std::make_unique<PlantRig>(scenario_, bus_);
   summary_.configure(cfg.sigma.sigma, cfg.depth.target_mm, cfg.clamp.ceiling_N, 8.0);
 }

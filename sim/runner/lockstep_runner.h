@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "firmware/controller/controller.h"
+#include "firmware/controller/control_cycle.h"
 #include "hal/sim/sim_clock.h"
 #include "hal/sim/sim_gpio.h"
 #include "hal/sim/virtual_can_bus.h"
@@ -40,7 +40,7 @@ class LockstepRunner {
   // Runs a single control period (for tests that drive the loop themselves).
   void step();
 
-  Controller& controller() { return *controller_; }
+  ControlCycle& controller() { return *controller_; }
   hal::sim::VirtualCanBus& bus() { return bus_; }
   hal::sim::SimDigitalInput& estop() { return estop_; }
   hal::sim::VirtualCanEndpoint& device_endpoint(NodeRole role);
@@ -61,7 +61,7 @@ class LockstepRunner {
   hal::sim::SimDigitalOutput lamp_;
   hal::sim::VirtualCanEndpoint* controller_endpoint_;
   std::unique_ptr<hal::ControllerHal> hal_;
-  std::unique_ptr<Controller> controller_;
+  std::unique_ptr<ControlCycle> controller_;
   std::unique_ptr<PlantRig> rig_;
   Observer observer_;
   SummaryBuilder summary_;

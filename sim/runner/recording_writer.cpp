@@ -18,7 +18,7 @@ RecordingWriter::RecordingWriter(const std::string& path, const std::string& sho
   std::fprintf(file_,
                "%s,v_ground,true_x_m,true_sigma,true_omega,true_clamp_force,"
                "true_depth_mm,true_slip\n",
-               config::kControllerColumns);
+               config::controller_columns().c_str());
 }
 
 RecordingWriter::~RecordingWriter() {

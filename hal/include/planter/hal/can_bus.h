@@ -10,6 +10,8 @@ struct CanBusCounters {
   std::uint32_t rx_overflow = 0;  // lost because the receive queue was full
   std::uint32_t error_frames = 0;
   bool bus_off = false;
+  bool link_up = true;           // the interface is up: false while a cable or adapter is out
+  std::uint32_t link_downs = 0;  // times the interface went down since it was opened
 };
 
 // One CAN interface. Non-blocking: the control loop polls it once per tick.

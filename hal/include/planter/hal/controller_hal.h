@@ -1,7 +1,6 @@
 #pragma once
 // Everything the controller touches, handed in through its constructor (no global HAL object).
 #include "planter/hal/can_bus.h"
-#include "planter/hal/clock.h"
 #include "planter/hal/gpio.h"
 #include "planter/hal/tick_probe.h"
 

@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "firmware/controller/controller_config.h"
+#include "firmware/io/io_config.h"
 
 namespace planter {
 

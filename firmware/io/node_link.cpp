@@ -1,4 +1,4 @@
-#include "firmware/controller/node_link.h"
+#include "firmware/io/node_link.h"
 
 #include <algorithm>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "firmware/controller/node_config_script.h"
+#include "firmware/io/node_config_script.h"
 
 #include "firmware/canopen/cia402.h"
 #include "firmware/canopen/cob_id.h"

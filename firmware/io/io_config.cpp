@@ -1,4 +1,4 @@
-#include "firmware/controller/controller_config.h"
+#include "firmware/io/io_config.h"
 
 namespace planter {
 

@@ -7,8 +7,8 @@
 #include "firmware/canopen/cia402.h"
 #include "firmware/canopen/heartbeat_consumer.h"
 #include "firmware/canopen/sdo_client.h"
-#include "firmware/controller/controller_config.h"
-#include "firmware/controller/node_config_script.h"
+#include "firmware/io/io_config.h"
+#include "firmware/io/node_config_script.h"
 
 namespace planter {
 

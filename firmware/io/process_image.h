@@ -1,0 +1,50 @@
+#pragma once
+// The process image: what the I/O layer read from the machine this tick, in SI units (mm where
+// named), and what the controller commands back. The controller sees only these two structs;
+// CANopen, counts and scales stay in the I/O layer (signal_table.h says which object is which).
+#include <cstdint>
+
+namespace planter {
+
+struct MachineState {
+  // Soil-wheel encoder.
+  std::int64_t wheel_counts = 0;
+  double distance_m = 0.0;
+  double v_wheel_mps = 0.0;
+  std::uint32_t encoder_invalid = 0;  // quadrature transitions that skipped a state
+
+  // Process values from the nodes' TPDOs.
+  double omega_radps = 0.0;
+  double disc_angle_rad = 0.0;
+  double disc_torque_Nm = 0.0;
+  double clamp_pos_mm = 0.0;
+  double clamp_force_N = 0.0;
+  double depth_mm = 0.0;
+  double depth_force_N = 0.0;
+
+  // Lines.
+  bool estop = false;
+
+  // The links: the CAN interface itself and the nodes behind it.
+  bool link_up = true;               // the interface is up (false while the cable is out)
+  std::uint32_t link_downs = 0;      // times the interface went down since start
+  bool nodes_started = false;        // commissioning finished and NMT start sent
+  bool nodes_ready = false;          // every node operational and every drive enabled
+  std::uint32_t link_faults = 0;     // fault:: bits the links saw this tick (heartbeat, EMCY...)
+  std::uint32_t unknown_frames = 0;  // frames with an ID no node claims, since start
+};
+
+struct MachineCommand {
+  double omega_cmd_radps = 0.0;   // disc speed
+  double clamp_pos_cmd_mm = 0.0;  // roller position
+  double depth_cmd_mm = 0.0;      // opener position
+  bool drives_enabled = false;    // CiA 402 operation enabled; false: quick stop
+  bool commissioning = false;     // boot the nodes (reset, configure, start) while true
+  bool status_lamp = false;
+
+  // What the controller reports with its command (not sent to a node).
+  double clamp_force_cmd_N = 0.0;  // the set-point the roller position is trimmed towards
+  double sigma = 0.0;              // R*omega / v as the controller sees it
+};
+
+}  // namespace planter

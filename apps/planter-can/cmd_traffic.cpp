@@ -16,6 +16,7 @@
 #include "config/durable_file.h"
 #include "config/input_file.h"
 #include "firmware/canopen/cob_id.h"
+#include "firmware/io/signal_table.h"
 
 namespace planter::cantool {
 namespace {
@@ -291,28 +292,15 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
   }
   std::vector<LogRecord> records;
   if (!read_log(log_path, records, err)) return kExitBadInput;
-  // Columns of PRODUCT.md that travel on the bus, by (role, object).
-  struct Column {
-    const char* name;
-    NodeRole role;
-    std::uint16_t index;
-    bool rpdo;  // the controller's command rather than the node's measurement
-  };
-  static constexpr Column kColumns[] = {
-      {"omega_cmd", NodeRole::kDiscDrive, 0x60FF, true},
-      {"omega", NodeRole::kDiscDrive, 0x606C, false},
-      {"disc_angle", NodeRole::kDiscDrive, 0x6064, false},
-      {"disc_torque", NodeRole::kDiscDrive, 0x6077, false},
-      {"clamp_pos_mm", NodeRole::kRollerActuator, 0x6064, false},
-      {"clamp_force", NodeRole::kForceSensor, 0x7130, false},
-      {"depth_cmd_mm", NodeRole::kDepthActuator, 0x607A, true},
-      {"depth_mm", NodeRole::kDepthActuator, 0x6064, false},
-      {"depth_force", NodeRole::kDepthActuator, 0x6077, false},
-  };
-  constexpr std::size_t kCount = sizeof kColumns / sizeof kColumns[0];
+  // The recording columns that travel on the bus (signal table), in recording order.
+  std::vector<const SignalDecl*> columns;
+  for (const SignalDecl& s : kSignals) {
+    if (s.recorded && s.on_bus()) columns.push_back(&s);
+  }
+  const std::size_t kCount = columns.size();
   const FrameDecoder decoder(&board->controller);
-  std::array<double, kCount> values{};
-  std::array<bool, kCount> seen{};
+  std::vector<double> values(kCount, 0.0);
+  std::vector<bool> seen(kCount, false);
   // Built in memory and written whole at the end (temporary + rename): a bad log leaves an
   // existing CSV as it was, and a full disk leaves no half file.
   std::ostringstream file;
@@ -334,20 +322,22 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
     if (node == nullptr) return;
     for (const auto& v : d.values) {
       for (std::size_t i = 0; i < kCount; ++i) {
-        const Column& c = kColumns[i];
-        if (c.role == node->role && c.index == v.index && c.rpdo == (d.service == Service::kRpdo))
+        const SignalDecl& c = *columns[i];
+        const bool rpdo = c.source == SignalSource::kController;
+        if (c.role == node->role && c.index == v.index && c.sub == v.sub &&
+            rpdo == (d.service == Service::kRpdo))
           take(i, v.value);
       }
     }
   };
-  std::array<bool, kCount> present{};
+  std::vector<bool> present(kCount, false);
   for (const auto& r : records) {
     if (r.frame.is_standard_data())
       for_each_value(r, [&](std::size_t i, double) { present[i] = true; });
   }
   csv << "# source: " << log_path << "\n# board: " << board->name << "\nt";
   for (std::size_t i = 0; i < kCount; ++i) {
-    if (present[i]) csv << "," << kColumns[i].name;
+    if (present[i]) csv << "," << columns[i]->column;
   }
   csv << "\n";
   const std::int64_t t0 = records.front().time_ns;

@@ -9,6 +9,7 @@
 #include "firmware/canopen/le_bytes.h"
 #include "firmware/canopen/lss.h"
 #include "firmware/canopen/pdo.h"
+#include "firmware/io/signal_table.h"
 
 namespace planter::cantool {
 namespace {
@@ -136,35 +137,36 @@ std::string raw_frame_text(const hal::CanFrame& f) {
 std::optional<ProcessValue> scale_process_value(const NodeConfig& node, std::uint16_t index,
                                                 std::uint8_t sub, std::int64_t raw) {
   namespace c402 = canopen::cia402;
-  const bool disc = node.role == NodeRole::kDiscDrive;
-  const double cpu = node.counts_per_unit;
   ProcessValue v;
   v.index = index;
   v.sub = sub;
   v.raw = raw;
-  if (const ObjectInfo* o = find_object(index, sub)) v.name = std::string(o->name);
   const auto r = static_cast<double>(raw);
-  if (node.profile == 404 && index == 0x7130) {
-    v.value = (r - node.zero_counts) / cpu;
-    v.unit = "N";
-    v.name = "clamp force";
+  // A signal of the machine: its scale, unit and name come from the signal table.
+  if (const SignalDecl* s = find_bus_signal(node.role, index, sub)) {
+    v.value = bus_to_si(s->scale, node, r);
+    v.unit = s->unit;
+    v.name = std::string(s->column);
     return v;
   }
+  // Another CiA 402 object mapped by the board: scaled as its kind, in the node's unit.
   if (node.profile != 402) return std::nullopt;
+  if (const ObjectInfo* o = find_object(index, sub)) v.name = std::string(o->name);
+  const bool disc = node.role == NodeRole::kDiscDrive;
   switch (index) {
     case c402::kPositionActual:
     case c402::kTargetPosition:
-      v.value = r / cpu;
+      v.value = bus_to_si(BusScale::kPerCount, node, r);
       v.unit = disc ? "rad" : "mm";
       return v;
     case c402::kVelocityActual:
     case c402::kTargetVelocity:
     case c402::kProfileVelocity:
-      v.value = r / cpu;
+      v.value = bus_to_si(BusScale::kPerCount, node, r);
       v.unit = disc ? "rad/s" : "mm/s";
       return v;
     case c402::kTorqueActual:
-      v.value = r * 1e-3 * node.rated_torque;
+      v.value = bus_to_si(BusScale::kPerMilleRated, node, r);
       v.unit = disc ? "N*m" : "N";
       return v;
     default:

@@ -6,33 +6,54 @@
 #include <sstream>
 
 #include "config/output_set.h"
+#include "firmware/io/signal_table.h"
 #include "sim/analysis/model_file.h"
 #include "sim/report/svg_plot.h"
 
 namespace planter::analysis {
 namespace {
 
+// A column's unit, from the signal table; "" for a column it does not declare.
+std::string column_unit(const std::string& column) {
+  const SignalDecl* s = find_signal(column);
+  return s != nullptr ? std::string(s->unit) : std::string();
+}
+
+// An effect's parameters are in the units of the channel they act on: "output units/s" on the
+// clamp-force channel is N/s.
+std::string concrete_unit(std::string unit, const ChannelModel& c) {
+  for (const auto& [generic, column] :
+       {std::pair<std::string, std::string>{"output units", c.output()},
+        {"input units", c.input()}}) {
+    const std::string u = column_unit(column);
+    const std::size_t at = unit.find(generic);
+    if (at != std::string::npos && !u.empty()) unit.replace(at, generic.size(), u);
+  }
+  return unit;
+}
+
 nlohmann::json params_json(const std::vector<ParamSpec>& specs, const std::vector<double>& v,
-                           const std::vector<double>& sd) {
+                           const std::vector<double>& sd, const ChannelModel& c) {
   nlohmann::json j = nlohmann::json::array();
   for (std::size_t k = 0; k < specs.size() && k < v.size(); ++k) {
     j.push_back({{"name", specs[k].name},
                  {"value", v[k]},
                  {"sd", k < sd.size() ? sd[k] : 0.0},
-                 {"unit", specs[k].unit},
+                 {"unit", concrete_unit(specs[k].unit, c)},
                  {"grid", specs[k].grid}});
   }
   return j;
 }
 
-nlohmann::json effects_json(const ChannelFit& f) {
+nlohmann::json effects_json(const ChannelFit& f, const ChannelModel& c) {
   nlohmann::json j = nlohmann::json::array();
   for (std::size_t e = 0; e < f.effects.size(); ++e) {
-    j.push_back({{"effect", f.effects[e].spec->name},
-                 {"signature", f.effects[e].spec->signature},
-                 {"parameters",
-                  params_json(f.effects[e].spec->params, f.effects[e].values,
-                              e < f.effect_sd.size() ? f.effect_sd[e] : std::vector<double>{})}});
+    j.push_back(
+        {{"effect", f.effects[e].spec->name},
+         {"signature", f.effects[e].spec->signature},
+         {"parameters",
+          params_json(f.effects[e].spec->params, f.effects[e].values,
+                      e < f.effect_sd.size() ? f.effect_sd[e] : std::vector<double>{}, c)}});
   }
   return j;
 }
@@ -54,17 +75,18 @@ std::string fit_json(const FitReport& r, double wall_s) {
     nlohmann::json ch;
     ch["subsystem"] = c.channel->subsystem();
     ch["output"] = c.channel->output();
+    ch["output_unit"] = column_unit(c.channel->output());
     ch["verdict"] = c.verdict;
-    ch["nominal"] =
-        params_json(c.channel->nominal_params(), c.nominal.nominal, c.nominal.nominal_sd);
+    ch["nominal"] = params_json(c.channel->nominal_params(), c.nominal.nominal,
+                                c.nominal.nominal_sd, *c.channel);
     ch["noise_rms"] = c.noise_rms;
     ch["held_out_rms"] = {{"nominal", c.nominal.rms_held_out},
                           {"augmented", c.final_fit.rms_held_out}};
     ch["calibration_rms"] = {{"nominal", c.nominal.rms_calibration},
                              {"augmented", c.final_fit.rms_calibration}};
-    ch["effects"] = effects_json(c.final_fit);
-    ch["augmented_nominal"] =
-        params_json(c.channel->nominal_params(), c.final_fit.nominal, c.final_fit.nominal_sd);
+    ch["effects"] = effects_json(c.final_fit, *c.channel);
+    ch["augmented_nominal"] = params_json(c.channel->nominal_params(), c.final_fit.nominal,
+                                          c.final_fit.nominal_sd, *c.channel);
     for (const auto& cand : c.ranked) {
       ch["ranked"].push_back({{"effect", cand.effect},
                               {"delta_bic", cand.delta_bic},

@@ -2,11 +2,31 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
+
+#include "firmware/io/signal_table.h"
 
 namespace planter::sim {
 namespace {
 constexpr double kTwoPi = 6.283185307179586;
+
+// A simulated drive speaks the board's units: the signal table says each object's scale.
+double raw_of(const ControllerConfig& board, std::string_view column, double si) {
+  const SignalDecl& s = *find_signal(column);
+  return si_to_bus(s.scale, board.node(s.role), si);
 }
+double si_of(const ControllerConfig& board, std::string_view column, double raw) {
+  const SignalDecl& s = *find_signal(column);
+  return bus_to_si(s.scale, board.node(s.role), raw);
+}
+// 0x6081 profile velocity: a configuration object, in counts per second like the positions.
+double profile_velocity_of(const NodeConfig& node, double raw) {
+  return bus_to_si(BusScale::kPerCount, node, raw);
+}
+std::int16_t per_mille(double raw) {
+  return static_cast<std::int16_t>(std::lround(std::clamp(raw, -32768.0, 32767.0)));
+}
+}  // namespace
 
 Plant::Plant(const PlantConfig& config, const ControllerConfig& board, std::uint64_t seed)
     : cfg_(config),
@@ -36,22 +56,19 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   wheel_.roll(ground_.x_m() - x_before, slip_pct * 0.01, t_ns, dt_ns, edges);
 
   // Disc drive (profile velocity).
-  const NodeConfig& disc_node = board_.node(NodeRole::kDiscDrive);
-  const double disc_cpu = disc_node.counts_per_unit;
-  disc_.step(static_cast<double>(dev.disc.target_velocity()) / disc_cpu, dev.disc.enabled(),
-             dev.disc.quick_stopping(), dt);
-  const double torque_pm =
-      std::clamp(disc_.torque_Nm() / disc_node.rated_torque * 1000.0, -32768.0, 32767.0);
-  dev.disc.set_actual(std::llround(disc_.motor_angle() * disc_cpu),
-                      std::llround(disc_.omega() * disc_cpu),
-                      static_cast<std::int16_t>(std::lround(torque_pm)));
+  disc_.step(si_of(board_, "omega_cmd", static_cast<double>(dev.disc.target_velocity())),
+             dev.disc.enabled(), dev.disc.quick_stopping(), dt);
+  dev.disc.set_actual(std::llround(raw_of(board_, "disc_angle", disc_.motor_angle())),
+                      std::llround(raw_of(board_, "omega", disc_.omega())),
+                      per_mille(raw_of(board_, "disc_torque", disc_.torque_Nm())));
 
   // Roller clamp actuator (profile position) and the disc lips it compresses.
   const NodeConfig& roller_node = board_.node(NodeRole::kRollerActuator);
-  roller_.step(static_cast<double>(dev.roller.position_setpoint()) / roller_node.counts_per_unit,
-               static_cast<double>(dev.roller.profile_velocity()) / roller_node.counts_per_unit,
-               dev.roller.enabled(), dt);
-  dev.roller.set_actual(std::llround(roller_.position_mm() * roller_node.counts_per_unit), 0, 0);
+  roller_.step(
+      si_of(board_, "clamp_pos_cmd_mm", static_cast<double>(dev.roller.position_setpoint())),
+      profile_velocity_of(roller_node, static_cast<double>(dev.roller.profile_velocity())),
+      dev.roller.enabled(), dt);
+  dev.roller.set_actual(std::llround(raw_of(board_, "clamp_pos_mm", roller_.position_mm())), 0, 0);
   const double compression =
       roller_.position_mm() + seedlings_.nip_thickness_mm(t) - cfg_.drive.clamp_x0_mm;
   const double elastic =
@@ -71,15 +88,14 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
 
   // Furrow opener depth actuator (profile position) against soil draft.
   const NodeConfig& depth_node = board_.node(NodeRole::kDepthActuator);
-  depth_.step(static_cast<double>(dev.depth.position_setpoint()) / depth_node.counts_per_unit,
-              static_cast<double>(dev.depth.profile_velocity()) / depth_node.counts_per_unit,
+  depth_.step(si_of(board_, "depth_cmd_mm", static_cast<double>(dev.depth.position_setpoint())),
+              profile_velocity_of(depth_node, static_cast<double>(dev.depth.profile_velocity())),
               dev.depth.enabled(), dt);
   // The depth-limiting wheel follows the surface, but only partly over micro-terrain.
   const double depth_true =
       depth_.position_mm() - fx.depth_sag_mm_per_kN * draft * 1e-3 + 0.3 * ground_.terrain_mm();
-  const double draft_pm = std::clamp(draft / depth_node.rated_torque * 1000.0, -32768.0, 32767.0);
-  dev.depth.set_actual(std::llround(depth_true * depth_node.counts_per_unit), 0,
-                       static_cast<std::int16_t>(std::lround(draft_pm)));
+  dev.depth.set_actual(std::llround(raw_of(board_, "depth_mm", depth_true)), 0,
+                       per_mille(raw_of(board_, "depth_force", draft)));
 
   // Seedlings.
   const ReleaseConditions now{t,          ground_.x_m(), ground_.v_mps(),     disc_.disc_omega(),

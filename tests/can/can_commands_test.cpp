@@ -318,7 +318,7 @@ TEST_F(CanToolTest, MonitorDecodesPdosWithNamesAndUnits) {
   ASSERT_EQ(run_monitor(*ctx_, o), kExitOk);
   const std::string m = out();
   EXPECT_NE(m.find("disc_drive(2)"), std::string::npos) << m.substr(0, 2000);
-  EXPECT_NE(m.find("clamp force"), std::string::npos);
+  EXPECT_NE(m.find("clamp_force"), std::string::npos);  // the signal table's name
   EXPECT_NE(m.find(" N"), std::string::npos);
   EXPECT_NE(m.find("SYNC"), std::string::npos);
   // The rate table: SYNC at 100 Hz.

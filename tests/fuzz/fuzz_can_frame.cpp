@@ -10,7 +10,7 @@
 #include "config/board_config.h"
 #include "firmware/canopen/lss.h"
 #include "firmware/canopen/sdo_client.h"
-#include "firmware/controller/node_link.h"
+#include "firmware/io/node_link.h"
 
 namespace {
 

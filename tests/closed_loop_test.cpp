@@ -264,3 +264,60 @@ TEST(LinkLoss, FaultThenResetBootsTheNodesAgainAndRuns) {
   EXPECT_GT(ready_at, 0.0);
   EXPECT_EQ(r.controller().state(), SupervisorState::kRunning);
 }
+
+// The controller's own cable is pulled and pushed back in (link_recovery.h): with recovery on,
+// the faults the lost link explains are reset once the link has settled, the nodes boot again
+// and the machine runs, with no operator; with it off, the fault waits for the operator.
+Scenario with_link_recovery(bool enabled) {
+  Scenario s = short_run(2.0);
+  s.board.controller.link_recovery.enabled = enabled;
+  s.board.controller.link_recovery.resume_running = true;
+  return s;
+}
+
+TEST(LinkLoss, ControllerCableOutAndInResumesByItself) {
+  LockstepRunner r(with_link_recovery(true));
+  run_until(r, 8.0);
+  ASSERT_EQ(r.controller().state(), SupervisorState::kRunning);
+  r.controller_endpoint().set_unplugged(true);
+  run_until(r, 9.2);
+  EXPECT_EQ(r.controller().state(), SupervisorState::kFault);
+  EXPECT_NE(r.controller().faults() & fault::kLinkLoss, 0u);
+  EXPECT_EQ(r.controller().faults() & ~fault::kLinkLoss, 0u);
+  EXPECT_FALSE(r.controller().telemetry().link_up);
+  r.controller_endpoint().set_unplugged(false);
+  const double back_at = r.time_s();
+  double reset_at = -1.0;
+  while (r.time_s() < 16.0) {
+    r.step();
+    if (reset_at < 0 && r.controller().link_resets() > 0) reset_at = r.time_s();
+  }
+  EXPECT_EQ(r.controller().link_resets(), 1u);
+  EXPECT_GE(reset_at - back_at, 0.5);  // the settling time
+  EXPECT_LT(reset_at - back_at, 0.6);
+  EXPECT_EQ(r.controller().state(), SupervisorState::kRunning);
+}
+
+TEST(LinkLoss, WithoutRecoveryTheFaultWaitsForTheOperator) {
+  LockstepRunner r(with_link_recovery(false));
+  run_until(r, 8.0);
+  r.controller_endpoint().set_unplugged(true);
+  run_until(r, 9.2);
+  r.controller_endpoint().set_unplugged(false);
+  run_until(r, 16.0);
+  EXPECT_EQ(r.controller().state(), SupervisorState::kFault);
+  EXPECT_EQ(r.controller().link_resets(), 0u);
+}
+
+TEST(LinkLoss, AnEStopDuringTheLossWaitsForTheOperator) {
+  LockstepRunner r(with_link_recovery(true));
+  run_until(r, 8.0);
+  r.controller_endpoint().set_unplugged(true);
+  run_until(r, 9.2);
+  // While the cable is out, an e-stop: not the link's doing, so the operator must act.
+  r.estop().set(true);
+  r.controller_endpoint().set_unplugged(false);
+  run_until(r, 16.0);
+  EXPECT_EQ(r.controller().link_resets(), 0u);
+  EXPECT_NE(r.controller().state(), SupervisorState::kRunning);
+}

@@ -40,9 +40,6 @@ struct Options {
   std::string commissioned_stamp;  // drives stay off until this stamp matches the board
 };
 
-// Faults a lost CAN link causes by itself; anything else needs the operator.
-constexpr std::uint32_t kLinkLossFaults = fault::kHeartbeatLost | fault::kPdoStale | fault::kBusOff;
-
 struct Row {
   double t_s;
   Telemetry telemetry;
@@ -144,7 +141,10 @@ int main(int argc, char** argv) {
 
   hal::linux_backend::TickTrace trace;  // per-tick phase times, dumped on an overrun
   hw->controller_hal().tick_probe = &trace;
-  ControlCycle controller(board.controller, hw->controller_hal());
+  ControllerConfig controller_config = board.controller;
+  controller_config.link_recovery.enabled = opt.resume_after_link_loss;
+  controller_config.link_recovery.resume_running = opt.run;
+  ControlCycle controller(controller_config, hw->controller_hal());
   daemon::SpscQueue<Row> rows(4096);
   Shared shared;
   if (!opt.commissioned_stamp.empty()) {
@@ -176,45 +176,14 @@ int main(int argc, char** argv) {
     const std::int64_t stop_grace_ns = 5'000'000'000;
     std::int64_t stop_at_ns = -1;
     bool run_requested = false;
-    std::uint32_t link_downs_seen = hw->can().link_down_count();
-    bool link_resume_pending = false;
-    bool link_reset_done = false;
-    std::int64_t link_up_since = -1;
-    std::int64_t next_reset_ns = 0;
+    std::uint32_t link_resets_seen = 0;
     loop.run([&](std::int64_t now, std::int64_t dt) {
       trace.begin(now, loop.last_late_ns(), dt);
-      if (opt.resume_after_link_loss) {
-        // Reconnect and resume: only for faults the link loss explains, once it is back.
-        const std::uint32_t downs = hw->can().link_down_count();
-        if (downs != link_downs_seen) {
-          link_downs_seen = downs;
-          link_resume_pending = true;
-          link_reset_done = false;
-          link_up_since = -1;
-        }
-        if (link_resume_pending) {
-          if (!hw->can().link_up())
-            link_up_since = -1;
-          else if (link_up_since < 0)
-            link_up_since = now;
-          const SupervisorState s = controller.state();
-          if (s == SupervisorState::kFault && (controller.faults() & ~kLinkLossFaults) == 0 &&
-              link_up_since >= 0 && now - link_up_since >= 500'000'000 && now >= next_reset_ns) {
-            controller.request_fault_reset();
-            run_requested = false;
-            next_reset_ns = now + 500'000'000;
-            link_reset_done = true;
-            shared.link_resets.fetch_add(1, std::memory_order_relaxed);
-          }
-          // Done once running again after a reset, or when the loss caused no fault at all.
-          const bool back =
-              s == SupervisorState::kRunning || (s == SupervisorState::kReady && !opt.run);
-          if (back &&
-              (link_reset_done || (link_up_since >= 0 && now - link_up_since > 2'000'000'000)))
-            link_resume_pending = false;
-          if (s == SupervisorState::kFault && (controller.faults() & ~kLinkLossFaults) != 0)
-            link_resume_pending = false;
-        }
+      // After a link-loss reset (firmware/supervisor/link_recovery.h) the run is asked for again.
+      if (controller.link_resets() != link_resets_seen) {
+        link_resets_seen = controller.link_resets();
+        shared.link_resets.store(link_resets_seen, std::memory_order_relaxed);
+        run_requested = false;
       }
       if (duration_ns > 0 && now - loop_start_ns >= duration_ns) shared.stop = true;
       if (shared.stop && stop_at_ns < 0) {

@@ -30,6 +30,7 @@ class ControlCycle {
   [[nodiscard]] const Telemetry& telemetry() const { return telemetry_; }
   [[nodiscard]] SupervisorState state() const { return controller_.state(); }
   [[nodiscard]] std::uint32_t faults() const { return controller_.faults(); }
+  [[nodiscard]] std::uint32_t link_resets() const { return controller_.link_resets(); }
   [[nodiscard]] const NodeLink& node(NodeRole role) const { return io_.node(role); }
 
  private:

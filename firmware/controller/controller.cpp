@@ -8,10 +8,15 @@ Controller::Controller(const ControllerConfig& config)
     : cfg_(config),
       sigma_loop_(config.sigma),
       clamp_loop_(config.clamp),
-      depth_loop_(config.depth) {}
+      depth_loop_(config.depth),
+      link_recovery_(config.link_recovery) {}
 
-const MachineCommand& Controller::update(const MachineState& in, std::int64_t /*now_ns*/,
+const MachineCommand& Controller::update(const MachineState& in, std::int64_t now_ns,
                                          std::int64_t dt_ns) {
+  if (link_recovery_.update(
+          {now_ns, in.link_up, in.link_downs, supervisor_.state(), supervisor_.latched_faults()})) {
+    reset_requested_ = true;
+  }
   command_.sigma = sigma_loop_.sigma_seen(in.omega_radps, in.v_wheel_mps);
 
   SupervisorInputs sv;

@@ -10,6 +10,7 @@
 #include "firmware/control/sigma_loop.h"
 #include "firmware/controller/controller_config.h"
 #include "firmware/io/process_image.h"
+#include "firmware/supervisor/link_recovery.h"
 #include "firmware/supervisor/supervisor.h"
 
 namespace planter {
@@ -31,6 +32,8 @@ class Controller {
   // Latched faults and those seen in the last update.
   [[nodiscard]] std::uint32_t faults_seen() const { return faults_seen_; }
   [[nodiscard]] std::uint32_t overruns() const { return overruns_; }
+  // Fault resets the link recovery has requested.
+  [[nodiscard]] std::uint32_t link_resets() const { return link_recovery_.resets(); }
 
  private:
   std::uint32_t check_faults(const MachineState& in, std::int64_t dt_ns);
@@ -41,6 +44,7 @@ class Controller {
   ClampForceLoop clamp_loop_;
   FurrowDepthLoop depth_loop_;
   Supervisor supervisor_;
+  LinkRecovery link_recovery_;
   MachineCommand command_;
 
   bool run_requested_ = false;

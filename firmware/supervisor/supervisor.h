@@ -27,6 +27,8 @@ constexpr std::uint32_t kBootFailed = 1u << 6;
 constexpr std::uint32_t kBusOff = 1u << 7;
 constexpr std::uint32_t kUnexpectedBootUp = 1u << 8;
 constexpr int kCount = 9;
+// Faults a lost CAN link causes by itself (link_recovery.h resets only these).
+constexpr std::uint32_t kLinkLoss = kHeartbeatLost | kPdoStale | kBusOff;
 // The name of fault bit `bit` (0-based), in the operator's words; "" past the last.
 const char* name(int bit);
 }  // namespace fault

@@ -33,7 +33,12 @@ void LockstepRunner::apply_events() {
   if (f.estop_at_s >= 0.0)
     estop_.set(t >= f.estop_at_s && (f.estop_release_at_s < 0.0 || t < f.estop_release_at_s));
   rig_->apply_faults(t);
-  // The operator presses "run" once the controller is ready, and drives off a little later.
+  // The operator presses "run" once the controller is ready, and drives off a little later;
+  // after a link-loss reset the machine is meant to run again, as planterd --run does.
+  if (controller_->link_resets() != link_resets_seen_) {
+    link_resets_seen_ = controller_->link_resets();
+    run_requested_ = false;
+  }
   if (!run_requested_ && controller_->state() == SupervisorState::kReady) {
     controller_->request_run();
     run_requested_ = true;

@@ -44,6 +44,8 @@ class LockstepRunner {
   hal::sim::VirtualCanBus& bus() { return bus_; }
   hal::sim::SimDigitalInput& estop() { return estop_; }
   hal::sim::VirtualCanEndpoint& device_endpoint(NodeRole role);
+  // The controller's own connection to the bus (unplug it to pull the controller's cable).
+  hal::sim::VirtualCanEndpoint& controller_endpoint() { return *controller_endpoint_; }
   Cia402DriveDevice& drive(NodeRole role);
   [[nodiscard]] const Plant& plant() const;
   [[nodiscard]] double time_s() const { return static_cast<double>(clock_.now_ns()) * 1e-9; }
@@ -68,6 +70,7 @@ class LockstepRunner {
   std::int64_t period_ns_;
   std::int64_t substep_ns_ = 1'000'000;
   bool run_requested_ = false;
+  std::uint32_t link_resets_seen_ = 0;
   bool moving_ = false;
   double running_since_s_ = -1.0;
   double finished_at_s_ = -1.0;

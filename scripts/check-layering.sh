@@ -1,18 +1,40 @@
 #!/usr/bin/env bash
-# The firmware sees only the C++ standard library, its own headers and the HAL interfaces:
-# no OS, socket, GPIO or simulator header may appear in firmware/.
+# The house's layers, from the ground up: each may include only itself and the layers below.
+#   hal/include <- hal/sim, hal/linux <- firmware <- config <- sim <- apps
+# firmware/ also sees no OS header: only the C++ standard library. The build enforces the same
+# through each target's own include tree (cmake/layers.cmake); this check names the file.
 set -u
 root=${1:-$(dirname "$0")/..}
-bad=$(grep -rnE '^\s*#\s*include\s*[<"]' "$root/firmware" |
-  grep -vE '#\s*include\s*"(firmware/|planter/hal/)' |
+status=0
+
+# layer folder | allowed project include prefixes (extended regex)
+rules=(
+  "hal/include|planter/hal/"
+  "hal/sim|planter/hal/|hal/sim/"
+  "hal/linux|planter/hal/|hal/linux/"
+  "firmware|planter/hal/|firmware/"
+  "config|planter/hal/|firmware/|config/"
+  "sim|planter/hal/|hal/sim/|hal/linux/|firmware/|config/|sim/"
+  "apps|planter/hal/|hal/sim/|hal/linux/|firmware/|config/|sim/|apps/"
+)
+for rule in "${rules[@]}"; do
+  layer=${rule%%|*}
+  allowed=${rule#*|}
+  bad=$(grep -rnE '^\s*#\s*include\s*"' "$root/$layer" --include='*.h' --include='*.cpp' |
+    grep -vE "#\s*include\s*\"($allowed)" || true)
+  if [ -n "$bad" ]; then
+    echo "layering: $layer/ includes a layer above it (allowed: ${allowed//|/ }):"
+    echo "$bad"
+    status=1
+  fi
+done
+
+bad=$(grep -rnE '^\s*#\s*include\s*<' "$root/firmware" |
   grep -vE '#\s*include\s*<(algorithm|array|cmath|cstddef|cstdint|cstdio|limits|span|string|string_view|vector|utility|type_traits)>' || true)
 if [ -n "$bad" ]; then
-  echo "layering: firmware/ includes a header outside the standard library and the HAL interfaces:"
+  echo "layering: firmware/ includes a header outside the C++ standard library:"
   echo "$bad"
-  exit 1
+  status=1
 fi
-bad=$(grep -rnE '#\s*include\s*"(sim|hal/sim|hal/linux|config)/' "$root/firmware" "$root/hal/include" || true)
-if [ -n "$bad" ]; then
-  echo "layering: a lower layer includes a higher one:"; echo "$bad"; exit 1
-fi
-echo "layering ok: firmware/ uses only the standard library and hal/include"
+[ $status -eq 0 ] && echo "layering ok: every layer includes only itself and the layers below"
+exit $status

@@ -1,11 +1,11 @@
 #pragma once
 // The reduced-order force model fitted to DEM compression curves across seedling diameters
-// (the paper's 8.3-11.4 mm), for the plant model: see sim/plant/seedling_force_model.h.
+// (the paper's 8.3-11.4 mm), for the plant model: see sim/seedling/seedling_force_model.h.
 #include <string>
 #include <vector>
 
 #include "sim/dem/compression_report.h"
-#include "sim/plant/seedling_force_model.h"
+#include "sim/seedling/seedling_force_model.h"
 
 namespace planter::dem {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/plant/seedling_force_model.h"
+#include "sim/seedling/seedling_force_model.h"
 
 namespace planter::sim {
 

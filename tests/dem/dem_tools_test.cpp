@@ -11,7 +11,7 @@
 #include "sim/dem/dem_params.h"
 #include "sim/dem/doe.h"
 #include "sim/dem/seedling.h"
-#include "sim/plant/seedling_force_model.h"
+#include "sim/seedling/seedling_force_model.h"
 
 using namespace planter;
 using namespace planter::dem;

@@ -3,7 +3,7 @@
 namespace planter::cantool {
 namespace {
 
-constexpr std::int64_t kStepNs = 1'000'000;
+constexpr std::int64_t kStepNs = sim::RealtimeDriver::kStepNs;
 
 // The spare node: a second load cell, straight from the box (node-ID 0xFF).
 sim::DeviceIdentity spare_identity() {
@@ -24,7 +24,9 @@ SimLink::SimLink(const sim::Scenario& scenario, const SimLinkOptions& options)
     : scenario_(scenario), options_(options), bus_(scenario.board.controller.can.bitrate_bps) {
   scenario_.plant.route.distance_m = options_.push_distance_m;
   endpoint_ = &bus_.add_endpoint(1 << 14);
-  rig_ = std::make_unique<sim::PlantRig>(scenario_, bus_);
+  rig_ = std::make_unique<sim::SimulatedMachine>(scenario_, bus_);
+  driver_ = std::make_unique<sim::RealtimeDriver>(scenario_, *rig_,
+                                                  static_cast<sim::MachineLines&>(*this));
   if (options_.spare_node) {
     spare_ = std::make_unique<sim::Cia404ForceSensor>(spare_identity(), bus_.add_endpoint(256));
     spare_->power_on(0);
@@ -54,6 +56,9 @@ SimLink::SimLink(const sim::Scenario& scenario, const SimLinkOptions& options)
 
 SimLink::~SimLink() = default;
 
+// One millisecond of the machine, as the real-time driver steps it, with planterd's tick when
+// due. The engineer is the operator here: the scenario's operator never presses a button
+// (the controller's state is not shown to the script), and the machine moves when pushed.
 void SimLink::advance() {
   const std::int64_t now = clock_.now_ns();
   if (controller_ && now >= next_tick_ns_) {
@@ -61,17 +66,16 @@ void SimLink::advance() {
     controller_->tick(now, period);
     next_tick_ns_ = now + period;
   }
-  rig_->process_devices(now);
   if (spare_) spare_->process(now);
-  rig_->step_plant(now, kStepNs, plant_edges_);
-  hal::GpioEdge e;
-  while (plant_edges_.next_edge(e)) {
-    if (options_.encoder_wires_swapped && e.line <= 1)
-      e.line = static_cast<std::uint8_t>(1 - e.line);
-    tool_edges_.push(e);
-    if (controller_) controller_edges_.push(e);
-  }
+  driver_->catch_up(now + kStepNs, sim::ControllerView{});
   clock_.advance_ns(kStepNs);
+}
+
+void SimLink::encoder_edge(const hal::GpioEdge& edge) {
+  hal::GpioEdge e = edge;
+  if (options_.encoder_wires_swapped && e.line <= 1) e.line = static_cast<std::uint8_t>(1 - e.line);
+  tool_edges_.push(e);
+  if (controller_) controller_edges_.push(e);
 }
 
 bool SimLink::wait(std::int64_t deadline_ns) {

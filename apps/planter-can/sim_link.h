@@ -11,7 +11,8 @@
 #include "hal/sim/sim_clock.h"
 #include "hal/sim/sim_gpio.h"
 #include "hal/sim/virtual_can_bus.h"
-#include "sim/runner/plant_rig.h"
+#include "sim/machine/realtime_driver.h"
+#include "sim/machine/simulated_machine.h"
 
 namespace planter::cantool {
 
@@ -22,7 +23,7 @@ struct SimLinkOptions {
   bool encoder_wires_swapped = false;  // A and B crossed at the connector (a wiring fault)
 };
 
-class SimLink final : public ToolLink, public SimFixture {
+class SimLink final : public ToolLink, public SimFixture, private sim::MachineLines {
  public:
   SimLink(const sim::Scenario& scenario, const SimLinkOptions& options);
   ~SimLink() override;
@@ -41,7 +42,7 @@ class SimLink final : public ToolLink, public SimFixture {
   // Advances the machine by one millisecond.
   void advance();
   hal::sim::VirtualCanBus& bus() { return bus_; }
-  sim::PlantRig& rig() { return *rig_; }
+  sim::SimulatedMachine& rig() { return *rig_; }
   [[nodiscard]] const ControlCycle* controller() const { return controller_.get(); }
   [[nodiscard]] const sim::Scenario& scenario() const { return scenario_; }
 
@@ -56,11 +57,11 @@ class SimLink final : public ToolLink, public SimFixture {
   hal::sim::VirtualCanBus bus_;
   hal::sim::SimClock clock_;
   hal::sim::VirtualCanEndpoint* endpoint_ = nullptr;
-  std::unique_ptr<sim::PlantRig> rig_;
+  std::unique_ptr<sim::SimulatedMachine> rig_;
+  std::unique_ptr<sim::RealtimeDriver> driver_;
   std::unique_ptr<sim::Cia404ForceSensor> spare_;
   hal::sim::SimEdgeSource tool_edges_{1 << 16};
   hal::sim::SimEdgeSource controller_edges_{1 << 16};
-  hal::sim::SimEdgeSource plant_edges_{1 << 12};
   // The controller, when it runs.
   hal::sim::SimDigitalInput estop_;
   hal::sim::SimDigitalOutput lamp_;
@@ -68,6 +69,11 @@ class SimLink final : public ToolLink, public SimFixture {
   std::unique_ptr<ControlCycle> controller_;
   std::int64_t next_tick_ns_ = 0;
   bool moving_ = false;
+
+  // The machine's lines, as the driver drives them: to the tool's and the controller's inputs.
+  void encoder_edge(const hal::GpioEdge& edge) override;
+  void set_estop(bool asserted) override { estop_.set(asserted); }
+  bool lamp() override { return lamp_.on(); }
 };
 
 }  // namespace planter::cantool

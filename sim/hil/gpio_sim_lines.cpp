@@ -19,12 +19,22 @@ GpioSimLines::GpioSimLines(const std::string& chip, std::array<int, 4> offsets) 
     fds_[i] = open(pull.c_str(), O_WRONLY | O_CLOEXEC);
     if (fds_[i] < 0)
       throw HalError("'--gpio': chip '" + chip + "' is not a gpio-sim chip (no " + pull + ")");
+    const std::string value = dir + "/sim_gpio" + std::to_string(offsets[i]) + "/value";
+    value_fds_[i] = open(value.c_str(), O_RDONLY | O_CLOEXEC);
   }
 }
 
 GpioSimLines::~GpioSimLines() {
   for (int fd : fds_)
     if (fd >= 0) close(fd);
+  for (int fd : value_fds_)
+    if (fd >= 0) close(fd);
+}
+
+bool GpioSimLines::output_level(int index) const {
+  const int fd = value_fds_[static_cast<std::size_t>(index)];
+  char c = 0;
+  return fd >= 0 && pread(fd, &c, 1, 0) == 1 && c == '1';
 }
 
 void GpioSimLines::set(int index, bool high) {

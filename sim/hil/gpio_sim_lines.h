@@ -17,10 +17,13 @@ class GpioSimLines {
   GpioSimLines& operator=(const GpioSimLines&) = delete;
   // index into the offsets given at construction.
   void set(int index, bool high);
+  // The level the controller drives on an output line (gpio-sim's `value`); false when unreadable.
+  [[nodiscard]] bool output_level(int index) const;
   [[nodiscard]] unsigned writes() const { return writes_; }
 
  private:
   std::array<int, 4> fds_{-1, -1, -1, -1};
+  std::array<int, 4> value_fds_{-1, -1, -1, -1};
   std::array<int, 4> level_{-1, -1, -1, -1};
   unsigned writes_ = 0;
 };

@@ -6,6 +6,7 @@
 namespace planter::sim {
 LockstepRunner::LockstepRunner(const Scenario& scenario)
     : scenario_(scenario),
+      script_(scenario_),
       bus_(scenario.board.controller.can.bitrate_bps),
       period_ns_(scenario.board.controller.can.sync_period_ns) {
   const ControllerConfig& cfg = scenario_.board.controller;
@@ -13,97 +14,66 @@ LockstepRunner::LockstepRunner(const Scenario& scenario)
   hal_ = std::make_unique<hal::ControllerHal>(
       hal::ControllerHal{*controller_endpoint_, encoder_, estop_, lamp_});
   controller_ = std::make_unique<ControlCycle>(cfg, *hal_);
-  rig_ = std::make_unique<PlantRig>(scenario_, bus_);
+  machine_ = std::make_unique<SimulatedMachine>(scenario_, bus_);
   summary_.configure(cfg.sigma.sigma, cfg.depth.target_mm, cfg.clamp.ceiling_N, 8.0);
 }
 
 LockstepRunner::~LockstepRunner() = default;
 
 hal::sim::VirtualCanEndpoint& LockstepRunner::device_endpoint(NodeRole role) {
-  return rig_->endpoint(role);
+  return machine_->endpoint(role);
 }
 
-Cia402DriveDevice& LockstepRunner::drive(NodeRole role) { return rig_->drive(role); }
+Cia402DriveDevice& LockstepRunner::drive(NodeRole role) { return machine_->drive(role); }
 
-const Plant& LockstepRunner::plant() const { return rig_->plant(); }
+const Plant& LockstepRunner::plant() const { return machine_->plant(); }
 
+// The scenario's script decides; the runner delivers: the e-stop line, a silent node, the
+// operator's buttons, and the start along the route.
 void LockstepRunner::apply_events() {
-  const double t = time_s();
-  const FaultEvents& f = scenario_.faults;
-  if (f.estop_at_s >= 0.0)
-    estop_.set(t >= f.estop_at_s && (f.estop_release_at_s < 0.0 || t < f.estop_release_at_s));
-  rig_->apply_faults(t);
-  // The operator presses "run" once the controller is ready, and drives off a little later;
-  // after a link-loss reset the machine is meant to run again, as planterd --run does.
-  if (controller_->link_resets() != link_resets_seen_) {
-    link_resets_seen_ = controller_->link_resets();
-    run_requested_ = false;
-  }
-  if (!run_requested_ && controller_->state() == SupervisorState::kReady) {
-    controller_->request_run();
-    run_requested_ = true;
-  }
-  apply_planting_off_stops(t);
-  if (controller_->state() == SupervisorState::kRunning && running_since_s_ < 0.0)
-    running_since_s_ = t;
-  const double push_at_s = scenario_.plant.route.push_at_s;
-  const bool pushed = push_at_s >= 0.0 && t >= push_at_s;
-  if (!moving_ && (pushed || (running_since_s_ >= 0.0 &&
-                              t >= running_since_s_ + scenario_.plant.start_delay_s))) {
-    rig_->plant().start_moving();
-    moving_ = true;
-  }
-}
-
-// At a stop with planting off the operator presses stop once the machine stands, and run
-// again start_delay_s before the stop ends, as at the first start.
-void LockstepRunner::apply_planting_off_stops(double t) {
-  const Ground& ground = rig_->plant().ground();
-  const int stop = ground.dwelling_stop();
-  if (stop >= 0 && stop != switched_off_stop_ &&
-      scenario_.plant.route.stops[static_cast<std::size_t>(stop)].planting_off &&
-      controller_->state() == SupervisorState::kRunning) {
-    controller_->request_stop();
-    switched_off_stop_ = stop;
-    restart_at_s_ = ground.dwell_until_s() - scenario_.plant.start_delay_s;
-  }
-  if (restart_at_s_ >= 0.0 && t >= restart_at_s_ &&
-      controller_->state() == SupervisorState::kReady) {
-    controller_->request_run();
-    restart_at_s_ = -1.0;
-  }
+  ControllerView view;
+  view.lamp = lamp_.on();
+  view.state_known = true;
+  view.state = controller_->state();
+  view.link_resets = controller_->link_resets();
+  const ScriptActions a = script_.step(time_s(), view, machine_->plant().ground());
+  if (scenario_.faults.estop_at_s >= 0.0) estop_.set(a.estop);
+  if (a.silent_node >= 0) machine_->silence(static_cast<NodeRole>(a.silent_node));
+  if (a.request_run) controller_->request_run();
+  if (a.request_stop) controller_->request_stop();
+  if (a.start_moving) machine_->plant().start_moving();
 }
 
 void LockstepRunner::step() {
   apply_events();
   const std::int64_t now = clock_.now_ns();
   controller_->tick(now, period_ns_);
-  rig_->process_devices(now);
+  machine_->process_devices(now);
   for (std::int64_t t = 0; t < period_ns_; t += substep_ns_) {
-    rig_->step_plant(now + t, substep_ns_, encoder_);
+    machine_->step_plant(now + t, substep_ns_, encoder_);
   }
   clock_.advance_ns(period_ns_);
   const bool running = controller_->state() == SupervisorState::kRunning;
-  summary_.add(controller_->telemetry(), rig_->plant().truth(), running,
-               running ? time_s() - running_since_s_ : 0.0);
-  if (observer_) observer_(TickRecord{controller_->telemetry(), rig_->plant().truth()});
+  summary_.add(controller_->telemetry(), machine_->plant().truth(), running,
+               running ? time_s() - script_.planting_since_s() : 0.0);
+  if (observer_) observer_(TickRecord{controller_->telemetry(), machine_->plant().truth()});
 }
 
 Summary LockstepRunner::run() {
   const auto wall0 = std::chrono::steady_clock::now();
   while (time_s() < scenario_.max_duration_s) {
     step();
-    if (moving_ && finished_at_s_ < 0.0 && rig_->plant().ground().finished())
+    if (script_.moving() && finished_at_s_ < 0.0 && machine_->plant().ground().finished())
       finished_at_s_ = time_s();
     if (finished_at_s_ >= 0.0 && time_s() >= finished_at_s_ + scenario_.tail_s) break;
   }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   const double plot_m = 3.0;
-  Summary s = summary_.finish(rig_->plant().seedlings(), plot_m,
+  Summary s = summary_.finish(machine_->plant().seedlings(), plot_m,
                               static_cast<int>(scenario_.plant.route.distance_m / plot_m + 1e-9));
   s.scenario = scenario_.name;
-  s.distance_m = rig_->plant().ground().x_m();
+  s.distance_m = machine_->plant().ground().x_m();
   s.sim_seconds = time_s();
   s.wall_seconds = wall;
   s.realtime_factor = wall > 0 ? s.sim_seconds / wall : 0.0;

@@ -13,8 +13,9 @@
 #include "hal/sim/sim_clock.h"
 #include "hal/sim/sim_gpio.h"
 #include "hal/sim/virtual_can_bus.h"
+#include "sim/machine/scenario_script.h"
+#include "sim/machine/simulated_machine.h"
 #include "sim/plant/plant.h"
-#include "sim/runner/plant_rig.h"
 #include "sim/runner/scenario.h"
 #include "sim/runner/summary.h"
 
@@ -50,12 +51,14 @@ class LockstepRunner {
   [[nodiscard]] const Plant& plant() const;
   [[nodiscard]] double time_s() const { return static_cast<double>(clock_.now_ns()) * 1e-9; }
   [[nodiscard]] const Scenario& scenario() const { return scenario_; }
+  // What happened when (the script's timeline), for comparing drivers.
+  [[nodiscard]] const std::vector<TimelineEvent>& timeline() const { return script_.timeline(); }
 
  private:
   void apply_events();
-  void apply_planting_off_stops(double t);
 
   Scenario scenario_;
+  ScenarioScript script_;
   hal::sim::VirtualCanBus bus_;
   hal::sim::SimClock clock_;
   hal::sim::SimEdgeSource encoder_;
@@ -64,18 +67,12 @@ class LockstepRunner {
   hal::sim::VirtualCanEndpoint* controller_endpoint_;
   std::unique_ptr<hal::ControllerHal> hal_;
   std::unique_ptr<ControlCycle> controller_;
-  std::unique_ptr<PlantRig> rig_;
+  std::unique_ptr<SimulatedMachine> machine_;
   Observer observer_;
   SummaryBuilder summary_;
   std::int64_t period_ns_;
   std::int64_t substep_ns_ = 1'000'000;
-  bool run_requested_ = false;
-  std::uint32_t link_resets_seen_ = 0;
-  bool moving_ = false;
-  double running_since_s_ = -1.0;
   double finished_at_s_ = -1.0;
-  int switched_off_stop_ = -1;  // the stop planting was last switched off at
-  double restart_at_s_ = -1.0;  // when the operator presses run again (-1: not pending)
 };
 
 }  // namespace planter::sim

@@ -1,4 +1,4 @@
-#include "sim/runner/plant_rig.h"
+#include "sim/machine/simulated_machine.h"
 
 namespace planter::sim {
 namespace {
@@ -15,7 +15,8 @@ DeviceIdentity identity_of(const NodeConfig& n, const char* name) {
 
 }  // namespace
 
-PlantRig::PlantRig(const Scenario& scenario, hal::sim::VirtualCanBus& bus) : scenario_(scenario) {
+SimulatedMachine::SimulatedMachine(const Scenario& scenario, hal::sim::VirtualCanBus& bus)
+    : scenario_(scenario) {
   const ControllerConfig& cfg = scenario_.board.controller;
   for (auto& e : endpoints_) e = &bus.add_endpoint(256);
   disc_ = std::make_unique<Cia402DriveDevice>(
@@ -34,7 +35,7 @@ PlantRig::PlantRig(const Scenario& scenario, hal::sim::VirtualCanBus& bus) : sce
   force_->power_on(0);
 }
 
-Cia402DriveDevice& PlantRig::drive(NodeRole role) {
+Cia402DriveDevice& SimulatedMachine::drive(NodeRole role) {
   switch (role) {
     case NodeRole::kRollerActuator:
       return *roller_;
@@ -45,24 +46,16 @@ Cia402DriveDevice& PlantRig::drive(NodeRole role) {
   }
 }
 
-void PlantRig::process_devices(std::int64_t now_ns) {
+void SimulatedMachine::process_devices(std::int64_t now_ns) {
   disc_->process(now_ns);
   roller_->process(now_ns);
   depth_->process(now_ns);
   force_->process(now_ns);
 }
 
-void PlantRig::step_plant(std::int64_t now_ns, std::int64_t dt_ns, hal::sim::SimEdgeSource& edges) {
+void SimulatedMachine::step_plant(std::int64_t now_ns, std::int64_t dt_ns,
+                                  hal::sim::SimEdgeSource& edges) {
   plant_->step(now_ns, dt_ns, *devices_, edges);
-}
-
-void PlantRig::apply_faults(double t_s) {
-  const FaultEvents& f = scenario_.faults;
-  if (f.silent_node.empty() || f.silent_at_s < 0.0 || t_s < f.silent_at_s) return;
-  for (std::size_t i = 0; i < kNodeCount; ++i) {
-    if (f.silent_node == node_role_name(static_cast<NodeRole>(i)))
-      endpoints_[i]->set_unplugged(true);
-  }
 }
 
 }  // namespace planter::sim

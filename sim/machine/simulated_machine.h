@@ -1,7 +1,9 @@
 #pragma once
 // The simulated machine as the controller's bus sees it: the four CANopen devices, each on its
-// own endpoint of a virtual bus, and the plant they act on. The lockstep runner puts the
-// controller on the same virtual bus; `planter-sim devices` bridges it to a real SocketCAN bus.
+// own endpoint of a virtual bus, and the plant they act on. One machine for every driver: the
+// lockstep runner puts the controller on the same virtual bus, `planter-sim devices` bridges it
+// to a real SocketCAN bus, planter-can's `--iface sim` puts the tool on it. What happens to it
+// (the operator, e-stops, silent nodes) is the ScenarioScript's (scenario_script.h).
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -14,16 +16,16 @@
 
 namespace planter::sim {
 
-class PlantRig {
+class SimulatedMachine {
  public:
-  PlantRig(const Scenario& scenario, hal::sim::VirtualCanBus& bus);
+  SimulatedMachine(const Scenario& scenario, hal::sim::VirtualCanBus& bus);
 
   // Devices read their frames and answer (SDO, NMT, PDO on SYNC, heartbeats).
   void process_devices(std::int64_t now_ns);
   // Integrates the plant over one step; encoder edges go to `edges`.
   void step_plant(std::int64_t now_ns, std::int64_t dt_ns, hal::sim::SimEdgeSource& edges);
-  // Scenario faults that belong to the machine: a node that stops answering.
-  void apply_faults(double t_s);
+  // A node stops answering (the script's silent node).
+  void silence(NodeRole role) { endpoint(role).set_unplugged(true); }
 
   Cia402DriveDevice& drive(NodeRole role);
   Cia404ForceSensor& force_sensor() { return *force_; }

@@ -1,16 +1,21 @@
-# What goes onto the controller: planterd, planter-can, the systemd unit, the board files
-# under /etc/planter (this build's board as /etc/planter/board.toml) and a default config
-# that holds the drives until commissioning has passed. `cpack` makes one .deb per target.
+# What goes onto the controller: planterd, planter-can, the systemd unit, the board files and
+# their calibrations under /etc/planter/boards (this build's board and calibration as
+# /etc/planter/board.toml and calibration.toml), the machine files under
+# /etc/planter/machines, and a default config that holds the drives until commissioning has
+# passed. `cpack` makes one .deb per target.
 include(GNUInstallDirs)
 install(TARGETS planterd planter-can RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES ${PROJECT_SOURCE_DIR}/apps/planterd/planterd.service DESTINATION /lib/systemd/system)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/boards/ DESTINATION /etc/planter/boards
-        FILES_MATCHING PATTERN "board.toml")
+        FILES_MATCHING PATTERN "board.toml" PATTERN "calibration.toml")
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/machines/ DESTINATION /etc/planter/machines
+        FILES_MATCHING PATTERN "*.toml")
 set(planter_default_board ${PLANTER_BOARD})
 if(NOT planter_default_board)
   set(planter_default_board host-sim)
 endif()
 install(FILES ${PROJECT_SOURCE_DIR}/boards/${planter_default_board}/board.toml
+        ${PROJECT_SOURCE_DIR}/boards/${planter_default_board}/calibration.toml
         DESTINATION /etc/planter)
 install(FILES ${PROJECT_SOURCE_DIR}/packaging/default-planterd DESTINATION /etc/default
         RENAME planterd)
@@ -52,11 +57,18 @@ else()
 endif()
 # Files under /etc are the admin's: dpkg keeps their edits on upgrade.
 file(GLOB planter_board_dirs RELATIVE ${PROJECT_SOURCE_DIR}/boards ${PROJECT_SOURCE_DIR}/boards/*)
-set(planter_conffiles "/etc/planter/board.toml\n/etc/default/planterd\n")
+set(planter_conffiles
+    "/etc/planter/board.toml\n/etc/planter/calibration.toml\n/etc/default/planterd\n")
 foreach(b ${planter_board_dirs})
-  if(EXISTS ${PROJECT_SOURCE_DIR}/boards/${b}/board.toml)
-    string(APPEND planter_conffiles "/etc/planter/boards/${b}/board.toml\n")
-  endif()
+  foreach(f board.toml calibration.toml)
+    if(EXISTS ${PROJECT_SOURCE_DIR}/boards/${b}/${f})
+      string(APPEND planter_conffiles "/etc/planter/boards/${b}/${f}\n")
+    endif()
+  endforeach()
+endforeach()
+file(GLOB planter_machines RELATIVE ${PROJECT_SOURCE_DIR}/machines ${PROJECT_SOURCE_DIR}/machines/*.toml)
+foreach(m ${planter_machines})
+  string(APPEND planter_conffiles "/etc/planter/machines/${m}\n")
 endforeach()
 file(WRITE ${CMAKE_BINARY_DIR}/debian/conffiles "${planter_conffiles}")
 set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA

@@ -1,6 +1,8 @@
 #include "config/board_config.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <set>
 
 #include "config/board_checks.h"
@@ -29,8 +31,73 @@ canopen::PdoMapping parse_pdo(TomlSection& node, const std::string& key) {
   return m;
 }
 
+// One unit's measured values (the board's calibration file, `planter-can calibrate`).
+struct Calibration {
+  std::optional<double> wheel_radius_m;
+  std::optional<double> force_zero_counts;
+  std::optional<double> force_counts_per_unit;
+  std::optional<double> depth_min_mm;
+  std::optional<double> depth_max_mm;
+};
+
+constexpr const char* kCalibrationKeys =
+    "a calibration holds encoder.wheel_radius_m, nodes.force_sensor.zero_counts and "
+    "counts_per_unit, control.depth_min_mm and depth_max_mm";
+
+Calibration read_calibration(const std::string& path) {
+  TomlDocument doc(path);
+  TomlSection root = doc.root();
+  Calibration cal;
+  if (auto enc = root.table("encoder")) {
+    if (enc->has("wheel_radius_m"))
+      cal.wheel_radius_m = enc->number("wheel_radius_m", 0.15, 0.02, 1.0, "m");
+    enc->reject_unknown_keys(kCalibrationKeys);
+  }
+  if (auto nodes = root.table("nodes")) {
+    if (auto f = nodes->table("force_sensor")) {
+      if (f->has("zero_counts")) cal.force_zero_counts = f->number("zero_counts", 0.0, -1e9, 1e9);
+      if (f->has("counts_per_unit"))
+        cal.force_counts_per_unit = f->number("counts_per_unit", 1.0, 1e-6, 1e9);
+      f->reject_unknown_keys(kCalibrationKeys);
+    }
+    nodes->reject_unknown_keys(kCalibrationKeys);
+  }
+  if (auto ctl = root.table("control")) {
+    if (ctl->has("depth_min_mm"))
+      cal.depth_min_mm = ctl->number("depth_min_mm", 0.0, -50.0, 500.0, "mm");
+    if (ctl->has("depth_max_mm"))
+      cal.depth_max_mm = ctl->number("depth_max_mm", 170.0, 10.0, 500.0, "mm");
+    ctl->reject_unknown_keys(kCalibrationKeys);
+  }
+  root.reject_unknown_keys(kCalibrationKeys);
+  return cal;
+}
+
+// machines/<name>.toml beside the board file or in a folder above it (boards/<b>/ in the
+// source tree, /etc/planter/ in the package).
+std::string find_machine(const std::string& board_path, TomlSection& board,
+                         const std::string& name) {
+  if (name.find('/') != std::string::npos || name.find("..") != std::string::npos)
+    board.fail("machine", "must be a machine's name (machines/<name>.toml), not a path");
+  std::filesystem::path dir = std::filesystem::path(board_path).parent_path();
+  if (dir.empty()) dir = ".";
+  std::filesystem::path tried;
+  for (int up = 0; up < 3; ++up, dir = dir / "..") {
+    const std::filesystem::path candidate = dir / "machines" / (name + ".toml");
+    if (up == 0) tried = candidate;
+    std::error_code ec;
+    if (std::filesystem::exists(candidate, ec)) {
+      // Resolved as the OS does: ".." after a symlinked folder is the link target's parent.
+      const auto resolved = std::filesystem::weakly_canonical(candidate, ec);
+      return ec ? candidate.string() : resolved.string();
+    }
+  }
+  board.fail("machine", "no machines/" + name + ".toml beside the board file or up to two " +
+                            "folders above it (first tried " + tried.string() + ")");
+}
+
 void parse_node(TomlSection& nodes, NodeRole role, NodeConfig& out, std::set<int>& ids,
-                const ControllerConfig& c) {
+                const ControllerConfig& c, const Calibration& cal) {
   auto t = nodes.table(node_role_name(role));
   if (!t) {
     throw ConfigError(nodes.file(), nodes.line(), nodes.dotted(node_role_name(role)),
@@ -50,6 +117,8 @@ void parse_node(TomlSection& nodes, NodeRole role, NodeConfig& out, std::set<int
   out.zero_counts = t->number("zero_counts", 0.0, -1e9, 1e9);
   out.rated_torque = t->number("rated_torque", 1.0, 1e-6, 1e9);
   out.profile_velocity_units_per_s = t->number("profile_velocity", 0.0, 0.0, 1e6);
+  if (sensor && cal.force_zero_counts) out.zero_counts = *cal.force_zero_counts;
+  if (sensor && cal.force_counts_per_unit) out.counts_per_unit = *cal.force_counts_per_unit;
   for (int k = 0; k < 4; ++k) {
     out.tpdo[static_cast<std::size_t>(k)] = parse_pdo(*t, "tpdo" + std::to_string(k + 1));
     out.rpdo[static_cast<std::size_t>(k)] = parse_pdo(*t, "rpdo" + std::to_string(k + 1));
@@ -60,7 +129,7 @@ void parse_node(TomlSection& nodes, NodeRole role, NodeConfig& out, std::set<int
 
 }  // namespace
 
-BoardConfig load_board(const std::string& path) {
+BoardConfig load_board(const std::string& path, const std::string& calibration_override) {
   TomlDocument doc(path);
   TomlSection root = doc.root();
   BoardConfig b;
@@ -68,11 +137,56 @@ BoardConfig load_board(const std::string& path) {
   ControllerConfig& c = b.controller;
 
   auto board = root.table("board");
-  if (!board) throw ConfigError(path, 1, "board", "table is missing (name, toolchain)");
+  if (!board) throw ConfigError(path, 1, "board", "table is missing (name, toolchain, machine)");
   b.name = board->string("name", "");
   if (b.name.empty()) board->fail("name", "is required");
   b.toolchain = board->string("toolchain", "native");
+  const std::string machine = board->string("machine", "");
+  const std::string calibration = board->string("calibration", "");
+  Calibration cal;
+  if (!calibration.empty()) {
+    const bool toml_name =
+        calibration.size() > 5 && calibration.compare(calibration.size() - 5, 5, ".toml") == 0;
+    if (calibration.find('/') != std::string::npos || !toml_name)
+      board->fail("calibration", "must be the name of a .toml file beside the board file");
+    b.calibration_file = (std::filesystem::path(path).parent_path() / calibration).string();
+    std::error_code ec;
+    if (calibration_override.empty() && !std::filesystem::exists(b.calibration_file, ec)) {
+      board->fail("calibration", b.calibration_file +
+                                     ": no such file (the unit's calibration; planter-can "
+                                     "calibrate writes its values, the package installs one)");
+    }
+    cal =
+        read_calibration(calibration_override.empty() ? b.calibration_file : calibration_override);
+  }
+  // The machine's sections come from machines/<machine>.toml; a board file that names no
+  // machine holds them itself (one file, as before the split).
+  std::optional<TomlDocument> machine_doc;
+  std::optional<TomlSection> machine_root_storage;
+  TomlSection* mroot = &root;
+  if (!machine.empty()) {
+    b.machine_file = find_machine(path, *board, machine);
+    machine_doc.emplace(b.machine_file);
+    machine_root_storage.emplace(machine_doc->root());
+    mroot = &*machine_root_storage;
+    auto m = mroot->table("machine");
+    if (!m) throw ConfigError(b.machine_file, 1, "machine", "table is missing (name)");
+    b.machine_name = m->string("name", "");
+    if (b.machine_name != machine)
+      m->fail("name",
+              "is \"" + b.machine_name + "\" but the file is named for \"" + machine + "\"");
+    m->reject_unknown_keys();
+  }
   board->reject_unknown_keys();
+  const bool split = mroot != &root;
+  const std::string board_hint = "this key belongs in the board file (" + path +
+                                 "): the board holds the bus, the lines, "
+                                 "the encoder's counts and filter, and the loop's timing";
+  const std::string machine_hint =
+      split ? "this key belongs in the machine file (" + b.machine_file +
+                  ") or the unit's calibration: the board holds the bus, the lines, the encoder's "
+                  "counts and filter, and the loop's timing"
+            : std::string();
 
   int bitrate_line = 1;
   if (auto can = root.table("can")) {
@@ -108,20 +222,36 @@ BoardConfig load_board(const std::string& path) {
     }
     gpio->reject_unknown_keys();
   }
-  if (auto enc = root.table("encoder")) {
-    c.encoder.counts_per_rev =
-        static_cast<std::uint32_t>(enc->integer("counts_per_rev", 4096, 4, 1 << 24));
-    c.encoder.wheel_radius_m = enc->number("wheel_radius_m", 0.15, 0.02, 1.0, "m");
-    c.encoder.glitch_filter_ns = enc->integer("glitch_filter_us", 20, 0, 100000) * 1000;
-    c.encoder.speed_window_ns = enc->integer("speed_window_ms", 200, 10, 5000) * 1'000'000;
-    enc->reject_unknown_keys();
+  // [encoder]: the counts and the glitch filter are the board's (its encoder and lines); the
+  // wheel radius and the speed window are the machine's, the radius calibrated per unit.
+  {
+    auto board_enc = root.table("encoder");
+    std::optional<TomlSection> machine_enc_storage;
+    TomlSection* machine_enc = board_enc ? &*board_enc : nullptr;
+    if (split) {
+      if (auto t = mroot->table("encoder")) machine_enc_storage.emplace(std::move(*t));
+      machine_enc = machine_enc_storage ? &*machine_enc_storage : nullptr;
+    }
+    if (board_enc) {
+      c.encoder.counts_per_rev =
+          static_cast<std::uint32_t>(board_enc->integer("counts_per_rev", 4096, 4, 1 << 24));
+      c.encoder.glitch_filter_ns = board_enc->integer("glitch_filter_us", 20, 0, 100000) * 1000;
+    }
+    if (machine_enc) {
+      c.encoder.wheel_radius_m = machine_enc->number("wheel_radius_m", 0.15, 0.02, 1.0, "m");
+      c.encoder.speed_window_ns =
+          machine_enc->integer("speed_window_ms", 200, 10, 5000) * 1'000'000;
+    }
+    if (cal.wheel_radius_m) c.encoder.wheel_radius_m = *cal.wheel_radius_m;
+    if (board_enc) board_enc->reject_unknown_keys(machine_hint);
+    if (split && machine_enc) machine_enc->reject_unknown_keys(board_hint);
   }
-  if (auto disc = root.table("disc")) {
+  if (auto disc = mroot->table("disc")) {
     c.sigma.disc_radius_m = disc->number("radius_m", 0.300, 0.05, 1.0, "m");
     c.sigma.omega_max_radps = disc->number("omega_max_radps", 1.2, 0.1, 20.0, "rad/s");
     disc->reject_unknown_keys();
   }
-  if (auto ctl = root.table("control")) {
+  if (auto ctl = mroot->table("control")) {
     c.sigma.sigma = ctl->number("sigma", 1.5, 0.5, 3.0);
     c.sigma.angle_gain_per_s = ctl->number("sigma_angle_gain_per_s", 3.0, 0.0, 50.0, "1/s");
     c.clamp.setpoint_N = ctl->number("clamp_force_N", 90.0, 0.0, 200.0, "N");
@@ -145,21 +275,40 @@ BoardConfig load_board(const std::string& path) {
     c.depth.ki_per_s = ctl->number("depth_ki_per_s", 0.5, 0.0, 20.0, "1/s");
     c.depth.min_mm = ctl->number("depth_min_mm", c.depth.min_mm, -50.0, 500.0, "mm");
     c.depth.max_mm = ctl->number("depth_max_mm", c.depth.max_mm, 10.0, 500.0, "mm");
-    if (c.depth.max_mm <= c.depth.min_mm) ctl->fail("depth_max_mm", "must be above depth_min_mm");
+    if (cal.depth_min_mm) c.depth.min_mm = *cal.depth_min_mm;
+    if (cal.depth_max_mm) c.depth.max_mm = *cal.depth_max_mm;
+    const std::string from_cal =
+        cal.depth_min_mm || cal.depth_max_mm ? " (end stops from " + b.calibration_file + ")" : "";
+    if (c.depth.max_mm <= c.depth.min_mm)
+      ctl->fail("depth_max_mm", "must be above depth_min_mm" + from_cal);
     if (c.depth.target_mm > c.depth.max_mm)
-      ctl->fail("depth_mm", "must not be beyond depth_max_mm (the actuator's travel)");
+      ctl->fail("depth_mm", "must not be beyond depth_max_mm (the actuator's travel)" + from_cal);
     ctl->reject_unknown_keys();
   }
-  if (auto sup = root.table("supervisor")) {
-    c.supervisor.overrun_threshold_ns =
-        sup->integer("overrun_threshold_us", 15000, 100, 1000000) * 1000;
-    c.supervisor.overruns_to_fault =
-        static_cast<std::uint32_t>(sup->integer("overruns_to_fault", 3, 1, 1000));
-    c.supervisor.force_plausible_max_N =
-        sup->number("force_plausible_max_N", 400.0, 10.0, 10000.0, "N");
-    c.supervisor.pdo_stale_ns = sup->integer("pdo_stale_ms", 100, 10, 10000) * 1'000'000;
-    c.supervisor.boot_timeout_ns = sup->integer("boot_timeout_ms", 5000, 100, 60000) * 1'000'000;
-    sup->reject_unknown_keys();
+  // [supervisor]: the loop's timing is the board's; the plausibility limits are the machine's.
+  {
+    auto board_sup = root.table("supervisor");
+    std::optional<TomlSection> machine_sup_storage;
+    TomlSection* machine_sup = board_sup ? &*board_sup : nullptr;
+    if (split) {
+      if (auto t = mroot->table("supervisor")) machine_sup_storage.emplace(std::move(*t));
+      machine_sup = machine_sup_storage ? &*machine_sup_storage : nullptr;
+    }
+    if (board_sup) {
+      c.supervisor.overrun_threshold_ns =
+          board_sup->integer("overrun_threshold_us", 15000, 100, 1000000) * 1000;
+      c.supervisor.overruns_to_fault =
+          static_cast<std::uint32_t>(board_sup->integer("overruns_to_fault", 3, 1, 1000));
+      c.supervisor.pdo_stale_ns = board_sup->integer("pdo_stale_ms", 100, 10, 10000) * 1'000'000;
+      c.supervisor.boot_timeout_ns =
+          board_sup->integer("boot_timeout_ms", 5000, 100, 60000) * 1'000'000;
+    }
+    if (machine_sup) {
+      c.supervisor.force_plausible_max_N =
+          machine_sup->number("force_plausible_max_N", 400.0, 10.0, 10000.0, "N");
+    }
+    if (board_sup) board_sup->reject_unknown_keys(machine_hint);
+    if (split && machine_sup) machine_sup->reject_unknown_keys(board_hint);
   }
   if (auto rt = root.table("realtime")) {
     b.realtime.priority = static_cast<int>(rt->integer("priority", 80, 0, 99));
@@ -167,16 +316,17 @@ BoardConfig load_board(const std::string& path) {
     b.realtime.require = rt->boolean("require", false);
     rt->reject_unknown_keys();
   }
-  auto nodes = root.table("nodes");
+  auto nodes = mroot->table("nodes");
   if (!nodes)
     throw ConfigError(
-        path, 1, "nodes",
+        split ? b.machine_file : path, 1, "nodes",
         "table is missing (disc_drive, roller_actuator, depth_actuator, force_sensor)");
   std::set<int> ids;
   for (std::size_t i = 0; i < kNodeCount; ++i)
-    parse_node(*nodes, static_cast<NodeRole>(i), c.nodes[i], ids, c);
+    parse_node(*nodes, static_cast<NodeRole>(i), c.nodes[i], ids, c, cal);
   nodes->reject_unknown_keys();
-  root.reject_unknown_keys();
+  root.reject_unknown_keys(machine_hint);
+  if (split) mroot->reject_unknown_keys(board_hint);
   // CiA 301 leaves the budget to the integrator; above 100 % frames queue without bound, and
   // above half the bus a retransmission or a spare node's traffic already delays the PDOs.
   b.planned_bus_load_pct = planned_bus_load_pct(c);
@@ -194,6 +344,13 @@ BoardConfig load_board(const std::string& path) {
     b.warnings.push_back(path + ": " + load + " (over the 50 % guideline)");
   }
   return b;
+}
+
+std::vector<std::string> source_files(const BoardConfig& b) {
+  std::vector<std::string> files{b.file};
+  if (!b.machine_file.empty()) files.push_back(b.machine_file);
+  if (!b.calibration_file.empty()) files.push_back(b.calibration_file);
+  return files;
 }
 
 }  // namespace planter::config

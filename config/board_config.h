@@ -1,6 +1,6 @@
 #pragma once
-// A board file (boards/<board>/board.toml): the machine's buses, lines, nodes and loop
-// settings. Loaded and validated once at start; the firmware only sees ControllerConfig.
+// A board, the machine it runs and the unit's calibration: loaded and validated once at
+// start; the firmware only sees ControllerConfig.
 #include <string>
 #include <vector>
 
@@ -27,8 +27,15 @@ struct RealtimeConfig {
   bool require = false;  // refuse to start when SCHED_FIFO or mlockall is refused
 };
 
+// A board file (boards/<board>/board.toml) is the board's wiring: its bus, lines, encoder and
+// loop timing. It names the machine it runs (machines/<machine>.toml: mechanism, limits,
+// control gains, nodes) and this unit's calibration (a file beside it, which `planter-can
+// calibrate` writes). A board file naming no machine holds the machine's sections itself.
 struct BoardConfig {
   std::string file;
+  std::string machine_name;      // "" when the board file holds the machine itself
+  std::string machine_file;      // machines/<machine>.toml, as found
+  std::string calibration_file;  // "" when the board names none
   std::string name;
   std::string toolchain;
   std::string can_interface = "sim";
@@ -39,7 +46,10 @@ struct BoardConfig {
   std::vector<std::string> warnings;  // in range but doubtful; tools print them at start
 };
 
-// Throws ConfigError on any problem.
-BoardConfig load_board(const std::string& path);
+// Throws ConfigError on any problem. `calibration` (if not empty) is read instead of the
+// calibration file the board names (planter-can checks an edited calibration this way).
+BoardConfig load_board(const std::string& path, const std::string& calibration = "");
+// The files a loaded board was built from: the board, its machine and its calibration.
+std::vector<std::string> source_files(const BoardConfig& board);
 
 }  // namespace planter::config

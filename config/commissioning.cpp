@@ -6,18 +6,34 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <vector>
 
+#include "config/board_config.h"
+#include "config/config_error.h"
 #include "config/durable_file.h"
 
 namespace planter::config {
 
 std::uint64_t board_fingerprint(const std::string& board_path) {
-  std::ifstream in(board_path, std::ios::binary);
-  if (!in) return 0;
+  // The board, and the machine and calibration it names: a change to any of them is a change
+  // to what was commissioned. A board that does not load is fingerprinted alone (and will not
+  // start planterd anyway).
+  std::vector<std::string> files{board_path};
+  try {
+    files = source_files(load_board(board_path));
+  } catch (const ConfigError&) {
+  }
   std::uint64_t h = 0xcbf29ce484222325ull;
-  for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {
-    h ^= static_cast<unsigned char>(*it);
+  auto mix = [&h](unsigned char c) {
+    h ^= c;
     h *= 0x100000001b3ull;
+  };
+  for (const std::string& f : files) {
+    std::ifstream in(f, std::ios::binary);
+    if (!in) return 0;
+    for (std::istreambuf_iterator<char> it(in), end; it != end; ++it)
+      mix(static_cast<unsigned char>(*it));
+    mix(0);  // a file boundary: moving a line from one file to the next changes the print
   }
   return h;
 }
@@ -52,8 +68,8 @@ bool commissioned(const std::string& stamp_path, const std::string& board_path, 
     char now[32];
     std::snprintf(now, sizeof now, "%016" PRIx64, board_fingerprint(board_path));
     if (line.substr(key.size()) == now) return true;
-    why = board_path + " changed since it was commissioned (" + stamp_path +
-          "): run planter-can check again";
+    why = board_path + " (or the machine or calibration it names) changed since it was " +
+          "commissioned (" + stamp_path + "): run planter-can check again";
     return false;
   }
   why = stamp_path + " is not a commissioning stamp";

@@ -1,14 +1,15 @@
 #pragma once
 // Commissioning stamp: `planter-can check --mark-commissioned FILE` writes it when every item
 // of the checklist passed; planterd (with --commissioned-stamp FILE) starts the drives only
-// while it exists and was written for this very board file (a fingerprint of its bytes), so
-// editing the board after commissioning asks for a new check.
+// while it exists and was written for this very board (a fingerprint of the bytes of the board
+// file, its machine file and its calibration), so editing any of them after commissioning asks
+// for a new check.
 #include <cstdint>
 #include <string>
 
 namespace planter::config {
 
-// FNV-1a 64 of the file's bytes (change detection, not security); 0 when unreadable.
+// FNV-1a 64 of the board's files' bytes (change detection, not security); 0 when unreadable.
 std::uint64_t board_fingerprint(const std::string& board_path);
 
 // Writes the stamp atomically (temporary, fsync, rename). False with `error` set on failure.

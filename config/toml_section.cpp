@@ -164,11 +164,12 @@ std::vector<std::string> TomlSection::keys() const {
   return out;
 }
 
-void TomlSection::reject_unknown_keys() const {
+void TomlSection::reject_unknown_keys(const std::string& hint) const {
   for (const auto& [k, v] : *table_) {
     const std::string key(k.str());
     if (used_.count(key) == 0) {
-      throw ConfigError(file_, static_cast<int>(v.source().begin.line), dotted(key), "unknown key");
+      throw ConfigError(file_, static_cast<int>(v.source().begin.line), dotted(key),
+                        hint.empty() ? "unknown key" : "unknown key here; " + hint);
     }
   }
 }

@@ -38,8 +38,9 @@ class TomlSection {
   std::optional<TomlSection> table(const std::string& key);
   std::vector<TomlSection> array_of_tables(const std::string& key);
   std::vector<std::string> keys() const;
-  // Throws for any key that was never read: a typo must not pass silently.
-  void reject_unknown_keys() const;
+  // Throws for any key that was never read: a typo must not pass silently. `hint` (if any)
+  // follows "unknown key" and says where such a key belongs.
+  void reject_unknown_keys(const std::string& hint = "") const;
 
   [[nodiscard]] int line() const;
   [[nodiscard]] int line_of(const std::string& key) const;

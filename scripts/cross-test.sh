@@ -2,17 +2,36 @@
 # Cross builds for the controller boards: installs Debian's cross compilers, qemu-user and the
 # :arm64/:armhf libraries (multiarch), then for each board preset builds planterd, planter-can
 # and the unit tests, runs the unit tests under qemu-user, makes the .deb and checks it, and
-# prints the stripped size of planterd. Usage: scripts/cross-test.sh [preset...]
+# prints the stripped size of planterd. Usage: scripts/cross-test.sh [board...]; with no
+# board, every board under boards/ whose toolchain is a cross one. The triple and the Debian
+# architecture come from the board's toolchain file (cmake/toolchains/<toolchain>.cmake):
+# adding a board is adding its folder.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
-presets=("$@")
-[ ${#presets[@]} -eq 0 ] && presets=(rpi4-canhat bbb-dcan)
 sudo_cmd=""
 [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
 
-declare -A arch=([rpi4-canhat]=arm64 [bbb-dcan]=armhf)
-declare -A triple=([arm64]=aarch64-linux-gnu [armhf]=arm-linux-gnueabihf)
+# [board] toolchain of a board, and a set(NAME value) of a toolchain file.
+toolchain_of() { sed -n 's/^toolchain *= *"\([^"]*\)".*/\1/p' "boards/$1/board.toml" | head -1; }
+toolchain_value() { sed -n "s/^set($2 \([^ )]*\))/\1/p" "cmake/toolchains/$1.cmake" | head -1; }
+presets=("$@")
+if [ ${#presets[@]} -eq 0 ]; then
+  for d in boards/*/; do
+    b=$(basename "$d")
+    [ "$(toolchain_of "$b")" != native ] && presets+=("$b")
+  done
+fi
+declare -A arch triple
+for p in "${presets[@]}"; do
+  tc=$(toolchain_of "$p")
+  arch[$p]=$(toolchain_value "$tc" PLANTER_DEB_ARCH)
+  triple[$p]=$(toolchain_value "$tc" PLANTER_TRIPLE)
+  if [ -z "${arch[$p]}" ] || [ -z "${triple[$p]}" ]; then
+    echo "cross-test: board $p: toolchain '$tc' names no PLANTER_DEB_ARCH or PLANTER_TRIPLE" >&2
+    exit 2
+  fi
+done
 libs=(libgpiod-dev libsocketcan-dev libtomlplusplus-dev libgtest-dev libgmock-dev pkgconf)
 wanted=(qemu-user binutils-multiarch)
 for p in "${presets[@]}"; do
@@ -25,16 +44,17 @@ scripts/apt-install.sh cross "${wanted[@]}"
 
 for p in "${presets[@]}"; do
   a=${arch[$p]}
-  echo "== cross build for board $p ($a, ${triple[$a]})"
-  cmake --preset "$p" >/dev/null
-  cmake --build --preset "$p" -j "$(nproc)" --target planterd planter-can planter_unit_tests \
+  echo "== cross build for board $p ($a, ${triple[$p]})"
+  cmake -S . -B "build-$p" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPLANTER_BOARD="$p" \
+    -DPLANTER_BUILD_BENCH=OFF >/dev/null
+  cmake --build "build-$p" -j "$(nproc)" --target planterd planter-can planter_unit_tests \
     planter_can_tests planterd_service_tests planter_dem_tests fuzz_can_frame fuzz_text_inputs fuzz_board_file
   echo "== unit tests of $p under qemu-user"
-  ctest --preset "$p" -L unit -j "$(nproc)" | tail -3
+  (cd "build-$p" && ctest -L unit -j "$(nproc)" --output-on-failure | tail -3)
   (cd "build-$p" && cpack -G DEB >/dev/null)
   deb=$(ls -t "build-$p"/planter_*_"$a".deb | head -1)
   scripts/package-test.sh "$deb" "$a"
 done
 for p in "${presets[@]}"; do
-  scripts/bench-size.sh "build-$p/apps/planterd/planterd" "${triple[${arch[$p]}]}"
+  scripts/bench-size.sh "build-$p/apps/planterd/planterd" "${triple[$p]}"
 done

@@ -17,7 +17,9 @@ for dep in libgpiod2 libsocketcan2 libtomlplusplus3 libstdc++6 libc6; do
   grep -q "$dep" <<<"$(field Depends)" || fail "Depends lacks $dep: $(field Depends)"
 done
 for f in ./usr/bin/planterd ./usr/bin/planter-can ./lib/systemd/system/planterd.service \
-         ./etc/planter/board.toml ./etc/default/planterd ./etc/planter/boards/rpi4-canhat/board.toml \
+         ./etc/planter/board.toml ./etc/planter/calibration.toml ./etc/default/planterd \
+         ./etc/planter/machines/scallion-transplanter.toml \
+         ./etc/planter/boards/rpi4-canhat/board.toml ./etc/planter/boards/rpi4-canhat/calibration.toml \
          ./etc/planter/boards/bbb-dcan/board.toml ./etc/planter/boards/host-sim/board.toml \
          ./usr/share/doc/planter/copyright; do
   grep -q " $f\$" <<<"$files" || fail "$deb lacks $f"
@@ -46,11 +48,16 @@ fi
 $sudo_cmd dpkg -i "$deb" >/dev/null
 trap '$sudo_cmd dpkg -P planter >/dev/null 2>&1 || true; rm -rf "$work"' EXIT
 /usr/bin/planterd --help >/dev/null || fail "installed planterd does not run"
+# The installed board finds its machine (/etc/planter/machines) and its calibration.
 /usr/bin/planter-can --iface sim --board /etc/planter/board.toml scan | tail -1
+/usr/bin/planter-can --iface sim --board /etc/planter/boards/rpi4-canhat/board.toml scan >/dev/null ||
+  fail "the installed rpi4-canhat board does not load"
 systemd-analyze verify /lib/systemd/system/planterd.service || fail "systemd-analyze verify"
 conf=$(dpkg-query -W -f='${Conffiles}' planter)
-grep -q "/etc/planter/board.toml" <<<"$conf" && grep -q "/etc/default/planterd" <<<"$conf" ||
-  fail "conffiles not registered: $conf"
+for f in /etc/planter/board.toml /etc/planter/calibration.toml \
+         /etc/planter/machines/scallion-transplanter.toml /etc/default/planterd; do
+  grep -q "$f" <<<"$conf" || fail "conffile $f not registered: $conf"
+done
 $sudo_cmd dpkg -r planter >/dev/null
 [ ! -e /usr/bin/planterd ] && [ ! -e /lib/systemd/system/planterd.service ] || fail "remove left binaries"
 [ -e /etc/planter/board.toml ] || fail "remove dropped the admin's board file (it should stay until purge)"

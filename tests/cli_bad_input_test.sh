@@ -77,9 +77,11 @@ want_rc=0 expect route-cut "note: the route was not finished within max_duration
 grep -q '"route_complete": false' "$tmp/cut-out/summary.json" || {
   echo "FAIL route-cut: summary.json does not say route_complete false"; fail=1; }
 # The same board in a run: the controller's boot fails on it, and the summary says so by name.
-sed 's|tpdo2 = \["6064:00:32", "6077:00:16"\]|tpdo2 = ["6064:00:32", "2077:00:16"]|' \
-  "$src/boards/host-sim/board.toml" >"$tmp/badmap-board.toml"
-sed "s|^board = .*|board = \"$tmp/badmap-board.toml\"|; s|^\[scenario\]|[scenario]\nmax_duration_s = 15.0|" \
+source "$src/tests/board_copy.sh"
+board_copy "$src" host-sim "$tmp/badmap-board"
+sed -i 's|tpdo2 = \["6064:00:32", "6077:00:16"\]|tpdo2 = ["6064:00:32", "2077:00:16"]|' \
+  "$tmp/badmap-board/machines/scallion-transplanter.toml"
+sed "s|^board = .*|board = \"$tmp/badmap-board/board.toml\"|; s|^\[scenario\]|[scenario]\nmax_duration_s = 15.0|" \
   "$tmp/bom.toml" >"$tmp/badmap.toml"
 want_rc=0 expect unmapped-object "final state +fault \(faults 0x40: boot failed\)" -- \
   "$sim" run "$tmp/badmap.toml" --out "$tmp/badmap-out"

@@ -12,21 +12,39 @@ using namespace planter;
 
 namespace {
 const std::string kBoard = std::string(PLANTER_SOURCE_DIR) + "/boards/host-sim/board.toml";
+const std::string kMachine =
+    std::string(PLANTER_SOURCE_DIR) + "/machines/scallion-transplanter.toml";
 
-// A copy of the real board file with one line replaced (or appended).
-std::string board_with(const std::string& pattern, const std::string& replacement) {
-  std::ifstream in(kBoard);
+std::string text_of(const std::string& path) {
+  std::ifstream in(path);
   std::stringstream ss;
   ss << in.rdbuf();
-  std::string text = ss.str();
-  text = pattern.empty() ? text + replacement
-                         : std::regex_replace(text, std::regex(pattern), replacement);
-  const auto path =
-      std::filesystem::temp_directory_path() /
+  return ss.str();
+}
+
+// A scratch copy of the host-sim board with its calibration and its machine, with one line
+// replaced in the file that holds it (board first, then machine), or appended to the board.
+std::string board_with(const std::string& pattern, const std::string& replacement) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() /
       ("planter-board-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
-       std::to_string(std::hash<std::string>{}(pattern + replacement)) + ".toml");
-  std::ofstream(path) << text;
-  return path.string();
+       std::to_string(std::hash<std::string>{}(pattern + replacement)));
+  fs::create_directories(dir / "machines");
+  std::string board = text_of(kBoard);
+  std::string machine = text_of(kMachine);
+  if (pattern.empty()) {
+    board += replacement;
+  } else if (std::regex_search(board, std::regex(pattern))) {
+    board = std::regex_replace(board, std::regex(pattern), replacement);
+  } else {
+    machine = std::regex_replace(machine, std::regex(pattern), replacement);
+  }
+  std::ofstream(dir / "board.toml") << board;
+  std::ofstream(dir / "machines" / "scallion-transplanter.toml") << machine;
+  fs::copy_file(fs::path(kBoard).parent_path() / "calibration.toml", dir / "calibration.toml",
+                fs::copy_options::overwrite_existing);
+  return (dir / "board.toml").string();
 }
 
 std::string error_of(const std::string& path) {
@@ -49,14 +67,14 @@ TEST(BoardConfig, LoadsTheHostSimBoard) {
 }
 
 TEST(BoardConfig, UnknownKeyNamesFileLineAndKey) {
-  const auto path = board_with("", "\n[disc]\n");  // duplicate table: a parse error with a line
+  const auto path = board_with("", "\n[can]\n");  // duplicate table: a parse error with a line
   EXPECT_NE(error_of(path).find(path + ":"), std::string::npos);
   const auto typo =
       board_with("clamp_force_N = 90.0", "clamp_force_N = 90.0\nclamp_forse_N = 80.0");
   const std::string e = error_of(typo);
   EXPECT_NE(e.find("'control.clamp_forse_N': unknown key"), std::string::npos) << e;
-  // The typo sits on the line after clamp_force_N in the real file.
-  std::ifstream in(kBoard);
+  // The typo sits on the line after clamp_force_N in the machine file.
+  std::ifstream in(kMachine);
   std::string line;
   int n = 0;
   while (std::getline(in, line) && line.rfind("clamp_force_N", 0) != 0) ++n;
@@ -64,6 +82,63 @@ TEST(BoardConfig, UnknownKeyNamesFileLineAndKey) {
   needle += std::to_string(n + 2);
   needle += ':';
   EXPECT_NE(e.find(needle), std::string::npos) << e;
+}
+
+// The board is wiring, the machine is mechanism, the calibration is one unit's measurements:
+// every board names the one machine file, and each key has one home.
+TEST(BoardConfig, EveryBoardRunsTheOneMachineWithItsCalibration) {
+  for (const char* name : {"host-sim", "vm-hil", "rpi4-canhat", "bbb-dcan"}) {
+    const auto b = planter::config::load_board(std::string(PLANTER_SOURCE_DIR) + "/boards/" + name +
+                                               "/board.toml");
+    EXPECT_EQ(b.machine_name, "scallion-transplanter") << name;
+    EXPECT_NE(b.machine_file.find("machines/scallion-transplanter.toml"), std::string::npos);
+    EXPECT_NE(b.calibration_file.find(std::string(name) + "/calibration.toml"), std::string::npos);
+    EXPECT_DOUBLE_EQ(b.controller.encoder.wheel_radius_m, 0.15464) << name;  // calibrated
+    EXPECT_EQ(planter::config::source_files(b).size(), 3u);
+  }
+}
+
+TEST(BoardConfig, AKeyInTheWrongFileSaysWhereItBelongs) {
+  const std::string machine_in_board = error_of(board_with("", "\n[disc]\nradius_m = 0.3\n"));
+  EXPECT_NE(machine_in_board.find("'disc': unknown key here; this key belongs in the machine file"),
+            std::string::npos)
+      << machine_in_board;
+  const std::string radius_in_board =
+      error_of(board_with("counts_per_rev = 4096", "counts_per_rev = 4096\nwheel_radius_m = 0.2"));
+  EXPECT_NE(radius_in_board.find("'encoder.wheel_radius_m': unknown key here; this key belongs "
+                                 "in the machine file"),
+            std::string::npos)
+      << radius_in_board;
+  const std::string board_in_machine =
+      error_of(board_with("speed_window_ms = 200", "speed_window_ms = 200\ncounts_per_rev = 1024"));
+  EXPECT_NE(board_in_machine.find("scallion-transplanter.toml:"), std::string::npos)
+      << board_in_machine;
+  EXPECT_NE(board_in_machine.find("'encoder.counts_per_rev': unknown key here; this key belongs "
+                                  "in the board file"),
+            std::string::npos)
+      << board_in_machine;
+  const std::string no_machine =
+      error_of(board_with("machine = \"scallion-transplanter\"", "machine = \"no-such-machine\""));
+  EXPECT_NE(no_machine.find("'board.machine': no machines/no-such-machine.toml"), std::string::npos)
+      << no_machine;
+}
+
+TEST(BoardConfig, TheCalibrationHoldsOnlyMeasuredValues) {
+  const std::string path = board_with("", "");
+  const std::string cal = std::filesystem::path(path).parent_path() / "calibration.toml";
+  std::ofstream(cal) << "[encoder]\nwheel_radius_m = 0.152\ncounts_per_rev = 1024\n";
+  const std::string e = error_of(path);
+  EXPECT_NE(e.find(cal + ":"), std::string::npos) << e;
+  EXPECT_NE(e.find("'encoder.counts_per_rev': unknown key here; a calibration holds"),
+            std::string::npos)
+      << e;
+  std::ofstream(cal) << "[nodes.force_sensor]\nzero_counts = 31\ncounts_per_unit = 10.8\n"
+                        "[control]\ndepth_max_mm = 150.0\n";
+  const auto b = planter::config::load_board(path);
+  EXPECT_DOUBLE_EQ(b.controller.node(NodeRole::kForceSensor).zero_counts, 31.0);
+  EXPECT_DOUBLE_EQ(b.controller.node(NodeRole::kForceSensor).counts_per_unit, 10.8);
+  EXPECT_DOUBLE_EQ(b.controller.depth.max_mm, 150.0);
+  EXPECT_DOUBLE_EQ(b.controller.encoder.wheel_radius_m, 0.150);  // the machine's nominal radius
 }
 
 TEST(BoardConfig, WrongTypeAndRange) {

@@ -33,7 +33,7 @@ std::string header_name(const std::string& line) {
 
 }  // namespace
 
-bool edit_board_text(std::string& text, const std::vector<BoardEdit>& edits, std::string& error) {
+void edit_board_text(std::string& text, const std::vector<BoardEdit>& edits) {
   std::vector<std::string> lines;
   {
     std::istringstream in(text);
@@ -46,8 +46,9 @@ bool edit_board_text(std::string& text, const std::vector<BoardEdit>& edits, std
       if (header_name(lines[i]) == e.table) header = i;
     }
     if (header == lines.size()) {
-      error = "table [" + e.table + "] is missing";
-      return false;
+      if (!lines.empty() && !trim(lines.back()).empty()) lines.emplace_back();
+      lines.push_back("[" + e.table + "]");
+      header = lines.size() - 1;
     }
     std::size_t end = header + 1;
     while (end < lines.size() && header_name(lines[end]).empty()) ++end;
@@ -75,11 +76,29 @@ bool edit_board_text(std::string& text, const std::vector<BoardEdit>& edits, std
   }
   text.clear();
   for (const auto& l : lines) text += l + "\n";
-  return true;
 }
 
-bool write_board_edits(const std::string& link_path, const std::vector<BoardEdit>& edits,
-                       std::string& error, std::string* backup_written) {
+bool write_board_edits(const std::string& board_path, const std::vector<BoardEdit>& edits,
+                       std::string& error, std::string* backup_written, std::string* written) {
+  // The unit's calibration file, or the board itself when it holds its machine (no split).
+  std::string link_path = board_path;
+  bool calibration = false;
+  try {
+    const config::BoardConfig board = config::load_board(board_path);
+    if (!board.machine_file.empty() && board.calibration_file.empty()) {
+      error = board_path +
+              ": names no calibration file; add calibration = \"calibration.toml\" to [board] "
+              "and create it beside the board file";
+      return false;
+    }
+    if (!board.calibration_file.empty()) {
+      link_path = board.calibration_file;
+      calibration = true;
+    }
+  } catch (const config::ConfigError& e) {
+    error = e.what();
+    return false;
+  }
   // Edit the file a symlink names, so /etc/planter/board.toml -> boards/x/board.toml stays a link.
   std::error_code ec;
   const std::string path = std::filesystem::canonical(link_path, ec).string();
@@ -95,10 +114,7 @@ bool write_board_edits(const std::string& link_path, const std::vector<BoardEdit
     return false;
   }
   std::string text = original;
-  if (!edit_board_text(text, edits, error)) {
-    error = path + ": " + error;
-    return false;
-  }
+  edit_board_text(text, edits);
   const std::string tmp = path + ".tmp";
   std::string backup = path + ".bak";
   for (int n = 2; std::filesystem::exists(backup, ec) || std::filesystem::is_symlink(backup, ec);
@@ -111,9 +127,10 @@ bool write_board_edits(const std::string& link_path, const std::vector<BoardEdit
     return false;
   }
   try {
-    (void)config::load_board(tmp);  // the edited board must still be a valid board
+    // The board must still load with the edited file.
+    (void)(calibration ? config::load_board(board_path, tmp) : config::load_board(tmp));
   } catch (const config::ConfigError& e) {
-    error = std::string("the edited board would not load: ") + e.what();
+    error = std::string("the board would not load with the edit: ") + e.what();
     ::unlink(tmp.c_str());
     return false;
   }
@@ -128,6 +145,7 @@ bool write_board_edits(const std::string& link_path, const std::vector<BoardEdit
     return false;
   }
   if (backup_written != nullptr) *backup_written = backup;
+  if (written != nullptr) *written = path;
   return true;
 }
 

@@ -31,16 +31,19 @@ std::string number_text(double v) {
 
 int report(ToolContext& ctx, const CalibrateOptions& opt, const std::vector<Change>& changes,
            const nlohmann::json& evidence) {
-  std::string write_error, backup;
+  std::string write_error, backup, written_file;
   bool written = false;
   if (opt.write) {
     std::vector<BoardEdit> edits;
     for (const auto& c : changes) edits.push_back({c.table, c.key, number_text(c.after)});
-    written = write_board_edits(ctx.board->file, edits, write_error, &backup);
+    written = write_board_edits(ctx.board->file, edits, write_error, &backup, &written_file);
   }
   if (ctx.json) {
     nlohmann::json j{{"calibration", opt.what}, {"evidence", evidence}, {"written", written}};
-    if (written) j["backup"] = backup;
+    if (written) {
+      j["file"] = written_file;
+      j["backup"] = backup;
+    }
     for (const auto& c : changes) {
       j["changes"].push_back({{"table", c.table},
                               {"key", c.key},
@@ -60,7 +63,7 @@ int report(ToolContext& ctx, const CalibrateOptions& opt, const std::vector<Chan
       ctx.out << line;
     }
     if (written)
-      ctx.out << "written to " << ctx.board->file << " (previous kept as " << backup << ")\n";
+      ctx.out << "written to " << written_file << " (previous kept as " << backup << ")\n";
     if (!opt.write) ctx.out << "not written (--no-write)\n";
   }
   if (!write_error.empty()) {

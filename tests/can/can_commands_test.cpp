@@ -198,7 +198,7 @@ TEST_F(CanToolTest, LssFastscanFindsTheUnconfiguredNodeAndAssignGivesItAnId) {
   EXPECT_NE(out().find("node-ID 9"), std::string::npos);
 }
 
-TEST_F(CanToolTest, CalibrateForceFindsHiddenOffsetAndSpanAndWritesTheBoard) {
+TEST_F(CanToolTest, CalibrateForceFindsHiddenOffsetAndSpanAndWritesTheCalibration) {
   scenario_.plant.effects.force_offset_N = 3.0;
   scenario_.plant.effects.force_gain_pct = 8.0;
   start();
@@ -212,12 +212,16 @@ TEST_F(CanToolTest, CalibrateForceFindsHiddenOffsetAndSpanAndWritesTheBoard) {
   const NodeConfig& f = after.controller.node(NodeRole::kForceSensor);
   EXPECT_NEAR(f.zero_counts, 30.0, 3.0);                // 3 N at 10 counts/N
   EXPECT_NEAR(f.counts_per_unit, 10.8, 0.15) << out();  // +8 % span
-  EXPECT_TRUE(std::filesystem::exists(board_path_ + ".bak"));
-  EXPECT_EQ(config::load_board(board_path_ + ".bak")
+  // The unit's calibration file took the change; the board (wiring) is as it was.
+  const std::string calibration = (dir_ / "calibration.toml").string();
+  EXPECT_TRUE(std::filesystem::exists(calibration + ".bak"));
+  EXPECT_FALSE(std::filesystem::exists(board_path_ + ".bak"));
+  EXPECT_EQ(config::load_board(board_path_, calibration + ".bak")
                 .controller.node(NodeRole::kForceSensor)
                 .counts_per_unit,
             10.0);
   EXPECT_NE(out().find("nodes.force_sensor.counts_per_unit"), std::string::npos) << out();
+  EXPECT_NE(out().find("written to " + calibration), std::string::npos) << out();
 }
 
 TEST_F(CanToolTest, CalibrateSoilWheelMeasuresTheEffectiveRadius) {
@@ -291,6 +295,12 @@ TEST_F(CanToolTest, OnlyAPassingCheckMarksTheBoardCommissioned) {
   std::ofstream(board_path_, std::ios::app) << "# edited\n";
   EXPECT_FALSE(config::commissioned(stamp, board_path_, why));
   EXPECT_NE(why.find("changed since it was commissioned"), std::string::npos);
+  // So does a new calibration: the stamp covers the unit's calibration file too.
+  std::string error;
+  ASSERT_TRUE(config::write_commissioning_stamp(stamp, board_path_, "host-sim", 0, error)) << error;
+  EXPECT_TRUE(config::commissioned(stamp, board_path_, why)) << why;
+  std::ofstream(dir_ / "calibration.toml", std::ios::app) << "# re-measured\n";
+  EXPECT_FALSE(config::commissioned(stamp, board_path_, why));
 }
 
 TEST_F(CanToolTest, CheckFailsWithoutTrafficAndOnSwappedEncoderLines) {

@@ -13,6 +13,7 @@
 #include "apps/planter-can/sdo_session.h"
 #include "apps/planter-can/value_codec.h"
 #include "config/board_config.h"
+#include "tests/board_copy.h"
 
 namespace planter::cantool::test {
 namespace {
@@ -250,47 +251,48 @@ TEST(BoardFileEdit, ChangesOnlyTheKeysAndKeepsComments) {
   std::string text =
       "[encoder]\ncounts_per_rev = 4096   # x4\nwheel_radius_m = 0.15  # calibrated\n\n"
       "[nodes.force_sensor]\nid = 5\n";
-  std::string error;
-  ASSERT_TRUE(edit_board_text(
-      text, {{"encoder", "wheel_radius_m", "0.1546"}, {"nodes.force_sensor", "zero_counts", "31"}},
-      error));
+  edit_board_text(
+      text, {{"encoder", "wheel_radius_m", "0.1546"}, {"nodes.force_sensor", "zero_counts", "31"}});
   EXPECT_EQ(text,
             "[encoder]\ncounts_per_rev = 4096   # x4\nwheel_radius_m = 0.1546  # calibrated\n\n"
             "[nodes.force_sensor]\nid = 5\nzero_counts = 31\n");
-  EXPECT_FALSE(edit_board_text(text, {{"soil", "x", "1"}}, error));
-  EXPECT_EQ(error, "table [soil] is missing");
+  // A table the file lacks is added at its end (a calibration starts with few tables).
+  edit_board_text(text, {{"control", "depth_max_mm", "165"}});
+  EXPECT_NE(text.find("zero_counts = 31\n\n[control]\ndepth_max_mm = 165\n"), std::string::npos)
+      << text;
 }
 
-// A board reached through a symlink (as /etc/planter/board.toml may be) stays a link, and a
-// second calibration keeps the first one's backup.
+// A calibration reached through a symlink (as a unit's may be) stays a link, and a second
+// calibration keeps the first one's backup.
 TEST(BoardFileEdit, FollowsSymlinksAndNeverOverwritesABackup) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("planter-edit-" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  fs::create_directories(dir);
-  fs::copy_file(PLANTER_SOURCE_DIR "/boards/host-sim/board.toml", dir / "board.toml");
-  fs::create_symlink(dir / "board.toml", dir / "link.toml");
-  const double original =
-      config::load_board((dir / "board.toml").string()).controller.encoder.wheel_radius_m;
-  std::string error, backup;
-  ASSERT_TRUE(write_board_edits((dir / "link.toml").string(),
-                                {{"encoder", "wheel_radius_m", "0.1546"}}, error, &backup))
+  const std::string board = planter::test::copy_board("host-sim", dir).string();
+  fs::rename(dir / "calibration.toml", dir / "unit-0042.toml");
+  fs::create_symlink(dir / "unit-0042.toml", dir / "calibration.toml");
+  const double original = config::load_board(board).controller.encoder.wheel_radius_m;
+  std::string error, backup, written;
+  ASSERT_TRUE(
+      write_board_edits(board, {{"encoder", "wheel_radius_m", "0.1546"}}, error, &backup, &written))
       << error;
-  EXPECT_TRUE(fs::is_symlink(dir / "link.toml"));
-  EXPECT_EQ(backup, (dir / "board.toml.bak").string());
-  ASSERT_TRUE(write_board_edits((dir / "link.toml").string(),
-                                {{"encoder", "wheel_radius_m", "0.1551"}}, error, &backup))
+  EXPECT_EQ(written, (dir / "unit-0042.toml").string());
+  EXPECT_TRUE(fs::is_symlink(dir / "calibration.toml"));
+  EXPECT_EQ(backup, (dir / "unit-0042.toml.bak").string());
+  ASSERT_TRUE(write_board_edits(board, {{"encoder", "wheel_radius_m", "0.1551"}}, error, &backup))
       << error;
-  EXPECT_EQ(backup, (dir / "board.toml.bak.2").string());
-  EXPECT_TRUE(fs::is_symlink(dir / "link.toml"));
-  EXPECT_DOUBLE_EQ(
-      config::load_board((dir / "board.toml.bak").string()).controller.encoder.wheel_radius_m,
-      original);
-  EXPECT_DOUBLE_EQ(
-      config::load_board((dir / "board.toml.bak.2").string()).controller.encoder.wheel_radius_m,
-      0.1546);
-  EXPECT_DOUBLE_EQ(
-      config::load_board((dir / "link.toml").string()).controller.encoder.wheel_radius_m, 0.1551);
+  EXPECT_EQ(backup, (dir / "unit-0042.toml.bak.2").string());
+  EXPECT_TRUE(fs::is_symlink(dir / "calibration.toml"));
+  auto radius_with = [&](const fs::path& calibration) {
+    return config::load_board(board, calibration.string()).controller.encoder.wheel_radius_m;
+  };
+  EXPECT_DOUBLE_EQ(radius_with(dir / "unit-0042.toml.bak"), original);
+  EXPECT_DOUBLE_EQ(radius_with(dir / "unit-0042.toml.bak.2"), 0.1546);
+  EXPECT_DOUBLE_EQ(config::load_board(board).controller.encoder.wheel_radius_m, 0.1551);
+  // An edit the board would not load with is refused and leaves the file as it was.
+  EXPECT_FALSE(write_board_edits(board, {{"encoder", "wheel_radius_m", "7"}}, error));
+  EXPECT_NE(error.find("would not load"), std::string::npos) << error;
+  EXPECT_DOUBLE_EQ(config::load_board(board).controller.encoder.wheel_radius_m, 0.1551);
   fs::remove_all(dir);
 }
 

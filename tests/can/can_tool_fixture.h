@@ -10,6 +10,7 @@
 #include "apps/planter-can/tool_context.h"
 #include "config/board_config.h"
 #include "sim/runner/scenario.h"
+#include "tests/board_copy.h"
 
 namespace planter::cantool::test {
 
@@ -19,15 +20,12 @@ inline std::string source_path(const std::string& rel) {
 
 class CanToolTest : public ::testing::Test {
  protected:
-  // A scratch copy of the host-sim board: calibrations write into it.
+  // A scratch copy of the host-sim board: calibrations write into its calibration file.
   void SetUp() override {
     dir_ = std::filesystem::temp_directory_path() /
            ("planter-can-test-" + std::to_string(::getpid()) + "-" +
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-    board_path_ = (dir_ / "board.toml").string();
-    std::filesystem::copy_file(source_path("boards/host-sim/board.toml"), board_path_,
-                               std::filesystem::copy_options::overwrite_existing);
+    board_path_ = planter::test::copy_board("host-sim", dir_).string();
     board_ = config::load_board(board_path_);
     scenario_.board = board_;
   }

@@ -90,7 +90,10 @@ if [ -w /dev/full ]; then
 fi
 # A board whose TPDO maps an object the node does not have: configure names the step and the
 # abort (the controller's boot runs the same script, so it faults with boot error J).
-sed 's|tpdo2 = \["6064:00:32", "6077:00:16"\]|tpdo2 = ["6064:00:32", "2077:00:16"]|' "$board" >"$work/badmap.toml"
-expect 1 "2 r 0x2077 0 u16): abort 0x06020000" -- --iface sim --board "$work/badmap.toml" configure
+source "$src/tests/board_copy.sh"
+board_copy "$src" host-sim "$work/badmap"
+sed -i 's|tpdo2 = \["6064:00:32", "6077:00:16"\]|tpdo2 = ["6064:00:32", "2077:00:16"]|' \
+  "$work/badmap/machines/scallion-transplanter.toml"
+expect 1 "2 r 0x2077 0 u16): abort 0x06020000" -- --iface sim --board "$work/badmap/board.toml" configure
 [ "$fails" -eq 0 ] && echo "planter-can command line: all cases behave"
 exit "$fails"

@@ -5,13 +5,19 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "config/board_config.h"
 #include "config/config_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const std::string path = "/tmp/planter-fuzz-board-" + std::to_string(::getpid()) + ".toml";
+  // In a folder of its own: a calibration the input names resolves beside it, to nothing else.
+  static const std::string path = [] {
+    const std::string dir = "/tmp/planter-fuzz-board-" + std::to_string(::getpid());
+    std::filesystem::create_directories(dir);
+    return dir + "/board.toml";
+  }();
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (f == nullptr) return 0;
   std::fwrite(data, 1, size, f);

@@ -56,9 +56,10 @@ depth = load("depth")
 top = {c["key"]: c["after"] for c in depth.get("changes", [])}.get("depth_max_mm", float("nan"))
 check("depth calibration", rc("depth") == 0 and abs(top - 165.0) < 1.0,
       f"homed, travel ends at {top:.2f} mm (end stop 165 mm, board said 170 mm)")
-board = (run / "d-board.toml").read_text()
-check("calibrations written to the board", f"wheel_radius_m = {radius:.6g}"[:22] in board
-      and "depth_max_mm" in board and (run / "d-board.toml.bak").exists(), "d-board.toml (+ .bak)")
+calibration = (run / "d" / "calibration.toml").read_text()
+check("calibrations written to the unit's calibration file",
+      f"wheel_radius_m = {radius:.6g}"[:22] in calibration and "depth_max_mm" in calibration
+      and (run / "d" / "calibration.toml.bak").exists(), "d/calibration.toml (+ .bak)")
 lss = load("lss")
 check("lss fastscan on a configured bus", rc("lss") == 0 and lss.get("found") is False,
       "no unconfigured node answered, as none is there")

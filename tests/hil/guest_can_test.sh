@@ -9,13 +9,15 @@ R=$1
 B=$2
 SIM=$B/sim/planter-sim
 PLANTERD=$B/apps/planterd/planterd
-cp "$R/boards/vm-hil/board.toml" d-board.toml  # the calibrations write into this copy
-CAN="$B/apps/planter-can/planter-can --iface vcan0 --board d-board.toml --no-progress"
+# A copy of the board, its calibration (which the calibrations write) and the machines.
+rm -rf d && mkdir d && cp "$R/boards/vm-hil/board.toml" "$R/boards/vm-hil/calibration.toml" d/ &&
+  cp -r "$R/machines" d/
+CAN="$B/apps/planter-can/planter-can --iface vcan0 --board d/board.toml --no-progress"
 note() { echo "hil-can: $*"; }
 rm -f d.candump d.candump.stop
 
 (while [ ! -f d.candump.stop ]; do candump -L -r 8388608 vcan0 >> d.candump 2>/dev/null; sleep 0.01; done) & REC=$!
-"$SIM" devices "$R/scenarios/hil-commissioning.toml" --board d-board.toml --can vcan0 \
+"$SIM" devices "$R/scenarios/hil-commissioning.toml" --board d/board.toml --can vcan0 \
   --gpio planter-sim --duration 95 > d-devices.out 2> d-devices.log & DEV=$!
 sleep 1
 $CAN --record d-session.log scan --json > d-scan.json 2> d-scan.err; echo $? > d-scan.rc
@@ -34,7 +36,7 @@ $CAN lss fastscan --json > d-lss.json 2> d-lss.err; echo $? > d-lss.rc
 # planterd up with --run, held back by the commissioning gate: it boots the nodes with the
 # calibrated board and runs SYNC, but starts the drives only once the check has passed.
 rm -f d-stamp
-"$PLANTERD" --board d-board.toml --run --commissioned-stamp d-stamp --duration 30 --log-period 0 \
+"$PLANTERD" --board d/board.toml --run --commissioned-stamp d-stamp --duration 30 --log-period 0 \
   2> d-planterd.log & PD=$!
 sleep 8
 $CAN check --skip-encoder --listen-s 3 --mark-commissioned d-stamp --json > d-check.json \

@@ -26,7 +26,10 @@ expect_exit2() {  # name, command...: must exit 2 with one message, within 10 s
   fi
 }
 
-# 1. Bad input on the real kernel: one message, exit 2, never a hang.
+# 1. Bad input on the real kernel: one message, exit 2, never a hang. The edited boards sit
+# here beside a copy of the board's calibration and the machines, as in boards/.
+cp "$R/boards/vm-hil/calibration.toml" calibration.toml
+rm -rf machines && cp -r "$R/machines" machines
 sed 's/interface = "vcan0"/interface = "vcan9"/' "$BOARD" > bad-iface.toml
 sed 's/chip = "planter-sim"/chip = "no-such-chip"/' "$BOARD" > bad-chip.toml
 sed 's/estop_line = 2/estop_line = 40/' "$BOARD" > bad-line.toml

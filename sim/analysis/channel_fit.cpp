@@ -160,42 +160,10 @@ double signal_span(const std::vector<double>& v) {
 Effect initial_effect(const EffectSpec& spec, const Recording& r,
                       const std::vector<double>& residual) {
   Effect e{&spec, {}};
-  for (const auto& p : spec.params) e.values.push_back(p.initial);
-  if (spec.kind == EffectKind::kPeriodic) {
-    // The effect adds to the prediction, so it must match -residual. The residual
-    // spectrum's peak: a coarse Goertzel scan, then a fine search around the best bin (over a
-    // long record a small frequency error turns into a large phase error).
-    const std::size_t n = std::min<std::size_t>(residual.size(), 40000);
-    const double dt = (r.t[n - 1] - r.t[0]) / static_cast<double>(n - 1);
-    const double f_max = std::min(50.0, 0.45 / dt);
-    auto project = [&](double f, double& a, double& b) {
-      a = b = 0.0;
-      for (std::size_t k = 0; k < n; ++k) {
-        a -= residual[k] * std::sin(kTwoPi * f * r.t[k]);
-        b -= residual[k] * std::cos(kTwoPi * f * r.t[k]);
-      }
-      a *= 2.0 / static_cast<double>(n);
-      b *= 2.0 / static_cast<double>(n);
-      return a * a + b * b;
-    };
-    const double duration = r.t[n - 1] - r.t[0];
-    const double coarse = std::max(0.02, 0.5 / duration);
-    double best_f = 1.0, best_p = -1.0, a = 0, b = 0;
-    for (double f = 0.2; f <= f_max; f += coarse) {
-      const double p = project(f, a, b);
-      if (p > best_p) best_p = p, best_f = f;
-    }
-    double lo = best_f - coarse, hi = best_f + coarse;
-    for (int it = 0; it < 40; ++it) {  // golden-section on the power
-      const double m1 = lo + 0.382 * (hi - lo), m2 = lo + 0.618 * (hi - lo);
-      if (project(m1, a, b) > project(m2, a, b))
-        hi = m2;
-      else
-        lo = m1;
-    }
-    best_f = 0.5 * (lo + hi);
-    project(best_f, a, b);
-    e.values = {std::sqrt(a * a + b * b), best_f, std::atan2(b, a)};
+  if (spec.start != nullptr) {
+    e.values = spec.start(r, residual);
+  } else {
+    for (const auto& p : spec.params) e.values.push_back(p.initial);
   }
   return e;
 }
@@ -216,10 +184,9 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
     for (std::size_t k = 0; k < effects[e].values.size(); ++k) {
       const ParamSpec& p = effects[e].spec->params[k];
       if (!p.grid) continue;
-      double hi = p.upper;
-      if (effects[e].spec->kind == EffectKind::kDeadZone) hi = 0.3 * in_span;
-      if (effects[e].spec->kind == EffectKind::kBacklash) hi = 0.2 * in_span;
-      if (effects[e].spec->kind == EffectKind::kQuantisation) hi = 0.05 * out_span;
+      const double hi = effects[e].spec->grid_upper != nullptr
+                            ? effects[e].spec->grid_upper(in_span, out_span)
+                            : p.upper;
       GridParam g{e, k, {}};
       if (effects[e].values[k] > 0.0) {
         // Already located (a pair refit): refine around it.

@@ -37,11 +37,35 @@ enum class EffectKind {
   kStiction,       // at standstill: the drive's effort K * command, held up to F_s
 };
 
+// What an output effect may need besides the recording: the channel's load (N; sag, slip)
+// and the speed its friction acts at.
+struct OutputContext {
+  const Recording& r;
+  const std::vector<double>* load = nullptr;
+  const std::vector<double>* speed = nullptr;
+};
+
+// One named effect, whole: what it is, its parameters and bounds, where and how it acts, and
+// how a fit starts it. The library (effects.cpp) holds one entry per EffectKind, in the order
+// the effects are applied.
 struct EffectSpec {
   EffectKind kind;
   std::string name;       // the physics, in the machine's words
   std::string signature;  // what it looks like in the residual
   std::vector<ParamSpec> params;
+  // Acts on the recorded input before the model, or on the model's output; an effect with
+  // neither changes a channel's own dynamics and is applied there (rate limit, stiction).
+  void (*on_input)(const Recording& r, const std::vector<double>& p,
+                   std::vector<double>& u) = nullptr;
+  void (*on_output)(const OutputContext& c, const std::vector<double>& p,
+                    std::vector<double>& y) = nullptr;
+  // Upper end of a grid parameter's search, from the data's input and output spans (nullptr:
+  // the parameter's own upper bound).
+  double (*grid_upper)(double in_span, double out_span) = nullptr;
+  // A start read off the residual (nullptr: the parameters' initial values).
+  std::vector<double> (*start)(const Recording& r, const std::vector<double>& residual) = nullptr;
+  // Further starts tried from the data's own guess (a time constant can sit in any decade).
+  std::vector<std::vector<double>> extra_starts{};
 };
 
 struct Effect {

@@ -1,4 +1,5 @@
-// The library of named candidate effects and the hooks that apply them.
+// The library of named candidate effects: one entry each, holding how it acts, its bounds and
+// its starts.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -10,77 +11,240 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
-const std::vector<EffectSpec>& library() {
-  static const std::vector<EffectSpec> lib = {
-      {EffectKind::kWheelRadius,
-       "wrong effective wheel radius",
-       "speed error proportional to speed",
-       {{"radius_error", "1", 0.0, -0.3, 0.3}}},
-      {EffectKind::kSlipWithDraft,
-       "wheel slip growing with draft load",
-       "speed deficit proportional to speed times opener draft",
-       {{"slip_per_kN", "1/kN", 0.0, -0.5, 0.5}}},
-      {EffectKind::kDelay,
-       "transport delay",
-       "residual follows the input's derivative",
-       {{"delay_s", "s", 0.0, 0.0, 0.5, true}}},
-      {EffectKind::kDeadZone,
-       "dead zone",
-       "no response to small inputs",
-       {{"width", "input units", 0.0, 0.0, 0.0, true}}},
-      {EffectKind::kBacklash,
-       "backlash (play)",
-       "lag at every reversal of the input",
-       {{"gap", "input units", 0.0, 0.0, 0.0, true}}},
-      {EffectKind::kRateLimit,
-       "rate limit",
-       "residual at large steps, linear ramps",
-       {{"rate_per_s", "output units/s", 1.0, 1e-3, 1e4}}},
-      {EffectKind::kCoulomb,
-       "Coulomb friction",
-       "a step in the residual at each speed reversal",
-       // Friction opposes motion: the drive pays it in the direction of motion, never gets it.
-       {{"coulomb", "output units", 0.0, 0.0, 100.0}}},
-      {EffectKind::kStribeck,
-       "Stribeck friction",
-       "extra resistance at low speed",
-       {{"stribeck_extra", "output units", 0.0, 0.0, 100.0},
-        {"stribeck_speed", "input units", 0.1, 0.005, 5.0}}},
-      {EffectKind::kOffset,
-       "sensor offset",
-       "a constant residual",
-       {{"offset", "output units", 0.0, -1e4, 1e4}}},
-      {EffectKind::kGain,
-       "sensor gain error",
-       "residual proportional to the output",
-       {{"gain_error", "1", 0.0, -0.5, 0.5}}},
-      {EffectKind::kDrift,
-       "sensor drift",
-       "a residual growing linearly with time",
-       {{"drift_per_s", "output units/s", 0.0, -10.0, 10.0}}},
-      {EffectKind::kPeriodic,
-       "periodic disturbance (vibration)",
-       "a peak in the residual spectrum",
-       {{"amplitude", "output units", 0.0, 0.0, 1e4},
-        {"frequency_hz", "Hz", 1.0, 0.01, 50.0},
-        {"phase_rad", "rad", 0.0, -20.0, 20.0}}},
-      {EffectKind::kQuantisation,
-       "quantisation",
-       "a staircase residual, uniform within a step",
-       {{"step", "output units", 0.0, 0.0, 0.0, true}}},
-      {EffectKind::kRelaxation,
-       "viscoelastic relaxation (creep) of the clamp",
-       "output decays towards a lower level after each load change",
-       {{"fraction", "1", 0.1, 0.0, 0.9}, {"tau_s", "s", 2.0, 0.05, 60.0}}},
-      {EffectKind::kSag,
-       "actuator compliance (sag) under load",
-       "residual proportional to the load on the actuator",
-       {{"sag_per_kN", "output units/kN", 0.0, -100.0, 100.0}}},
-      {EffectKind::kStiction,
-       "stiction (the disc held by static friction)",
-       "torque while the speed is zero and the command is not",
-       {{"effort_gain", "N m s/rad", 10.0, 0.0, 1e3}, {"breakaway", "N m", 1.0, 0.0, 100.0}}},
+// ---- How each effect acts (forms: control-engineering textbook nonlinearities, e.g.
+// Slotine & Li, "Applied Nonlinear Control", ch. 5; friction after Armstrong-Helouvry; the
+// Maxwell branch after Findley, "Creep and Relaxation of Nonlinear Viscoelastic Materials").
+
+void delay(const Recording& r, const std::vector<double>& p, std::vector<double>& u) {
+  const double tau = p[0];
+  if (tau <= 0.0) return;
+  const std::vector<double> in = u;
+  const std::size_t n = in.size();
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double when = r.t[k] - tau;
+    if (when <= r.t[0]) {
+      u[k] = in[0];
+      continue;
+    }
+    while (j + 1 < n && r.t[j + 1] < when) ++j;
+    const double a = (when - r.t[j]) / (r.t[j + 1] - r.t[j]);
+    u[k] = in[j] + a * (in[j + 1] - in[j]);
+  }
+}
+
+void dead_zone(const Recording&, const std::vector<double>& p, std::vector<double>& u) {
+  if (p[0] <= 0.0) return;
+  for (auto& v : u)
+    if (std::abs(v) < p[0]) v = 0.0;
+}
+
+void backlash(const Recording&, const std::vector<double>& p, std::vector<double>& u) {
+  if (p[0] <= 0.0) return;
+  const double half = 0.5 * p[0];
+  double y = u[0];
+  for (auto& v : u) {
+    y = std::clamp(y, v - half, v + half);
+    v = y;
+  }
+}
+
+void relaxation(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  const double frac = p[0], tau = p[1];
+  // The relaxed share follows frac * y with time constant tau and is no longer carried:
+  // a step in load gives the full force, which then decays towards (1 - frac) of it.
+  double relaxed = frac * y[0];
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    const double dt = k > 0 ? c.r.t[k] - c.r.t[k - 1] : 0.0;
+    relaxed += (frac * y[k] - relaxed) * std::min(1.0, dt / tau);
+    // A contact force cannot pull: the relaxed branch lowers the output towards zero, never
+    // past it (an opened clamp reads nothing while the branch recovers).
+    const double relaxed_y = y[k] - relaxed;
+    y[k] = y[k] >= 0.0 ? std::max(0.0, relaxed_y) : std::min(0.0, relaxed_y);
+  }
+}
+
+void sag(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  if (c.load == nullptr) return;
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] -= p[0] * (*c.load)[k] / 1000.0;
+}
+
+void slip_with_draft(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  if (c.load == nullptr) return;
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] *= 1.0 - p[0] * (*c.load)[k] / 1000.0;
+}
+
+double friction_sign(double w) { return std::tanh(w / 0.005); }  // sharp: the disc turns slowly
+
+void coulomb(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  if (c.speed == nullptr) return;
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] += p[0] * friction_sign((*c.speed)[k]);
+}
+
+void stribeck(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  if (c.speed == nullptr) return;
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    const double w = (*c.speed)[k];
+    y[k] += p[0] * std::exp(-(w / p[1]) * (w / p[1])) * friction_sign(w);
+  }
+}
+
+void scale(const OutputContext&, const std::vector<double>& p, std::vector<double>& y) {
+  for (auto& v : y) v *= 1.0 + p[0];
+}
+
+void offset(const OutputContext&, const std::vector<double>& p, std::vector<double>& y) {
+  for (auto& v : y) v += p[0];
+}
+
+void drift(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] += p[0] * (c.r.t[k] - c.r.t[0]);
+}
+
+void periodic(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  for (std::size_t k = 0; k < y.size(); ++k)
+    y[k] += p[0] * std::sin(kTwoPi * p[1] * c.r.t[k] + p[2]);
+}
+
+void quantisation(const OutputContext&, const std::vector<double>& p, std::vector<double>& y) {
+  if (p[0] <= 0.0) return;
+  for (auto& v : y) v = p[0] * std::round(v / p[0]);
+}
+
+// The periodic effect starts at the residual spectrum's peak. It adds to the prediction, so it
+// must match -residual: a coarse Goertzel scan, then a fine search around the best bin (over a
+// long record a small frequency error turns into a large phase error).
+std::vector<double> periodic_start(const Recording& r, const std::vector<double>& residual) {
+  const std::size_t n = std::min<std::size_t>(residual.size(), 40000);
+  const double dt = (r.t[n - 1] - r.t[0]) / static_cast<double>(n - 1);
+  const double f_max = std::min(50.0, 0.45 / dt);
+  auto project = [&](double f, double& a, double& b) {
+    a = b = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      a -= residual[k] * std::sin(kTwoPi * f * r.t[k]);
+      b -= residual[k] * std::cos(kTwoPi * f * r.t[k]);
+    }
+    a *= 2.0 / static_cast<double>(n);
+    b *= 2.0 / static_cast<double>(n);
+    return a * a + b * b;
   };
+  const double duration = r.t[n - 1] - r.t[0];
+  const double coarse = std::max(0.02, 0.5 / duration);
+  double best_f = 1.0, best_p = -1.0, a = 0, b = 0;
+  for (double f = 0.2; f <= f_max; f += coarse) {
+    const double p = project(f, a, b);
+    if (p > best_p) best_p = p, best_f = f;
+  }
+  double lo = best_f - coarse, hi = best_f + coarse;
+  for (int it = 0; it < 40; ++it) {  // golden-section on the power
+    const double m1 = lo + 0.382 * (hi - lo), m2 = lo + 0.618 * (hi - lo);
+    if (project(m1, a, b) > project(m2, a, b))
+      hi = m2;
+    else
+      lo = m1;
+  }
+  best_f = 0.5 * (lo + hi);
+  project(best_f, a, b);
+  return {std::sqrt(a * a + b * b), best_f, std::atan2(b, a)};
+}
+
+// One entry per effect, in the order they are applied: input effects, then output effects;
+// the two that change a channel's dynamics last.
+const std::vector<EffectSpec>& library() {
+  static const std::vector<EffectSpec> lib = [] {
+    std::vector<EffectSpec> l;
+    auto add = [&l](EffectSpec e) { l.push_back(std::move(e)); };
+    add({.kind = EffectKind::kDelay,
+         .name = "transport delay",
+         .signature = "residual follows the input's derivative",
+         .params = {{"delay_s", "s", 0.0, 0.0, 0.5, true}},
+         .on_input = delay});
+    add({.kind = EffectKind::kDeadZone,
+         .name = "dead zone",
+         .signature = "no response to small inputs",
+         .params = {{"width", "input units", 0.0, 0.0, 0.0, true}},
+         .on_input = dead_zone,
+         .grid_upper = [](double in_span, double) { return 0.3 * in_span; }});
+    add({.kind = EffectKind::kBacklash,
+         .name = "backlash (play)",
+         .signature = "lag at every reversal of the input",
+         .params = {{"gap", "input units", 0.0, 0.0, 0.0, true}},
+         .on_input = backlash,
+         .grid_upper = [](double in_span, double) { return 0.2 * in_span; }});
+    add({.kind = EffectKind::kRelaxation,
+         .name = "viscoelastic relaxation (creep) of the clamp",
+         .signature = "output decays towards a lower level after each load change",
+         .params = {{"fraction", "1", 0.1, 0.0, 0.9}, {"tau_s", "s", 2.0, 0.05, 60.0}},
+         .on_output = relaxation,
+         .extra_starts = {{0.2, 0.5}, {0.2, 3.0}, {0.2, 15.0}}});
+    add({.kind = EffectKind::kSag,
+         .name = "actuator compliance (sag) under load",
+         .signature = "residual proportional to the load on the actuator",
+         .params = {{"sag_per_kN", "output units/kN", 0.0, -100.0, 100.0}},
+         .on_output = sag});
+    add({.kind = EffectKind::kSlipWithDraft,
+         .name = "wheel slip growing with draft load",
+         .signature = "speed deficit proportional to speed times opener draft",
+         .params = {{"slip_per_kN", "1/kN", 0.0, -0.5, 0.5}},
+         .on_output = slip_with_draft});
+    // Friction opposes motion: the drive pays it in the direction of motion, never gets it.
+    add({.kind = EffectKind::kCoulomb,
+         .name = "Coulomb friction",
+         .signature = "a step in the residual at each speed reversal",
+         .params = {{"coulomb", "output units", 0.0, 0.0, 100.0}},
+         .on_output = coulomb});
+    add({.kind = EffectKind::kStribeck,
+         .name = "Stribeck friction",
+         .signature = "extra resistance at low speed",
+         .params = {{"stribeck_extra", "output units", 0.0, 0.0, 100.0},
+                    {"stribeck_speed", "input units", 0.1, 0.005, 5.0}},
+         .on_output = stribeck});
+    add({.kind = EffectKind::kWheelRadius,
+         .name = "wrong effective wheel radius",
+         .signature = "speed error proportional to speed",
+         .params = {{"radius_error", "1", 0.0, -0.3, 0.3}},
+         .on_output = scale});
+    add({.kind = EffectKind::kGain,
+         .name = "sensor gain error",
+         .signature = "residual proportional to the output",
+         .params = {{"gain_error", "1", 0.0, -0.5, 0.5}},
+         .on_output = scale});
+    add({.kind = EffectKind::kOffset,
+         .name = "sensor offset",
+         .signature = "a constant residual",
+         .params = {{"offset", "output units", 0.0, -1e4, 1e4}},
+         .on_output = offset});
+    add({.kind = EffectKind::kDrift,
+         .name = "sensor drift",
+         .signature = "a residual growing linearly with time",
+         .params = {{"drift_per_s", "output units/s", 0.0, -10.0, 10.0}},
+         .on_output = drift});
+    add({.kind = EffectKind::kPeriodic,
+         .name = "periodic disturbance (vibration)",
+         .signature = "a peak in the residual spectrum",
+         .params = {{"amplitude", "output units", 0.0, 0.0, 1e4},
+                    {"frequency_hz", "Hz", 1.0, 0.01, 50.0},
+                    {"phase_rad", "rad", 0.0, -20.0, 20.0}},
+         .on_output = periodic,
+         .start = periodic_start});
+    add({.kind = EffectKind::kQuantisation,
+         .name = "quantisation",
+         .signature = "a staircase residual, uniform within a step",
+         .params = {{"step", "output units", 0.0, 0.0, 0.0, true}},
+         .on_output = quantisation,
+         .grid_upper = [](double, double out_span) { return 0.05 * out_span; }});
+    // Applied inside the channels whose dynamics they change (channels.cpp).
+    add({.kind = EffectKind::kRateLimit,
+         .name = "rate limit",
+         .signature = "residual at large steps, linear ramps",
+         .params = {{"rate_per_s", "output units/s", 1.0, 1e-3, 1e4}}});
+    add({.kind = EffectKind::kStiction,
+         .name = "stiction (the disc held by static friction)",
+         .signature = "torque while the speed is zero and the command is not",
+         .params = {{"effort_gain", "N m s/rad", 10.0, 0.0, 1e3},
+                    {"breakaway", "N m", 1.0, 0.0, 100.0}}});
+    return l;
+  }();
   return lib;
 }
 
@@ -101,32 +265,9 @@ const Effect* find_effect(const std::vector<Effect>& fx, EffectKind kind) {
 std::vector<double> transform_input(const Recording& r, const std::vector<double>& u,
                                     const std::vector<Effect>& fx) {
   std::vector<double> out = u;
-  const std::size_t n = u.size();
-  if (const Effect* e = find_effect(fx, EffectKind::kDelay); e && e->values[0] > 0.0) {
-    const double tau = e->values[0];
-    std::size_t j = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double when = r.t[k] - tau;
-      if (when <= r.t[0]) {
-        out[k] = u[0];
-        continue;
-      }
-      while (j + 1 < n && r.t[j + 1] < when) ++j;
-      const double a = (when - r.t[j]) / (r.t[j + 1] - r.t[j]);
-      out[k] = u[j] + a * (u[j + 1] - u[j]);
-    }
-  }
-  if (const Effect* e = find_effect(fx, EffectKind::kDeadZone); e && e->values[0] > 0.0) {
-    for (auto& v : out)
-      if (std::abs(v) < e->values[0]) v = 0.0;
-  }
-  if (const Effect* e = find_effect(fx, EffectKind::kBacklash); e && e->values[0] > 0.0) {
-    const double half = 0.5 * e->values[0];
-    double y = out[0];
-    for (auto& v : out) {
-      y = std::clamp(y, v - half, v + half);
-      v = y;
-    }
+  for (const EffectSpec& spec : library()) {
+    if (spec.on_input == nullptr) continue;
+    if (const Effect* e = find_effect(fx, spec.kind)) spec.on_input(r, e->values, out);
   }
   return out;
 }
@@ -134,50 +275,11 @@ std::vector<double> transform_input(const Recording& r, const std::vector<double
 void apply_output(const Recording& r, const std::vector<Effect>& fx,
                   const std::vector<double>* load, const std::vector<double>* speed,
                   std::vector<double>& y) {
-  const std::size_t n = y.size();
-  if (const Effect* e = find_effect(fx, EffectKind::kRelaxation)) {
-    const double frac = e->values[0], tau = e->values[1];
-    // The relaxed share follows frac * y with time constant tau and is no longer carried:
-    // a step in load gives the full force, which then decays towards (1 - frac) of it.
-    double relaxed = frac * y[0];
-    for (std::size_t k = 0; k < n; ++k) {
-      const double dt = k > 0 ? r.t[k] - r.t[k - 1] : 0.0;
-      relaxed += (frac * y[k] - relaxed) * std::min(1.0, dt / tau);
-      // A contact force cannot pull: the relaxed branch lowers the output towards zero, never
-      // past it (an opened clamp reads nothing while the branch recovers).
-      const double relaxed_y = y[k] - relaxed;
-      y[k] = y[k] >= 0.0 ? std::max(0.0, relaxed_y) : std::min(0.0, relaxed_y);
-    }
+  const OutputContext context{r, load, speed};
+  for (const EffectSpec& spec : library()) {
+    if (spec.on_output == nullptr) continue;
+    if (const Effect* e = find_effect(fx, spec.kind)) spec.on_output(context, e->values, y);
   }
-  if (load) {
-    if (const Effect* e = find_effect(fx, EffectKind::kSag))
-      for (std::size_t k = 0; k < n; ++k) y[k] -= e->values[0] * (*load)[k] / 1000.0;
-    if (const Effect* e = find_effect(fx, EffectKind::kSlipWithDraft))
-      for (std::size_t k = 0; k < n; ++k) y[k] *= 1.0 - e->values[0] * (*load)[k] / 1000.0;
-  }
-  if (speed) {
-    const Effect* c = find_effect(fx, EffectKind::kCoulomb);
-    const Effect* s = find_effect(fx, EffectKind::kStribeck);
-    for (std::size_t k = 0; k < n && (c || s); ++k) {
-      const double w = (*speed)[k];
-      const double sgn = std::tanh(w / 0.005);  // sharp: the disc turns at only ~0.3 rad/s
-      if (c) y[k] += c->values[0] * sgn;
-      if (s) y[k] += s->values[0] * std::exp(-(w / s->values[1]) * (w / s->values[1])) * sgn;
-    }
-  }
-  if (const Effect* e = find_effect(fx, EffectKind::kWheelRadius))
-    for (auto& v : y) v *= 1.0 + e->values[0];
-  if (const Effect* e = find_effect(fx, EffectKind::kGain))
-    for (auto& v : y) v *= 1.0 + e->values[0];
-  if (const Effect* e = find_effect(fx, EffectKind::kOffset))
-    for (auto& v : y) v += e->values[0];
-  if (const Effect* e = find_effect(fx, EffectKind::kDrift))
-    for (std::size_t k = 0; k < n; ++k) y[k] += e->values[0] * (r.t[k] - r.t[0]);
-  if (const Effect* e = find_effect(fx, EffectKind::kPeriodic))
-    for (std::size_t k = 0; k < n; ++k)
-      y[k] += e->values[0] * std::sin(kTwoPi * e->values[1] * r.t[k] + e->values[2]);
-  if (const Effect* e = find_effect(fx, EffectKind::kQuantisation); e && e->values[0] > 0.0)
-    for (auto& v : y) v = e->values[0] * std::round(v / e->values[0]);
 }
 
 }  // namespace planter::analysis

@@ -218,12 +218,10 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
         ChannelFit alt = fit_channel(ch, r, split, data_guess, fx);
         if (alt.bic < c.fit.bic) c.fit = std::move(alt);
       }
-      if (spec->kind == EffectKind::kRelaxation) {
-        for (double tau : {0.5, 3.0, 15.0}) {
-          fx.back().values = {0.2, tau};
-          ChannelFit alt = fit_channel(ch, r, split, data_guess, fx);
-          if (alt.bic < c.fit.bic) c.fit = std::move(alt);
-        }
+      for (const std::vector<double>& values : spec->extra_starts) {
+        fx.back().values = values;
+        ChannelFit alt = fit_channel(ch, r, split, data_guess, fx);
+        if (alt.bic < c.fit.bic) c.fit = std::move(alt);
       }
       c.delta_bic = c.fit.bic - base.bic;
       c.held_out_improvement =

@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
   CalibrateOptions calibrate;
   bool no_write = false;
   auto* c_cal =
-      app.add_subcommand("calibrate", "force | soil-wheel | depth; results into the board file");
+      app.add_subcommand("calibrate", "force | soil-wheel | depth; results into the unit's calibration file");
   c_cal->add_option("what", calibrate.what)->required();
   c_cal->add_option("--known-N", calibrate.known_N, "force: the weight, in newtons")
       ->check(CLI::Range(0.001, 1e5));
@@ -152,7 +152,7 @@ int main(int argc, char** argv) {
       ->add_option("--ready-after-s", calibrate.ready_after_s,
                    "scripts: wait this long instead of asking for Enter")
       ->check(CLI::Range(0.0, 3600.0));
-  c_cal->add_flag("--no-write", no_write, "show the result, leave the board file alone");
+  c_cal->add_flag("--no-write", no_write, "show the result, leave the calibration file alone");
 
   CheckOptions check;
   double check_listen_s = 2.0;

@@ -75,8 +75,198 @@ void log_status(const Telemetry& t, const hal::CanBusCounters& can) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  Options opt;
+// One tick of the loop thread: the daemon's requests (stop, fault reset, run), the
+// controller's tick, and the hand-off to the recorder and the status readers. Returns false once
+// the machine is at rest after a stop.
+class LoopTick {
+ public:
+  LoopTick(const Options& opt, ControlCycle& controller, Shared& shared,
+           daemon::SpscQueue<Row>* rows, hal::linux_backend::TickTrace& trace,
+           daemon::BoardHardware& hw, std::int64_t start_ns, std::int64_t overrun_threshold_ns,
+           std::int64_t period_ns)
+      : opt_(opt),
+        controller_(controller),
+        shared_(shared),
+        rows_(rows),
+        trace_(trace),
+        hw_(hw),
+        start_ns_(start_ns),
+        loop_start_ns_(monotonic_now_ns()),
+        duration_ns_(static_cast<std::int64_t>(opt.duration_s * 1e9)),
+        overrun_threshold_ns_(overrun_threshold_ns),
+        period_ns_(period_ns) {}
+
+  bool operator()(std::int64_t now, std::int64_t dt, std::int64_t late_ns) {
+    trace_.begin(now, late_ns, dt);
+    // After a link-loss reset (firmware/supervisor/link_recovery.h) the run is asked for again.
+    if (controller_.link_resets() != link_resets_seen_) {
+      link_resets_seen_ = controller_.link_resets();
+      shared_.link_resets.store(link_resets_seen_, std::memory_order_relaxed);
+      run_requested_ = false;
+    }
+    if (duration_ns_ > 0 && now - loop_start_ns_ >= duration_ns_) shared_.stop = true;
+    if (shared_.stop && stop_at_ns_ < 0) {
+      controller_.request_stop();
+      stop_at_ns_ = now;
+    }
+    if (shared_.fault_reset.exchange(false)) controller_.request_fault_reset();
+    if (opt_.run && !run_requested_ && controller_.state() == SupervisorState::kReady &&
+        shared_.commissioned.load(std::memory_order_relaxed)) {
+      controller_.request_run();
+      run_requested_ = true;
+    }
+    controller_.tick(now, dt);
+    hw_.edge_latency().tick_done(monotonic_now_ns());
+    const Telemetry& t = controller_.telemetry();
+    if (rows_ != nullptr && !rows_->push(Row{static_cast<double>(now - start_ns_) * 1e-9, t}))
+      shared_.rows_dropped.fetch_add(1, std::memory_order_relaxed);
+    if (shared_.status_mutex.try_lock()) {
+      shared_.status = t;
+      shared_.status_mutex.unlock();
+    }
+    trace_.phase_done(hal::TickPhase::kHandOff);
+    // An overrun as the supervisor counts it: every one must be explainable from the log.
+    if (dt > overrun_threshold_ns_ || late_ns >= period_ns_) trace_.capture_overrun();
+    shared_.ticks.fetch_add(1, std::memory_order_release);
+    if (stop_at_ns_ < 0) return true;
+    // Safe stop: the drives are brought to rest by the controller; leave once they are.
+    const SupervisorState s = controller_.state();
+    const bool at_rest = s != SupervisorState::kRunning && s != SupervisorState::kStopping;
+    return !(at_rest || now - stop_at_ns_ > kStopGraceNs);
+  }
+
+ private:
+  static constexpr std::int64_t kStopGraceNs = 5'000'000'000;
+  const Options& opt_;
+  ControlCycle& controller_;
+  Shared& shared_;
+  daemon::SpscQueue<Row>* rows_;
+  hal::linux_backend::TickTrace& trace_;
+  daemon::BoardHardware& hw_;
+  std::int64_t start_ns_, loop_start_ns_, duration_ns_, overrun_threshold_ns_, period_ns_;
+  std::int64_t stop_at_ns_ = -1;
+  bool run_requested_ = false;
+  std::uint32_t link_resets_seen_ = 0;
+};
+
+// The main thread, once per flush period: signals, the recording's flush, overrun reports,
+// the commissioning stamp, the watchdog and the status log. It reaches the loop only through
+// Shared and the row queue.
+class MainThread {
+ public:
+  MainThread(const Options& opt, Shared& shared, daemon::ServiceNotifier& service,
+             daemon::CrashSafeRecording* recording, daemon::SpscQueue<Row>& rows,
+             hal::linux_backend::TickTrace& trace, daemon::BoardHardware& hw)
+      : opt_(opt),
+        shared_(shared),
+        service_(service),
+        recording_(recording),
+        rows_(rows),
+        trace_(trace),
+        hw_(hw),
+        watchdog_(service.watchdog_enabled(watchdog_us_)),
+        next_log_ns_(monotonic_now_ns()),
+        next_kick_ns_(monotonic_now_ns()) {}
+
+  void wake(const sigset_t& signals) {
+    timespec wait{};
+    wait.tv_nsec = static_cast<long>(opt_.flush_ms) * 1'000'000 % 1'000'000'000;
+    wait.tv_sec = opt_.flush_ms / 1000;
+    const int sig = sigtimedwait(&signals, nullptr, &wait);
+    if (sig == SIGTERM || sig == SIGINT) {
+      if (!shared_.stop) std::fprintf(stderr, "planterd: %s: stopping safely\n", strsignal(sig));
+      shared_.stop = true;
+      service_.notify("STOPPING=1");
+    } else if (sig == SIGUSR1) {
+      shared_.fault_reset = true;
+    }
+    if (recording_ != nullptr) {
+      take_rows();
+      if (!recording_->flush() && recording_ok_) {
+        std::fprintf(stderr, "planterd: %s: write failed; recording stopped\n",
+                     opt_.record.c_str());
+        recording_ok_ = false;
+      }
+    }
+    if (const std::string overrun = trace_.take_report(); !overrun.empty()) {
+      std::fprintf(stderr, "planterd: %s", overrun.c_str());
+    }
+    Telemetry status;
+    {
+      std::lock_guard<std::mutex> lock(shared_.status_mutex);
+      status = shared_.status;
+    }
+    const std::int64_t now = monotonic_now_ns();
+    if (!opt_.commissioned_stamp.empty() && now >= next_stamp_check_ns_) check_stamp(now);
+    // Feed the watchdog only while the control loop makes progress.
+    const std::uint64_t ticks = shared_.ticks.load(std::memory_order_acquire);
+    if (watchdog_ && now >= next_kick_ns_ && ticks != ticks_at_last_kick_) {
+      service_.notify("WATCHDOG=1");
+      ticks_at_last_kick_ = ticks;
+      next_kick_ns_ = now + static_cast<std::int64_t>(watchdog_us_) * 1000 / 2;
+    }
+    if (status.state != logged_state_) {
+      std::fprintf(stderr, "planterd: %s -> %s (faults 0x%x)\n",
+                   supervisor_state_name(logged_state_), supervisor_state_name(status.state),
+                   status.faults);
+      service_.notify(std::string("STATUS=") + supervisor_state_name(status.state));
+      logged_state_ = status.state;
+    }
+    if (opt_.log_period_s > 0 && now >= next_log_ns_) {
+      log_status(status, hw_.can().counters());
+      next_log_ns_ = now + static_cast<std::int64_t>(opt_.log_period_s * 1e9);
+    }
+  }
+
+  // After the loop ended: the last rows; true when the recording was written whole.
+  bool drain() {
+    if (recording_ == nullptr) return true;
+    take_rows();
+    return recording_->flush() && recording_ok_;
+  }
+
+ private:
+  void take_rows() {
+    Row row{};
+    while (rows_.pop(row)) recording_->add(row.t_s, row.telemetry);
+  }
+
+  // Looked at once a second, so a check that passes lets the drives start without a restart.
+  void check_stamp(std::int64_t now) {
+    std::string why;
+    const bool ok = config::commissioned(opt_.commissioned_stamp, opt_.board, why);
+    shared_.commissioned = ok;
+    if (!ok && why != not_commissioned_logged_) {
+      std::fprintf(stderr, "planterd: drives stay off: %s\n", why.c_str());
+      service_.notify("STATUS=not commissioned: " + why);
+    } else if (ok && !not_commissioned_logged_.empty()) {
+      std::fprintf(stderr, "planterd: commissioning stamp %s matches the board\n",
+                   opt_.commissioned_stamp.c_str());
+    }
+    not_commissioned_logged_ = ok ? "" : why;
+    next_stamp_check_ns_ = now + 1'000'000'000;
+  }
+
+  const Options& opt_;
+  Shared& shared_;
+  daemon::ServiceNotifier& service_;
+  daemon::CrashSafeRecording* recording_;
+  daemon::SpscQueue<Row>& rows_;
+  hal::linux_backend::TickTrace& trace_;
+  daemon::BoardHardware& hw_;
+  std::uint64_t watchdog_us_ = 0;
+  bool watchdog_;
+  std::uint64_t ticks_at_last_kick_ = 0;
+  std::int64_t next_log_ns_;
+  std::int64_t next_kick_ns_;
+  std::int64_t next_stamp_check_ns_ = 0;
+  SupervisorState logged_state_ = SupervisorState::kBoot;
+  std::string not_commissioned_logged_;
+  bool recording_ok_ = true;
+};
+
+// The command line; -1 to go on, else the exit code (--help: 0, a bad option: 2).
+int parse_options(int argc, char** argv, Options& opt) {
   CLI::App app{"planterd: the scallion transplanter's controller daemon"};
   app.add_option("--board", opt.board, "board file (boards/<board>/board.toml)")->required();
   app.add_option("--record", opt.record, "record telemetry to this CSV (PRODUCT.md format)");
@@ -99,6 +289,12 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     return fail(2, std::string(e.what()) + " (planterd --help lists the options)");
   }
+  return -1;
+}
+
+int main(int argc, char** argv) {
+  Options opt;
+  if (const int code = parse_options(argc, argv, opt); code >= 0) return code;
 
   config::BoardConfig board;
   std::unique_ptr<daemon::BoardHardware> hw;
@@ -171,53 +367,9 @@ int main(int argc, char** argv) {
       return;
     }
     setup_done = true;
-    const std::int64_t loop_start_ns = monotonic_now_ns();
-    const std::int64_t duration_ns = static_cast<std::int64_t>(opt.duration_s * 1e9);
-    const std::int64_t stop_grace_ns = 5'000'000'000;
-    std::int64_t stop_at_ns = -1;
-    bool run_requested = false;
-    std::uint32_t link_resets_seen = 0;
-    loop.run([&](std::int64_t now, std::int64_t dt) {
-      trace.begin(now, loop.last_late_ns(), dt);
-      // After a link-loss reset (firmware/supervisor/link_recovery.h) the run is asked for again.
-      if (controller.link_resets() != link_resets_seen) {
-        link_resets_seen = controller.link_resets();
-        shared.link_resets.store(link_resets_seen, std::memory_order_relaxed);
-        run_requested = false;
-      }
-      if (duration_ns > 0 && now - loop_start_ns >= duration_ns) shared.stop = true;
-      if (shared.stop && stop_at_ns < 0) {
-        controller.request_stop();
-        stop_at_ns = now;
-      }
-      if (shared.fault_reset.exchange(false)) controller.request_fault_reset();
-      if (opt.run && !run_requested && controller.state() == SupervisorState::kReady &&
-          shared.commissioned.load(std::memory_order_relaxed)) {
-        controller.request_run();
-        run_requested = true;
-      }
-      controller.tick(now, dt);
-      hw->edge_latency().tick_done(monotonic_now_ns());
-      const Telemetry& t = controller.telemetry();
-      if (recording && !rows.push(Row{static_cast<double>(now - start_ns) * 1e-9, t}))
-        shared.rows_dropped.fetch_add(1, std::memory_order_relaxed);
-      if (shared.status_mutex.try_lock()) {
-        shared.status = t;
-        shared.status_mutex.unlock();
-      }
-      trace.phase_done(hal::TickPhase::kHandOff);
-      // An overrun as the supervisor counts it: every one must be explainable from the log.
-      if (dt > board.controller.supervisor.overrun_threshold_ns ||
-          loop.last_late_ns() >= rt_config.period_ns) {
-        trace.capture_overrun();
-      }
-      shared.ticks.fetch_add(1, std::memory_order_release);
-      if (stop_at_ns < 0) return true;
-      // Safe stop: the drives are brought to rest by the controller; leave once they are.
-      const SupervisorState s = controller.state();
-      const bool at_rest = s != SupervisorState::kRunning && s != SupervisorState::kStopping;
-      return !(at_rest || now - stop_at_ns > stop_grace_ns);
-    });
+    LoopTick tick(opt, controller, shared, recording ? &rows : nullptr, trace, *hw, start_ns,
+                  board.controller.supervisor.overrun_threshold_ns, rt_config.period_ns);
+    loop.run([&](std::int64_t now, std::int64_t dt) { return tick(now, dt, loop.last_late_ns()); });
     shared.finished = true;
   });
 
@@ -235,83 +387,10 @@ int main(int argc, char** argv) {
   daemon::ServiceNotifier service;
   service.notify("READY=1\nSTATUS=booting CANopen nodes");
 
-  std::uint64_t watchdog_us = 0;
-  const bool watchdog = service.watchdog_enabled(watchdog_us);
-  std::uint64_t ticks_at_last_kick = 0;
-  std::int64_t next_log_ns = monotonic_now_ns();
-  std::int64_t next_kick_ns = monotonic_now_ns();
-  SupervisorState logged_state = SupervisorState::kBoot;
-  std::string not_commissioned_logged;
-  std::int64_t next_stamp_check_ns = 0;
-  bool recording_ok = true;
-  Row row{};
-  while (!shared.finished) {
-    timespec wait{};
-    wait.tv_nsec = static_cast<long>(opt.flush_ms) * 1'000'000 % 1'000'000'000;
-    wait.tv_sec = opt.flush_ms / 1000;
-    const int sig = sigtimedwait(&signals, nullptr, &wait);
-    if (sig == SIGTERM || sig == SIGINT) {
-      if (!shared.stop) std::fprintf(stderr, "planterd: %s: stopping safely\n", strsignal(sig));
-      shared.stop = true;
-      service.notify("STOPPING=1");
-    } else if (sig == SIGUSR1) {
-      shared.fault_reset = true;
-    }
-    if (recording) {
-      while (rows.pop(row)) recording->add(row.t_s, row.telemetry);
-      if (!recording->flush() && recording_ok) {
-        std::fprintf(stderr, "planterd: %s: write failed; recording stopped\n", opt.record.c_str());
-        recording_ok = false;
-      }
-    }
-    if (const std::string overrun = trace.take_report(); !overrun.empty()) {
-      std::fprintf(stderr, "planterd: %s", overrun.c_str());
-    }
-    Telemetry status;
-    {
-      std::lock_guard<std::mutex> lock(shared.status_mutex);
-      status = shared.status;
-    }
-    const std::int64_t now = monotonic_now_ns();
-    const std::uint64_t ticks = shared.ticks.load(std::memory_order_acquire);
-    if (!opt.commissioned_stamp.empty() && now >= next_stamp_check_ns) {
-      // Looked at once a second, so a check that passes lets the drives start without a restart.
-      std::string why;
-      const bool ok = config::commissioned(opt.commissioned_stamp, opt.board, why);
-      shared.commissioned = ok;
-      if (!ok && why != not_commissioned_logged) {
-        std::fprintf(stderr, "planterd: drives stay off: %s\n", why.c_str());
-        service.notify("STATUS=not commissioned: " + why);
-      } else if (ok && !not_commissioned_logged.empty()) {
-        std::fprintf(stderr, "planterd: commissioning stamp %s matches the board\n",
-                     opt.commissioned_stamp.c_str());
-      }
-      not_commissioned_logged = ok ? "" : why;
-      next_stamp_check_ns = now + 1'000'000'000;
-    }
-    // Feed the watchdog only while the control loop makes progress.
-    if (watchdog && now >= next_kick_ns && ticks != ticks_at_last_kick) {
-      service.notify("WATCHDOG=1");
-      ticks_at_last_kick = ticks;
-      next_kick_ns = now + static_cast<std::int64_t>(watchdog_us) * 1000 / 2;
-    }
-    if (status.state != logged_state) {
-      std::fprintf(stderr, "planterd: %s -> %s (faults 0x%x)\n",
-                   supervisor_state_name(logged_state), supervisor_state_name(status.state),
-                   status.faults);
-      service.notify(std::string("STATUS=") + supervisor_state_name(status.state));
-      logged_state = status.state;
-    }
-    if (opt.log_period_s > 0 && now >= next_log_ns) {
-      log_status(status, hw->can().counters());
-      next_log_ns = now + static_cast<std::int64_t>(opt.log_period_s * 1e9);
-    }
-  }
+  MainThread main_thread(opt, shared, service, recording.get(), rows, trace, *hw);
+  while (!shared.finished) main_thread.wake(signals);
   loop_thread.join();
-  if (recording) {
-    while (rows.pop(row)) recording->add(row.t_s, row.telemetry);
-    recording_ok = recording->flush() && recording_ok;
-  }
+  const bool recording_ok = main_thread.drain();
   const auto& lat = loop.latency();
   const auto& edge = hw->edge_latency().histogram();
   std::fprintf(stderr,

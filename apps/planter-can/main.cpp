@@ -139,8 +139,8 @@ int main(int argc, char** argv) {
 
   CalibrateOptions calibrate;
   bool no_write = false;
-  auto* c_cal =
-      app.add_subcommand("calibrate", "force | soil-wheel | depth; results into the unit's calibration file");
+  auto* c_cal = app.add_subcommand(
+      "calibrate", "force | soil-wheel | depth; results into the unit's calibration file");
   c_cal->add_option("what", calibrate.what)->required();
   c_cal->add_option("--known-N", calibrate.known_N, "force: the weight, in newtons")
       ->check(CLI::Range(0.001, 1e5));

@@ -11,6 +11,20 @@ import tomllib
 
 board_path, run = sys.argv[1], sys.argv[2]
 board = tomllib.load(open(board_path, "rb"))
+# The machine the board names (machines/<name>.toml, beside the board or up to two folders
+# above it) holds the control settings and the nodes; the board the bus.
+machine_name = board["board"].get("machine")
+if machine_name:
+    here = os.path.dirname(os.path.abspath(board_path))
+    for up in ("", "..", os.path.join("..", "..")):
+        candidate = os.path.join(here, up, "machines", machine_name + ".toml")
+        if os.path.exists(candidate):
+            machine = tomllib.load(open(candidate, "rb"))
+            break
+    else:
+        sys.exit(f"check_hil: no machines/{machine_name}.toml for {board_path}")
+    for section in ("control", "nodes", "disc"):
+        board[section] = machine.get(section, {})
 period_s = board["can"]["sync_period_ms"] / 1000.0
 hb_s = board["can"]["heartbeat_producer_ms"] / 1000.0
 consumer_s = hb_s * board["can"]["heartbeat_consumer_factor"]

@@ -52,9 +52,12 @@ void MachineIo::read_bus(std::int64_t now_ns) {
   hal::CanFrame f;
   while (hal_.can.receive(f)) {
     if (!f.is_standard_data()) continue;  // error frames are counted by the bus itself
+    // Heartbeats, TPDOs and SDO answers are timed from the frame's arrival where the bus
+    // knows it, not from this tick (a late tick must not make a node look late).
+    const std::int64_t at_ns = f.rx_time_ns >= 0 && f.rx_time_ns <= now_ns ? f.rx_time_ns : now_ns;
     bool claimed = false;
     for (NodeLink& l : links_) {
-      if (l.on_frame(f, now_ns, hal_.can)) {
+      if (l.on_frame(f, at_ns, hal_.can)) {
         claimed = true;
         break;
       }

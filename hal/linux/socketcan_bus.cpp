@@ -159,6 +159,7 @@ bool SocketCanBus::receive(CanFrame& frame) {
     msg.msg_iovlen = 1;
     msg.msg_control = control;
     msg.msg_controllen = sizeof control;
+    std::int64_t software_stamp_ns = -1;
     const ssize_t n = recvmsg(fd_, &msg, MSG_DONTWAIT);
     if (n < 0) {
       if (errno == EINTR) continue;
@@ -179,6 +180,8 @@ bool SocketCanBus::receive(CanFrame& frame) {
         last_rx_hw_ = ts.ts[2].tv_sec != 0 || ts.ts[2].tv_nsec != 0;
         const timespec& t = last_rx_hw_ ? ts.ts[2] : ts.ts[0];
         last_rx_ns_ = timespec_ns(t);
+        if (ts.ts[0].tv_sec != 0 || ts.ts[0].tv_nsec != 0)
+          software_stamp_ns = timespec_ns(ts.ts[0]);
       }
     }
     if ((cf.can_id & CAN_ERR_FLAG) != 0) {
@@ -190,6 +193,13 @@ bool SocketCanBus::receive(CanFrame& frame) {
     frame.dlc = cf.len > 8 ? 8 : cf.len;
     frame.data = {};
     std::memcpy(frame.data.data(), cf.data, frame.dlc);
+    // The kernel stamps on CLOCK_REALTIME; the controller's clock is CLOCK_MONOTONIC: the
+    // frame's age, taken now, carries the stamp across.
+    frame.rx_time_ns = -1;
+    if (software_stamp_ns >= 0) {
+      const std::int64_t age = realtime_now_ns() - software_stamp_ns;
+      frame.rx_time_ns = monotonic_now_ns() - (age > 0 ? age : 0);
+    }
     ++counters_.rx_frames;
     return true;
   }

@@ -13,6 +13,9 @@ struct CanFrame {
   std::uint32_t id = 0;  // 11-bit identifier, plus the flags above
   std::uint8_t dlc = 0;
   std::array<std::uint8_t, 8> data{};
+  // When the frame arrived, on the controller's monotonic clock (receive() sets it where the
+  // backend knows it, as AP_HAL's CAN receive does); -1 when unknown. Ignored by send().
+  std::int64_t rx_time_ns = -1;
 
   [[nodiscard]] std::uint16_t cob_id() const { return static_cast<std::uint16_t>(id & 0x7FFu); }
   [[nodiscard]] bool is_standard_data() const {

@@ -26,6 +26,15 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
   std::printf("recording: %s, %zu rows (%zu analysed), %.1f s (held out from %.1f s)\n",
               r.file.c_str(), r.rows, r.analysed_rows, r.duration_s, r.held_out_from_s);
   for (const auto& u : r.unobservable) std::printf("not observable: %s\n", u.c_str());
+  if (!r.glitches.empty()) {
+    std::printf("excluded %zu single-sample glitch(es), replaced by their neighbours' mean:",
+                r.glitches.size());
+    for (std::size_t k = 0; k < r.glitches.size() && k < 5; ++k)
+      std::printf(" %s = %.6g at %.3f s;", r.glitches[k].column.c_str(), r.glitches[k].value,
+                  r.glitches[k].t_s);
+    if (r.glitches.size() > 5) std::printf(" ... (all in fit.json)");
+    std::printf("\n");
+  }
   for (const auto& c : r.channels) {
     std::printf("%-10s %-12s %-26s held-out RMS %.4g -> %.4g (noise %.3g)\n",
                 c.channel->subsystem().c_str(), c.channel->output().c_str(), c.verdict.c_str(),
@@ -85,7 +94,7 @@ int main(int argc, char** argv) {
     o.jobs = jobs;
     if (!model.empty()) o.start_model = load_augmented_model(model);
     const FitReport rep = analyse(rec, o);
-    const Recording analysed = thinned(rec, o.max_rows);
+    const Recording analysed = analysed_recording(rec, o, rep.glitches);
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // One nominal simulation pass of every analysed channel over the whole recording (all its

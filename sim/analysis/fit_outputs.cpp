@@ -8,6 +8,7 @@
 #include "config/output_set.h"
 #include "firmware/io/signal_table.h"
 #include "sim/analysis/model_file.h"
+#include "sim/report/html_text.h"
 #include "sim/report/svg_plot.h"
 
 namespace planter::analysis {
@@ -68,6 +69,10 @@ std::string fit_json(const FitReport& r, double wall_s) {
   j["held_out_from_s"] = r.held_out_from_s;
   j["wall_s"] = wall_s;
   j["unobservable"] = r.unobservable;
+  j["glitches"] = nlohmann::json::array();
+  for (const auto& g : r.glitches)
+    j["glitches"].push_back(
+        {{"column", g.column}, {"t_s", g.t_s}, {"value", g.value}, {"replaced_by", g.replaced_by}});
   bool any = false, unexplained = false;
   for (const auto& c : r.channels) {
     any = any || !c.chosen.empty();
@@ -141,11 +146,18 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
        "body{font-family:sans-serif;max-width:900px;margin:20px auto}td,th{padding:2px 8px}"
        "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style></head>"
        "<body><h1>planter-fit: "
-    << r.file << "</h1><p>" << r.rows << " rows, " << r.duration_s
+    << report::html_escape(r.file) << "</h1><p>" << r.rows << " rows, " << r.duration_s
     << " s; the last 30 % is held out for the verdict.</p>";
   if (!r.unobservable.empty()) {
     h << "<p>Not observable (columns missing or constant):";
     for (const auto& u : r.unobservable) h << " " << u << ";";
+    h << "</p>";
+  }
+  if (!r.glitches.empty()) {
+    h << "<p>Excluded " << r.glitches.size()
+      << " single-sample glitch(es), replaced by their neighbours' mean:";
+    for (const auto& g : r.glitches)
+      h << " " << report::html_escape(g.column) << " = " << g.value << " at " << g.t_s << " s;";
     h << "</p>";
   }
   const std::size_t n = rec.size();

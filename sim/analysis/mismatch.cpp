@@ -296,11 +296,22 @@ Recording thinned(const Recording& r, std::size_t max_rows) {
   return out;
 }
 
-FitReport analyse(const Recording& full, const FitOptions& o) {
+Recording analysed_recording(const Recording& full, const FitOptions& o,
+                             const std::vector<Glitch>& glitches) {
   // Every k-th row, at most max_rows of them: the fits simulate the whole record for each
   // evaluation. (Disturbances above the thinned Nyquist frequency alias: see the README.)
-  const Recording r = thinned(full, o.max_rows);
+  return thinned(glitches.empty() ? full : without_glitches(full, glitches), o.max_rows);
+}
+
+FitReport analyse(const Recording& full, const FitOptions& o) {
   FitReport rep;
+  // The columns the channels read, each once.
+  std::vector<std::string> read;
+  for (const ChannelModel* ch : all_channels())
+    for (const std::string& c : ch->needs())
+      if (std::find(read.begin(), read.end(), c) == read.end()) read.push_back(c);
+  rep.glitches = find_glitches(full, read);
+  const Recording r = analysed_recording(full, o, rep.glitches);
   rep.analysed_rows = r.size();
   rep.file = r.file;
   rep.rows = full.size();

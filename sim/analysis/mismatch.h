@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "sim/analysis/channel_fit.h"
+#include "sim/analysis/glitches.h"
 #include "sim/analysis/model_file.h"
 
 namespace planter::analysis {
@@ -68,10 +69,15 @@ struct FitReport {
   double held_out_from_s = 0.0;
   std::vector<ChannelReport> channels;
   std::vector<std::string> unobservable;  // channels whose columns are missing
+  std::vector<Glitch> glitches;           // samples excluded as single-sample glitches
 };
 
-// Throws RecordingError when no channel is observable.
+// Throws RecordingError when no channel is observable. Glitches are excluded first
+// (glitches.h) and listed in the report.
 FitReport analyse(const Recording& r, const FitOptions& o);
+// What the analysis works on: the recording without its glitches, thinned to max_rows.
+Recording analysed_recording(const Recording& r, const FitOptions& o,
+                             const std::vector<Glitch>& glitches);
 // Every k-th row, at most max_rows (the analysis's own copy of a long recording).
 Recording thinned(const Recording& r, std::size_t max_rows);
 

@@ -116,3 +116,42 @@ TEST(Analysis, HiddenClampRelaxationIsNamedAndFitted) {
   ASSERT_EQ(y.size(), c.final_fit.prediction.size());
   for (std::size_t k = 0; k < y.size(); k += 97) EXPECT_NEAR(y[k], c.final_fit.prediction[k], 1e-6);
 }
+
+// A single out-of-range sample (a load cell's 65535) is excluded and reported; noise, steps and
+// the relaxation itself are never taken for a glitch.
+TEST(Glitches, OnlyTheSpikeIsFound) {
+  for (double noise : {0.5, 2.0}) {
+    for (double relax : {0.0, 0.3})
+      EXPECT_TRUE(
+          find_glitches(clamp_recording(relax, noise, 5), {"clamp_pos_mm", "clamp_force"}).empty())
+          << "noise " << noise << ", relaxation " << relax;
+  }
+  Recording r = clamp_recording(0.3, 1.0, 11);
+  r.signals["clamp_force"][9000] = 65535.0;
+  const std::vector<Glitch> g = find_glitches(r, {"clamp_pos_mm", "clamp_force"});
+  ASSERT_EQ(g.size(), 1u);
+  EXPECT_EQ(g[0].column, "clamp_force");
+  EXPECT_DOUBLE_EQ(g[0].t_s, r.t[9000]);
+  EXPECT_DOUBLE_EQ(g[0].value, 65535.0);
+  const Recording clean = without_glitches(r, g);
+  EXPECT_NEAR(clean.at("clamp_force")[9000], r.at("clamp_force")[8999], 10.0);
+}
+
+TEST(Analysis, HiddenClampRelaxationIsNamedDespiteAGlitch) {
+  Recording r = clamp_recording(0.3, 1.0, 11);
+  r.signals["clamp_force"][9000] = 65535.0;
+  const FitReport rep = analyse(r, quick());
+  ASSERT_EQ(rep.glitches.size(), 1u);
+  EXPECT_DOUBLE_EQ(rep.glitches[0].t_s, r.t[9000]);
+  ASSERT_EQ(rep.channels.size(), 1u);
+  const ChannelReport& c = rep.channels[0];
+  EXPECT_LT(c.noise_rms, 2.0);  // the noise estimate is not inflated by the spike
+  ASSERT_FALSE(c.final_fit.effects.empty()) << c.verdict;
+  EXPECT_EQ(c.final_fit.effects[0].spec->kind, EffectKind::kRelaxation);
+  EXPECT_NEAR(c.final_fit.effects[0].values[0], 0.3, 0.06);
+  EXPECT_NEAR(c.final_fit.effects[0].values[1], 3.0, 0.6);
+  // fit.json lists it.
+  const std::string json = fit_json(rep, 0.0);
+  EXPECT_NE(json.find("\"glitches\": ["), std::string::npos);
+  EXPECT_NE(json.find("\"value\": 65535.0"), std::string::npos) << json.substr(0, 400);
+}

@@ -155,3 +155,37 @@ TEST(Analysis, HiddenClampRelaxationIsNamedDespiteAGlitch) {
   EXPECT_NE(json.find("\"glitches\": ["), std::string::npos);
   EXPECT_NE(json.find("\"value\": 65535.0"), std::string::npos) << json.substr(0, 400);
 }
+
+// A transport delay between grid points (80 ms; the grid steps 31.25 ms) is placed below the
+// grid, and its +- is the resolution the refinement reached. The drive is simulated as the
+// channel models it (the command of the previous sample, held), at the analysis's own rate.
+TEST(Analysis, ADelayBetweenGridPointsIsRefined) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.002);
+  std::uniform_real_distribution<double> level(0.1, 0.5);
+  Recording r;
+  r.file = "synthetic";
+  auto& cmd = r.signals["omega_cmd"];
+  auto& w = r.signals["omega"];
+  double target = 0.3, omega = 0.3;
+  const int delay_samples = 8;                   // 80 ms at 100 Hz
+  const double a = 1.0 - std::exp(-0.01 / 0.1);  // first order, T_d = 0.1 s
+  for (int k = 0; k < 12000; ++k) {              // 120 s at 100 Hz
+    if (k % 300 == 0) target = level(rng);
+    r.t.push_back(0.01 * k);
+    cmd.push_back(target);
+    w.push_back(omega + noise(rng));
+    omega += a * (cmd[static_cast<std::size_t>(std::max(0, k - delay_samples))] - omega);
+  }
+  FitOptions o;
+  o.max_rows = 12000;  // no thinning: the delay is read at the recording's rate
+  const FitReport rep = analyse(r, o);
+  ASSERT_EQ(rep.channels.size(), 1u);
+  const ChannelReport& c = rep.channels[0];
+  ASSERT_FALSE(c.final_fit.effects.empty()) << c.verdict;
+  EXPECT_EQ(c.final_fit.effects[0].spec->kind, EffectKind::kDelay);
+  EXPECT_NEAR(c.final_fit.effects[0].values[0], 0.080, 0.008);
+  ASSERT_FALSE(c.final_fit.effect_sd.empty());
+  EXPECT_GT(c.final_fit.effect_sd[0][0], 0.0);
+  EXPECT_LT(c.final_fit.effect_sd[0][0], 0.005);  // 31.25 ms / 8
+}

@@ -10,8 +10,6 @@
 namespace planter::analysis {
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
-
 // Where each free parameter lives: the nominal vector or an effect's values.
 struct Layout {
   std::vector<double*> slots;

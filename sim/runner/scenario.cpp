@@ -45,6 +45,9 @@ Scenario load_scenario(const std::string& path) {
   const auto board_path = std::filesystem::path(path).parent_path() / board;
   if (!std::filesystem::exists(board_path))
     sc->fail("board", "file " + board_path.string() + " does not exist");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(board_path, ec))
+    sc->fail("board", board_path.string() + " is not a file (boards/<board>/board.toml)");
   s.seed = static_cast<std::uint64_t>(sc->integer("seed", 1, 0, INT64_MAX));
   s.tail_s = sc->number("tail_s", 3.0, 0.0, 600.0, "s");
   s.max_duration_s = sc->number("max_duration_s", 3600.0, 1.0, 86400.0, "s");

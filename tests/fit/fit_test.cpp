@@ -170,7 +170,7 @@ TEST(Analysis, ADelayBetweenGridPointsIsRefined) {
   double target = 0.3, omega = 0.3;
   const int delay_samples = 8;                   // 80 ms at 100 Hz
   const double a = 1.0 - std::exp(-0.01 / 0.1);  // first order, T_d = 0.1 s
-  for (int k = 0; k < 12000; ++k) {              // 120 s at 100 Hz
+  for (int k = 0; k < 6000; ++k) {               // 60 s at 100 Hz
     if (k % 300 == 0) target = level(rng);
     r.t.push_back(0.01 * k);
     cmd.push_back(target);
@@ -178,7 +178,7 @@ TEST(Analysis, ADelayBetweenGridPointsIsRefined) {
     omega += a * (cmd[static_cast<std::size_t>(std::max(0, k - delay_samples))] - omega);
   }
   FitOptions o;
-  o.max_rows = 12000;  // no thinning: the delay is read at the recording's rate
+  o.max_rows = 6000;  // no thinning: the delay is read at the recording's rate
   const FitReport rep = analyse(r, o);
   ASSERT_EQ(rep.channels.size(), 1u);
   const ChannelReport& c = rep.channels[0];

@@ -14,12 +14,18 @@ double omega_after(DiscDriveModel& drive, double omega_target, double seconds) {
 }
 }  // namespace
 
-TEST(DiscDriveModel, DeadZoneIgnoresSmallSetPointsOnly) {
+// The textbook dead zone: nothing inside the band, the set-point less the band beyond it.
+TEST(DiscDriveModel, DeadZoneTakesItsWidthOffLargerSetPoints) {
   Effects fx;
   fx.disc_deadzone_radps = 0.1;
   DiscDriveModel drive(DriveModelConfig{}, fx);
   EXPECT_EQ(omega_after(drive, 0.08, 1.0), 0.0);
-  EXPECT_NEAR(omega_after(drive, 0.3, 1.0), 0.3, 0.01);
+  EXPECT_NEAR(omega_after(drive, 0.3, 1.0), 0.2, 0.01);
+  EXPECT_NEAR(omega_after(drive, -0.3, 1.0), -0.2, 0.01);
+  fx.disc_deadzone_neg_radps = 0.05;  // asymmetric
+  DiscDriveModel asymmetric(DriveModelConfig{}, fx);
+  EXPECT_NEAR(omega_after(asymmetric, -0.3, 1.0), -0.25, 0.01);
+  EXPECT_NEAR(omega_after(asymmetric, 0.3, 1.0), 0.2, 0.01);
 }
 
 // Stribeck friction holds the disc at rest against a torque the Coulomb level alone would

@@ -11,6 +11,15 @@ namespace planter::sim {
 // Disc drive train: a velocity loop (first-order lag T_d, saturation) on the disc inertia with
 // viscous damping; optional Coulomb and Stribeck friction, backlash, a dead zone and a command
 // delay.
+// The dead zone of an input: zero in [-below, +above], the input less the band outside it.
+// A negative `below` means a symmetric band (the same width as above).
+inline double dead_zone(double u, double above, double below) {
+  const double lo = below < 0.0 ? above : below;
+  if (u > above) return u - above;
+  if (u < -lo) return u + lo;
+  return 0.0;
+}
+
 class DiscDriveModel {
  public:
   explicit DiscDriveModel(const DriveModelConfig& d, const Effects& e) : d_(d), e_(e) {}
@@ -23,7 +32,10 @@ class DiscDriveModel {
       while (delayed_.size() > n + 1) delayed_.pop_front();
       omega_target = delayed_.front();
     }
-    if (std::abs(omega_target) < e_.disc_deadzone_radps) omega_target = 0.0;
+    // Dead zone in the control-textbook form (Tao & Kokotovic, "Adaptive Control of Systems
+    // with Actuator and Sensor Nonlinearities", 1996, ch. 2): nothing inside the band, the
+    // set-point less the band beyond it; each side has its own width.
+    omega_target = dead_zone(omega_target, e_.disc_deadzone_radps, e_.disc_deadzone_neg_radps);
     const double target =
         enabled ? std::clamp(omega_target, -d_.disc_omega_max_radps, d_.disc_omega_max_radps) : 0.0;
     const double tau = quick_stop ? 0.02 : d_.disc_time_constant_s;

@@ -80,14 +80,15 @@ struct DriveModelConfig {
 };
 
 struct Effects {
-  double disc_coulomb_Nm = 0.0;        // friction in the disc drive train
-  double disc_stribeck_Nm = 0.0;       // extra friction near standstill (Stribeck) ...
-  double disc_stribeck_radps = 0.05;   // ... fading over this speed
-  double disc_deadzone_radps = 0.0;    // the drive ignores speed set-points below this
-  double disc_backlash_rad = 0.0;      // gear play between motor and disc
-  double command_delay_s = 0.0;        // transport delay of the disc speed command
-  double slip_per_kN = 0.0;            // wheel slip growing with opener draft (% per kN)
-  double clamp_relaxation_frac = 0.0;  // viscoelastic relaxation of the disc lips
+  double disc_coulomb_Nm = 0.0;           // friction in the disc drive train
+  double disc_stribeck_Nm = 0.0;          // extra friction near standstill (Stribeck) ...
+  double disc_stribeck_radps = 0.05;      // ... fading over this speed
+  double disc_deadzone_radps = 0.0;       // dead zone of the speed set-point (forward side) ...
+  double disc_deadzone_neg_radps = -1.0;  // ... and reverse side (negative: as forward)
+  double disc_backlash_rad = 0.0;         // gear play between motor and disc
+  double command_delay_s = 0.0;           // transport delay of the disc speed command
+  double slip_per_kN = 0.0;               // wheel slip growing with opener draft (% per kN)
+  double clamp_relaxation_frac = 0.0;     // viscoelastic relaxation of the disc lips
   double clamp_relaxation_tau_s = 2.0;
   double depth_sag_mm_per_kN = 0.0;  // opener compliance under soil draft
   double vibration_hz = 0.0;         // engine vibration

@@ -156,6 +156,9 @@ Scenario load_scenario(const std::string& path) {
     e.disc_stribeck_Nm = t->number("disc_stribeck_Nm", 0.0, 0.0, 100.0, "N*m");
     e.disc_stribeck_radps = t->number("disc_stribeck_radps", 0.05, 0.001, 10.0, "rad/s");
     e.disc_deadzone_radps = t->number("disc_deadzone_radps", 0.0, 0.0, 1.0, "rad/s");
+    // An asymmetric band: the width for reverse set-points (absent: the same as forward).
+    if (t->has("disc_deadzone_neg_radps"))
+      e.disc_deadzone_neg_radps = t->number("disc_deadzone_neg_radps", 0.0, 0.0, 1.0, "rad/s");
     t->reject_unknown_keys();
   }
   if (auto t = root.table("controller")) {

@@ -23,8 +23,11 @@ int fail(int code, const std::string& message) {
 }
 
 void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
-  std::printf("recording: %s, %zu rows (%zu analysed), %.1f s (held out from %.1f s)\n",
-              r.file.c_str(), r.rows, r.analysed_rows, r.duration_s, r.held_out_from_s);
+  std::printf(
+      "recording: %s, %zu rows at %.4g Hz (%zu analysed, up to %.3g Hz), %.1f s (held out from "
+      "%.1f s)\n",
+      r.file.c_str(), r.rows, r.rate_hz, r.analysed_rows, r.analysed_up_to_hz, r.duration_s,
+      r.held_out_from_s);
   for (const auto& u : r.unobservable) std::printf("not observable: %s\n", u.c_str());
   if (!r.glitches.empty()) {
     std::printf("excluded %zu single-sample glitch(es), replaced by their neighbours' mean:",
@@ -49,6 +52,20 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
       }
       std::printf("\n");
     }
+    for (const auto& f : c.fast_tones) {
+      std::printf(
+          "    periodic disturbance (vibration) above the analysed %.3g Hz: frequency_hz = "
+          "%.4g",
+          r.analysed_up_to_hz, f.tone.frequency_hz);
+      if (f.order > 1) std::printf(" (order %d of %.4g Hz)", f.order, f.fundamental_hz);
+      std::printf(" amplitude = %.4g; held-out RMS %.4g -> %.4g\n", f.tone.amplitude,
+                  f.held_out_rms_before, f.held_out_rms_after);
+    }
+    for (const auto& tie : c.ties)
+      std::printf(
+          "    %s or %s: this recording cannot separate them (BIC %+.1f); to tell them "
+          "apart, record %s\n",
+          tie.chosen.c_str(), tie.alternative.c_str(), tie.delta_bic, tie.experiment.c_str());
     if (c.unexplained) {
       std::printf(
           "    unexplained: worst window at %.0f s (%.1fx), input correlation %.2f, "

@@ -2,6 +2,7 @@
 // One measured output of a subsystem and the nominal model that predicts it from recorded
 // inputs (PRODUCT.md's nominal structures), with hooks where a candidate effect acts:
 // on the input (delay, dead zone, play), on the state (rate limit), or on the output.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,11 +23,11 @@ enum class EffectKind {
   kWheelRadius,    // v_wheel = (1 + g) v
   kSlipWithDraft,  // v_wheel = v (1 - s * depth_force / 1 kN)
   kDelay,          // input delayed by tau
-  kDeadZone,       // input |u| below w does nothing
+  kDeadZone,       // zero for |u| <= w, u - w sign(u) beyond
   kBacklash,       // play of width gap between input and model
   kRateLimit,      // the state moves at most r per second
   kCoulomb,        // + F_c tanh(omega / 0.005)
-  kStribeck,       // + (F_s - F_c) exp(-(omega/omega_s)^2) sign(omega) on top of Coulomb
+  kStribeck,       // + [F_c + (F_s - F_c) exp(-(omega/omega_s)^2)] sign(omega)
   kOffset,         // + a
   kGain,           // * (1 + g)
   kDrift,          // + d * t
@@ -66,6 +67,11 @@ struct EffectSpec {
   std::vector<double> (*start)(const Recording& r, const std::vector<double>& residual) = nullptr;
   // Further starts tried from the data's own guess (a time constant can sit in any decade).
   std::vector<std::vector<double>> extra_starts{};
+  // The simpler effect this one holds as a special case (Stribeck holds Coulomb): it must beat
+  // that one by a clear margin, not only tie it.
+  std::optional<EffectKind> extends{};
+  // What a user would record to tell this effect from another that fits as well.
+  std::string separating_experiment{};
 };
 
 struct Effect {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "sim/analysis/effect_hooks.h"
+#include "sim/analysis/tones.h"
 
 namespace planter::analysis {
 namespace {
@@ -33,10 +34,13 @@ void delay(const Recording& r, const std::vector<double>& p, std::vector<double>
   }
 }
 
+// The control-textbook dead zone (Tao & Kokotovic, "Adaptive Control of Systems with Actuator
+// and Sensor Nonlinearities", 1996, ch. 2): zero inside the band, the input less the band
+// beyond it. (Symmetric here: the disc's commands do not reverse, so a reverse width could not
+// be told from a recording of this machine.)
 void dead_zone(const Recording&, const std::vector<double>& p, std::vector<double>& u) {
   if (p[0] <= 0.0) return;
-  for (auto& v : u)
-    if (std::abs(v) < p[0]) v = 0.0;
+  for (auto& v : u) v = std::abs(v) <= p[0] ? 0.0 : v - std::copysign(p[0], v);
 }
 
 void backlash(const Recording&, const std::vector<double>& p, std::vector<double>& u) {
@@ -74,18 +78,23 @@ void slip_with_draft(const OutputContext& c, const std::vector<double>& p, std::
   for (std::size_t k = 0; k < y.size(); ++k) y[k] *= 1.0 - p[0] * (*c.load)[k] / 1000.0;
 }
 
-double friction_sign(double w) { return std::tanh(w / 0.005); }  // sharp: the disc turns slowly
+// The sign of the speed, smoothed over kFrictionSmoothing_radps: sharp, as the disc turns slowly.
+constexpr double kFrictionSmoothing_radps = 0.005;
+double friction_sign(double w) { return std::tanh(w / kFrictionSmoothing_radps); }
 
 void coulomb(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
   if (c.speed == nullptr) return;
   for (std::size_t k = 0; k < y.size(); ++k) y[k] += p[0] * friction_sign((*c.speed)[k]);
 }
 
+// Stribeck friction in its usual exponential form (Armstrong-Helouvry, Dupont & Canudas de
+// Wit, Automatica 30(7), 1994, eq. 1): the Coulomb level plus an extra that fades with speed.
+// With no extra it is Coulomb friction, which it must then beat by a margin (mismatch.cpp).
 void stribeck(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
   if (c.speed == nullptr) return;
   for (std::size_t k = 0; k < y.size(); ++k) {
-    const double w = (*c.speed)[k];
-    y[k] += p[0] * std::exp(-(w / p[1]) * (w / p[1])) * friction_sign(w);
+    const double w = (*c.speed)[k] / p[2];
+    y[k] += (p[0] + p[1] * std::exp(-w * w)) * friction_sign((*c.speed)[k]);
   }
 }
 
@@ -111,41 +120,22 @@ void quantisation(const OutputContext&, const std::vector<double>& p, std::vecto
   for (auto& v : y) v = p[0] * std::round(v / p[0]);
 }
 
-// The periodic effect starts at the residual spectrum's peak. It adds to the prediction, so it
-// must match -residual: a coarse Goertzel scan, then a fine search around the best bin (over a
-// long record a small frequency error turns into a large phase error).
+// The periodic effect starts at the residual spectrum's peak: a coarse scan up to the analysed
+// rate's own Nyquist frequency, then a fine search around the best bin (over a long record a
+// small frequency error turns into a large phase error). Faster tones are removed before
+// decimation and looked for at the recording's rate (tones.h).
 std::vector<double> periodic_start(const Recording& r, const std::vector<double>& residual) {
   const std::size_t n = std::min<std::size_t>(residual.size(), 40000);
-  const double dt = (r.t[n - 1] - r.t[0]) / static_cast<double>(n - 1);
-  const double f_max = std::min(50.0, 0.45 / dt);
-  auto project = [&](double f, double& a, double& b) {
-    a = b = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      a -= residual[k] * std::sin(kTwoPi * f * r.t[k]);
-      b -= residual[k] * std::cos(kTwoPi * f * r.t[k]);
-    }
-    a *= 2.0 / static_cast<double>(n);
-    b *= 2.0 / static_cast<double>(n);
-    return a * a + b * b;
-  };
   const double duration = r.t[n - 1] - r.t[0];
+  const double f_max = 0.45 * static_cast<double>(n - 1) / duration;
   const double coarse = std::max(0.02, 0.5 / duration);
-  double best_f = 1.0, best_p = -1.0, a = 0, b = 0;
+  double best_f = 1.0, best_a = -1.0;
   for (double f = 0.2; f <= f_max; f += coarse) {
-    const double p = project(f, a, b);
-    if (p > best_p) best_p = p, best_f = f;
+    const double a = project_tone(r.t, residual, n, f).amplitude;
+    if (a > best_a) best_a = a, best_f = f;
   }
-  double lo = best_f - coarse, hi = best_f + coarse;
-  for (int it = 0; it < 40; ++it) {  // golden-section on the power
-    const double m1 = lo + 0.382 * (hi - lo), m2 = lo + 0.618 * (hi - lo);
-    if (project(m1, a, b) > project(m2, a, b))
-      hi = m2;
-    else
-      lo = m1;
-  }
-  best_f = 0.5 * (lo + hi);
-  project(best_f, a, b);
-  return {std::sqrt(a * a + b * b), best_f, std::atan2(b, a)};
+  const Tone tone = refine_tone(r.t, residual, n, best_f - coarse, best_f + coarse);
+  return {tone.amplitude, tone.frequency_hz, tone.phase_rad};
 }
 
 // One entry per effect, in the order they are applied: input effects, then output effects;
@@ -158,91 +148,128 @@ const std::vector<EffectSpec>& library() {
          .name = "transport delay",
          .signature = "residual follows the input's derivative",
          .params = {{"delay_s", "s", 0.0, 0.0, 0.5, true}},
-         .on_input = delay});
+         .on_input = delay,
+         .separating_experiment = "a step of the command: a delay shifts the whole response late, "
+                                  "a slower lag only rounds it"});
     add({.kind = EffectKind::kDeadZone,
          .name = "dead zone",
-         .signature = "no response to small inputs",
+         .signature = "no response to small inputs, the band missing from larger ones",
          .params = {{"width", "input units", 0.0, 0.0, 0.0, true}},
          .on_input = dead_zone,
-         .grid_upper = [](double in_span, double) { return 0.3 * in_span; }});
+         .grid_upper = [](double in_span, double) { return 0.3 * in_span; },
+         .separating_experiment = "a slow ramp of the command up from zero: a dead zone answers "
+                                  "only past its band, and then short by the band"});
     add({.kind = EffectKind::kBacklash,
          .name = "backlash (play)",
          .signature = "lag at every reversal of the input",
          .params = {{"gap", "input units", 0.0, 0.0, 0.0, true}},
          .on_input = backlash,
-         .grid_upper = [](double in_span, double) { return 0.2 * in_span; }});
+         .grid_upper = [](double in_span, double) { return 0.2 * in_span; },
+         .separating_experiment =
+             "a command that reverses slowly: play shows only just after each reversal"});
     add({.kind = EffectKind::kRelaxation,
          .name = "viscoelastic relaxation (creep) of the clamp",
          .signature = "output decays towards a lower level after each load change",
          .params = {{"fraction", "1", 0.1, 0.0, 0.9}, {"tau_s", "s", 2.0, 0.05, 60.0}},
          .on_output = relaxation,
-         .extra_starts = {{0.2, 0.5}, {0.2, 3.0}, {0.2, 15.0}}});
+         .extra_starts = {{0.2, 0.5}, {0.2, 3.0}, {0.2, 15.0}},
+         .separating_experiment = "the clamp held closed at one position for a minute or more: "
+                                  "relaxation settles, drift keeps growing"});
     add({.kind = EffectKind::kSag,
          .name = "actuator compliance (sag) under load",
          .signature = "residual proportional to the load on the actuator",
          .params = {{"sag_per_kN", "output units/kN", 0.0, -100.0, 100.0}},
-         .on_output = sag});
+         .on_output = sag,
+         .separating_experiment = "one depth held while the draft changes (a lighter and a heavier "
+                                  "soil): sag follows the load"});
     add({.kind = EffectKind::kSlipWithDraft,
          .name = "wheel slip growing with draft load",
          .signature = "speed deficit proportional to speed times opener draft",
          .params = {{"slip_per_kN", "1/kN", 0.0, -0.5, 0.5}},
-         .on_output = slip_with_draft});
+         .on_output = slip_with_draft,
+         .separating_experiment = "the same stretch driven with the opener lowered and raised: "
+                                  "slip with draft goes with the draft"});
     // Friction opposes motion: the drive pays it in the direction of motion, never gets it.
+    const std::string friction_sweep =
+        "a slow speed sweep through zero: Coulomb friction is one level at every speed, "
+        "Stribeck friction peaks near standstill";
     add({.kind = EffectKind::kCoulomb,
          .name = "Coulomb friction",
          .signature = "a step in the residual at each speed reversal",
          .params = {{"coulomb", "output units", 0.0, 0.0, 100.0}},
-         .on_output = coulomb});
+         .on_output = coulomb,
+         .separating_experiment = friction_sweep});
     add({.kind = EffectKind::kStribeck,
          .name = "Stribeck friction",
          .signature = "extra resistance at low speed",
-         .params = {{"stribeck_extra", "output units", 0.0, 0.0, 100.0},
-                    {"stribeck_speed", "input units", 0.1, 0.005, 5.0}},
-         .on_output = stribeck});
+         .params = {{"coulomb", "output units", 0.0, 0.0, 100.0},
+                    {"stribeck_extra", "output units", 0.0, 0.0, 100.0},
+                    // Below four times the sign's smoothing, a Stribeck speed would only
+                    // reshape that smoothing (a Coulomb step would pass for Stribeck).
+                    {"stribeck_speed", "input units", 0.1, 4.0 * kFrictionSmoothing_radps, 5.0}},
+         .on_output = stribeck,
+         .extends = EffectKind::kCoulomb,
+         .separating_experiment = friction_sweep});
     add({.kind = EffectKind::kWheelRadius,
          .name = "wrong effective wheel radius",
          .signature = "speed error proportional to speed",
          .params = {{"radius_error", "1", 0.0, -0.3, 0.3}},
-         .on_output = scale});
+         .on_output = scale,
+         .separating_experiment =
+             "a measured distance driven at two speeds: a radius error is the same share at both"});
     add({.kind = EffectKind::kGain,
          .name = "sensor gain error",
          .signature = "residual proportional to the output",
          .params = {{"gain_error", "1", 0.0, -0.5, 0.5}},
-         .on_output = scale});
+         .on_output = scale,
+         .separating_experiment =
+             "two held loads of known size: a gain error grows with the load, an offset does not"});
     add({.kind = EffectKind::kOffset,
          .name = "sensor offset",
          .signature = "a constant residual",
          .params = {{"offset", "output units", 0.0, -1e4, 1e4}},
-         .on_output = offset});
+         .on_output = offset,
+         .separating_experiment = "readings at zero load (the clamp open, the disc at rest): an "
+                                  "offset reads there too"});
     add({.kind = EffectKind::kDrift,
          .name = "sensor drift",
          .signature = "a residual growing linearly with time",
          .params = {{"drift_per_s", "output units/s", 0.0, -10.0, 10.0}},
-         .on_output = drift});
+         .on_output = drift,
+         .separating_experiment = "the machine held still for several minutes: drift keeps "
+                                  "growing, relaxation settles"});
     add({.kind = EffectKind::kPeriodic,
          .name = "periodic disturbance (vibration)",
          .signature = "a peak in the residual spectrum",
          .params = {{"amplitude", "output units", 0.0, 0.0, 1e4},
-                    {"frequency_hz", "Hz", 1.0, 0.01, 50.0},
+                    {"frequency_hz", "Hz", 1.0, 0.01, 1e4},
                     {"phase_rad", "rad", 0.0, -20.0, 20.0}},
          .on_output = periodic,
-         .start = periodic_start});
+         .start = periodic_start,
+         .separating_experiment =
+             "a run at another engine or disc speed: a vibration moves with its source"});
     add({.kind = EffectKind::kQuantisation,
          .name = "quantisation",
          .signature = "a staircase residual, uniform within a step",
          .params = {{"step", "output units", 0.0, 0.0, 0.0, true}},
          .on_output = quantisation,
-         .grid_upper = [](double, double out_span) { return 0.05 * out_span; }});
+         .grid_upper = [](double, double out_span) { return 0.05 * out_span; },
+         .separating_experiment =
+             "a slow ramp of the output: a quantised sensor steps in one step size"});
     // Applied inside the channels whose dynamics they change (channels.cpp).
     add({.kind = EffectKind::kRateLimit,
          .name = "rate limit",
          .signature = "residual at large steps, linear ramps",
-         .params = {{"rate_per_s", "output units/s", 1.0, 1e-3, 1e4}}});
+         .params = {{"rate_per_s", "output units/s", 1.0, 1e-3, 1e4}},
+         .separating_experiment = "a large step of the command: a rate limit ramps at one slope "
+                                  "whatever the step's size"});
     add({.kind = EffectKind::kStiction,
          .name = "stiction (the disc held by static friction)",
          .signature = "torque while the speed is zero and the command is not",
          .params = {{"effort_gain", "N m s/rad", 10.0, 0.0, 1e3},
-                    {"breakaway", "N m", 1.0, 0.0, 100.0}}});
+                    {"breakaway", "N m", 1.0, 0.0, 100.0}},
+         .separating_experiment = "starts from rest with a slowly rising command: stiction holds "
+                                  "the disc until breakaway"});
     return l;
   }();
   return lib;

@@ -7,6 +7,7 @@
 
 #include "config/output_set.h"
 #include "firmware/io/signal_table.h"
+#include "sim/analysis/effect_hooks.h"
 #include "sim/analysis/model_file.h"
 #include "sim/report/html_text.h"
 #include "sim/report/svg_plot.h"
@@ -59,6 +60,21 @@ nlohmann::json effects_json(const ChannelFit& f, const ChannelModel& c) {
   return j;
 }
 
+// A tone found at the recording's rate, as an effect entry (the periodic effect's parameters).
+nlohmann::json fast_tone_json(const FastTone& f, const ChannelModel& c, double above_hz) {
+  const EffectSpec& spec = effect_spec(EffectKind::kPeriodic);
+  return {
+      {"effect", spec.name},
+      {"signature", spec.signature},
+      {"parameters",
+       params_json(spec.params, {f.tone.amplitude, f.tone.frequency_hz, f.tone.phase_rad}, {}, c)},
+      {"found_at",
+       "the recording's own rate, above the analysed " + std::to_string(above_hz) + " Hz"},
+      {"order", f.order},
+      {"fundamental_hz", f.fundamental_hz},
+      {"held_out_rms", {{"before", f.held_out_rms_before}, {"after", f.held_out_rms_after}}}};
+}
+
 }  // namespace
 
 std::string fit_json(const FitReport& r, double wall_s) {
@@ -67,6 +83,9 @@ std::string fit_json(const FitReport& r, double wall_s) {
   j["rows"] = r.rows;
   j["duration_s"] = r.duration_s;
   j["held_out_from_s"] = r.held_out_from_s;
+  j["rate_hz"] = r.rate_hz;
+  j["analysed_rows"] = r.analysed_rows;
+  j["analysed_up_to_hz"] = r.analysed_up_to_hz;
   j["wall_s"] = wall_s;
   j["unobservable"] = r.unobservable;
   j["glitches"] = nlohmann::json::array();
@@ -75,7 +94,7 @@ std::string fit_json(const FitReport& r, double wall_s) {
         {{"column", g.column}, {"t_s", g.t_s}, {"value", g.value}, {"replaced_by", g.replaced_by}});
   bool any = false, unexplained = false;
   for (const auto& c : r.channels) {
-    any = any || !c.chosen.empty();
+    any = any || !c.chosen.empty() || !c.fast_tones.empty();
     unexplained = unexplained || c.unexplained;
     nlohmann::json ch;
     ch["subsystem"] = c.channel->subsystem();
@@ -90,8 +109,16 @@ std::string fit_json(const FitReport& r, double wall_s) {
     ch["calibration_rms"] = {{"nominal", c.nominal.rms_calibration},
                              {"augmented", c.final_fit.rms_calibration}};
     ch["effects"] = effects_json(c.final_fit, *c.channel);
+    for (const auto& f : c.fast_tones)
+      ch["effects"].push_back(fast_tone_json(f, *c.channel, r.analysed_up_to_hz));
     ch["augmented_nominal"] = params_json(c.channel->nominal_params(), c.final_fit.nominal,
                                           c.final_fit.nominal_sd, *c.channel);
+    ch["ties"] = nlohmann::json::array();
+    for (const auto& tie : c.ties)
+      ch["ties"].push_back({{"chosen", tie.chosen},
+                            {"alternative", tie.alternative},
+                            {"delta_bic", tie.delta_bic},
+                            {"experiment", tie.experiment}});
     for (const auto& cand : c.ranked) {
       ch["ranked"].push_back({{"effect", cand.effect},
                               {"delta_bic", cand.delta_bic},
@@ -130,7 +157,15 @@ std::string fit_model_toml(const FitReport& r) {
     const auto specs = c.channel->nominal_params();
     for (std::size_t k = 0; k < specs.size(); ++k)
       s << model_key(specs[k].name) << " = " << c.final_fit.nominal[k] << "\n";
-    for (const auto& e : c.final_fit.effects) {
+    std::vector<Effect> effects = c.final_fit.effects;
+    // The strongest tone found above the analysed rate, when the fit has no periodic effect of
+    // its own (a channel takes one of each).
+    if (!c.fast_tones.empty() && find_effect(effects, EffectKind::kPeriodic) == nullptr) {
+      const Tone& tone = c.fast_tones.front().tone;
+      effects.push_back({&effect_spec(EffectKind::kPeriodic),
+                         {tone.amplitude, tone.frequency_hz, tone.phase_rad}});
+    }
+    for (const auto& e : effects) {
       s << "\n[[channel.effect]]\nname = \"" << e.spec->name << "\"\n";
       for (std::size_t k = 0; k < e.values.size(); ++k)
         s << model_key(e.spec->params[k].name) << " = " << e.values[k] << "\n";
@@ -186,6 +221,18 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
         h << " " << e.spec->params[k].name << " = " << e.values[k];
       h << "</p>";
     }
+    for (const auto& f : c.fast_tones)
+      h << "<p><b>periodic disturbance (vibration) above the analysed " << r.analysed_up_to_hz
+        << " Hz</b>, found at the recording's own rate: " << f.tone.frequency_hz << " Hz"
+        << (f.order > 1 ? " (order " + std::to_string(f.order) + " of " +
+                              std::to_string(f.fundamental_hz) + " Hz)"
+                        : std::string())
+        << ", amplitude " << f.tone.amplitude << "; held-out RMS " << f.held_out_rms_before
+        << " &rarr; " << f.held_out_rms_after << ".</p>";
+    for (const auto& tie : c.ties)
+      h << "<p><b>" << tie.chosen << " or " << tie.alternative
+        << "</b>: this recording cannot separate them (&Delta;BIC " << tie.delta_bic
+        << "). To tell them apart, record " << report::html_escape(tie.experiment) << ".</p>";
     h << "<table><tr><th>candidate</th><th>&Delta;BIC</th><th>explained</th>"
          "<th>blocked CV</th><th>held-out improvement</th></tr>";
     for (const auto& cand : c.ranked)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <thread>
 
+#include "sim/analysis/decimation.h"
 #include "sim/analysis/model_file.h"
 
 namespace planter::analysis {
@@ -203,12 +204,16 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     const double noise = std::min(rep.noise_rms, noise_rms(base_e, split.calibration_end));
     const std::vector<double> base_fold_errors = fold_errors(base, noise);
     for (const EffectSpec* spec : ch.candidates(r)) {
+      // Not twice, and not beside an effect it holds or that holds it (Stribeck and Coulomb).
       bool used = false;
-      for (const auto& s : start) used = used || s.spec == spec;
+      for (const auto& s : start)
+        used = used || s.spec == spec || spec->extends == s.spec->kind ||
+               s.spec->extends == spec->kind;
       if (used) continue;
       std::vector<Effect> fx = start;
       fx.push_back(initial_effect(*spec, r, base_e));
       Candidate c;
+      c.spec = spec;
       c.effect = spec->name;
       c.fit = fit_channel(ch, r, split, base.nominal, fx);
       // The base fit may have bent its parameters to mimic the effect (an offset looks like
@@ -239,20 +244,36 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
               [](const Candidate& a, const Candidate& b) { return a.delta_bic < b.delta_bic; });
     return out;
   };
+  // The candidate that earns its parameters with the best BIC; then parsimony: an effect that
+  // holds a simpler one (Stribeck holds Coulomb) gives way to it unless it beats it clearly.
+  // Candidates that earn theirs and come within a tie of the chosen one are reported as ties.
+  auto choose = [&](const std::vector<Candidate>& cands) -> const Candidate* {
+    const Candidate* best = nullptr;
+    for (const auto& c : cands)
+      if (earns(c) && (!best || c.delta_bic < best->delta_bic)) best = &c;
+    if (best && best->spec->extends)
+      for (const auto& c : cands)
+        if (c.spec->kind == *best->spec->extends && earns(c) &&
+            (best->delta_bic > c.delta_bic - o.nested_delta_bic ||
+             best->explained < c.explained + o.nested_min_explained))
+          best = &c;
+    if (!best) return nullptr;
+    for (const auto& c : cands) {
+      if (&c == best || !earns(c) || c.delta_bic - best->delta_bic >= o.tie_delta_bic) continue;
+      const std::string& a = best->spec->separating_experiment;
+      const std::string& b = c.spec->separating_experiment;
+      rep.ties.push_back(
+          {best->effect, c.effect, c.delta_bic - best->delta_bic, a == b ? a : a + "; " + b});
+    }
+    return best;
+  };
   rep.ranked = try_effects(rep.nominal, known);
   rep.final_fit = rep.nominal;
-  // The best single effect that earns its parameters, by held-out error among those by BIC.
-  const Candidate* best = nullptr;
-  for (const auto& c : rep.ranked)
-    if (earns(c) && (!best || c.delta_bic < best->delta_bic)) best = &c;
-  if (best) {
+  if (const Candidate* best = choose(rep.ranked)) {
     rep.chosen.push_back(*best);
     rep.final_fit = best->fit;
     const std::vector<Candidate> pairs = try_effects(best->fit, best->fit.effects);
-    const Candidate* second = nullptr;
-    for (const auto& c : pairs)
-      if (earns(c) && (!second || c.delta_bic < second->delta_bic)) second = &c;
-    if (second) {
+    if (const Candidate* second = choose(pairs)) {
       rep.chosen.push_back(*second);
       rep.final_fit = second->fit;
     }
@@ -281,37 +302,32 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
 
 }  // namespace
 
-Recording thinned(const Recording& r, std::size_t max_rows) {
-  const std::size_t stride = (r.size() + max_rows - 1) / max_rows;
-  if (stride <= 1) return r;
-  Recording out;
-  out.file = r.file;
-  out.metadata = r.metadata;
-  for (std::size_t k = 0; k < r.size(); k += stride) out.t.push_back(r.t[k]);
-  for (const auto& [name, v] : r.signals) {
-    auto& o = out.signals[name];
-    for (std::size_t k = 0; k < v.size(); k += stride) o.push_back(v[k]);
-  }
-  for (std::size_t k = 0; k < r.state.size(); k += stride) out.state.push_back(r.state[k]);
-  return out;
-}
-
-Recording analysed_recording(const Recording& full, const FitOptions& o,
-                             const std::vector<Glitch>& glitches) {
-  // Every k-th row, at most max_rows of them: the fits simulate the whole record for each
-  // evaluation. (Disturbances above the thinned Nyquist frequency alias: see the README.)
-  return thinned(glitches.empty() ? full : without_glitches(full, glitches), o.max_rows);
-}
-
-FitReport analyse(const Recording& full, const FitOptions& o) {
-  FitReport rep;
-  // The columns the channels read, each once.
+std::vector<std::string> channel_columns() {
   std::vector<std::string> read;
   for (const ChannelModel* ch : all_channels())
     for (const std::string& c : ch->needs())
       if (std::find(read.begin(), read.end(), c) == read.end()) read.push_back(c);
-  rep.glitches = find_glitches(full, read);
+  return read;
+}
+
+Recording analysed_recording(const Recording& full, const FitOptions& o,
+                             const std::vector<Glitch>& glitches) {
+  // At most max_rows rows: the fits simulate the whole record for each evaluation. The
+  // columns the channels read are low-pass filtered first, so a fast vibration is removed
+  // rather than aliased (it is looked for at the recording's own rate: fast_tones.h).
+  const std::size_t stride = (full.size() + o.max_rows - 1) / o.max_rows;
+  const Recording& clean = glitches.empty() ? full : without_glitches(full, glitches);
+  return decimated(clean, stride, channel_columns());
+}
+
+FitReport analyse(const Recording& full, const FitOptions& o) {
+  FitReport rep;
+  rep.glitches = find_glitches(full, channel_columns());
   const Recording r = analysed_recording(full, o, rep.glitches);
+  rep.rate_hz = sample_rate_hz(full);
+  const bool decimated = r.size() < full.size();
+  rep.analysed_up_to_hz =
+      decimated ? kAntiAliasCutoffShare * 0.5 * sample_rate_hz(r) : 0.5 * rep.rate_hz;
   rep.analysed_rows = r.size();
   rep.file = r.file;
   rep.rows = full.size();
@@ -346,6 +362,25 @@ FitReport analyse(const Recording& full, const FitOptions& o) {
     pool.emplace_back(worker);
   worker();
   for (auto& t : pool) t.join();
+  // What the decimation removed: vibration above the analysed rate, looked for in each final
+  // residual at the recording's own rate (a 38 Hz tone is named at 38 Hz, not at its alias).
+  if (decimated) {
+    const Recording clean =
+        rep.glitches.empty() ? Recording{} : without_glitches(full, rep.glitches);
+    const Recording& at_rate = rep.glitches.empty() ? full : clean;
+    const auto held_out = static_cast<std::size_t>(
+        std::lower_bound(at_rate.t.begin(), at_rate.t.end(), rep.held_out_from_s) -
+        at_rate.t.begin());
+    for (auto& c : rep.channels) {
+      std::vector<double> pred;
+      c.channel->simulate(at_rate, c.final_fit.nominal, c.final_fit.effects, pred);
+      const std::vector<double> e = residual_of(pred, at_rate.at(c.channel->output()));
+      c.fast_tones = find_fast_tones(at_rate.t, e, rep.analysed_up_to_hz, held_out);
+      if (!c.fast_tones.empty() && c.chosen.empty())
+        c.verdict =
+            c.unexplained ? "effect(s) found; a residual is still unexplained" : "effect(s) found";
+    }
+  }
   return rep;
 }
 

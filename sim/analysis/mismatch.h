@@ -8,6 +8,7 @@
 #include "sim/analysis/channel_fit.h"
 #include "sim/analysis/glitches.h"
 #include "sim/analysis/model_file.h"
+#include "sim/analysis/tones.h"
 
 namespace planter::analysis {
 
@@ -29,12 +30,22 @@ struct Location {
 };
 
 struct Candidate {
+  const EffectSpec* spec = nullptr;
   std::string effect;
   double delta_bic = 0.0;             // against the model it would extend
   double held_out_improvement = 0.0;  // 1 - rms_after / rms_before on the held-out part
   double cv_improvement = 0.0;        // blocked cross-validation: the best of 3 folds (or a loss)
   double explained = 0.0;  // share of the calibration residual beyond noise it accounts for
   ChannelFit fit;
+};
+
+// Two effects this recording cannot separate: both earn their parameters, and their BIC differ
+// by less than FitOptions::tie_delta_bic. The chosen one is kept; the experiment tells them apart.
+struct Tie {
+  std::string chosen;
+  std::string alternative;
+  double delta_bic = 0.0;  // the alternative's BIC less the chosen one's
+  std::string experiment;
 };
 
 struct ChannelReport {
@@ -44,6 +55,9 @@ struct ChannelReport {
   Location location;
   std::vector<Candidate> ranked;  // single effects, best BIC first
   std::vector<Candidate> chosen;  // accepted (one or two)
+  std::vector<Tie> ties;          // near ties with what was chosen
+  // Vibration above the analysed rate, found in the final residual at the recording's own rate.
+  std::vector<FastTone> fast_tones;
   ChannelFit final_fit;
   std::string verdict;  // "no significant mismatch", "effect(s) found", "unexplained residual"
   bool unexplained = false;
@@ -54,16 +68,26 @@ struct FitOptions {
   double min_improvement = 0.10;  // a fold's RMS must fall by at least this share
   double min_delta_bic = 20.0;
   double min_explained = 0.5;
+  // BIC differences on the scale of Kass & Raftery (JASA 90, 1995): under 6 is no strong
+  // evidence either way (a tie); an effect holding a simpler one as a special case must beat it
+  // by 10 ("very strong") and explain 5 % more of the residual beyond noise, or the simpler one
+  // is named. (Residuals of a closed-loop record are not white, so BIC alone overstates the
+  // evidence: the extra parameters must also buy a share of the residual.)
+  double tie_delta_bic = 6.0;
+  double nested_delta_bic = 10.0;
+  double nested_min_explained = 0.05;
   double min_unexplained_share = 0.005;  // of the output's held-out RMS, to call a residual
   int jobs = 1;
-  std::size_t max_rows = 12000;           // longer recordings are thinned to this many rows
+  std::size_t max_rows = 12000;           // longer recordings are decimated to this many rows
   std::vector<ModelChannel> start_model;  // from --model: start values and known effects
 };
 
 struct FitReport {
   std::string file;
   std::size_t rows = 0;
-  std::size_t analysed_rows = 0;  // after thinning
+  std::size_t analysed_rows = 0;   // after decimation
+  double rate_hz = 0.0;            // the recording's sample rate
+  double analysed_up_to_hz = 0.0;  // the anti-alias cut-off (the rate's Nyquist if none)
   double duration_s = 0.0;
   Split split;
   double held_out_from_s = 0.0;
@@ -75,10 +99,11 @@ struct FitReport {
 // Throws RecordingError when no channel is observable. Glitches are excluded first
 // (glitches.h) and listed in the report.
 FitReport analyse(const Recording& r, const FitOptions& o);
-// What the analysis works on: the recording without its glitches, thinned to max_rows.
+// What the analysis works on: the recording without its glitches, decimated to at most
+// max_rows with the columns the channels read low-pass filtered first (decimation.h).
 Recording analysed_recording(const Recording& r, const FitOptions& o,
                              const std::vector<Glitch>& glitches);
-// Every k-th row, at most max_rows (the analysis's own copy of a long recording).
-Recording thinned(const Recording& r, std::size_t max_rows);
+// The columns the channels read, each once.
+std::vector<std::string> channel_columns();
 
 }  // namespace planter::analysis

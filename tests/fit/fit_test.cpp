@@ -7,6 +7,7 @@
 #include <random>
 #include <sstream>
 
+#include "sim/analysis/decimation.h"
 #include "sim/analysis/fit_outputs.h"
 #include "sim/analysis/mismatch.h"
 #include "sim/analysis/model_file.h"
@@ -110,7 +111,7 @@ TEST(Analysis, HiddenClampRelaxationIsNamedAndFitted) {
   const std::vector<ModelChannel> model = load_augmented_model(path);
   ASSERT_EQ(model.size(), 1u);
   ASSERT_EQ(model[0].effects.size(), c.final_fit.effects.size());
-  const Recording r = thinned(clamp_recording(0.3, 1.0, 11), quick().max_rows);
+  const Recording r = analysed_recording(clamp_recording(0.3, 1.0, 11), quick(), {});
   std::vector<double> y;
   model[0].channel->simulate(r, model[0].nominal, model[0].effects, y);
   ASSERT_EQ(y.size(), c.final_fit.prediction.size());
@@ -188,4 +189,88 @@ TEST(Analysis, ADelayBetweenGridPointsIsRefined) {
   ASSERT_FALSE(c.final_fit.effect_sd.empty());
   EXPECT_GT(c.final_fit.effect_sd[0][0], 0.0);
   EXPECT_LT(c.final_fit.effect_sd[0][0], 0.005);  // 31.25 ms / 8
+}
+
+// Decimation filters before it thins: a 38 Hz tone on a 100 Hz recording kept 1 row in 3 (33 Hz,
+// whose Nyquist frequency is 16.7 Hz) is removed, not folded down to 4.7 Hz; a 1 Hz signal
+// passes whole and on time (zero phase).
+TEST(Decimation, AFastToneIsRemovedNotAliased) {
+  Recording r;
+  r.file = "synthetic";
+  auto& slow = r.signals["slow"];
+  auto& fast = r.signals["fast"];
+  for (int k = 0; k < 12000; ++k) {
+    const double t = 0.01 * k;
+    r.t.push_back(t);
+    slow.push_back(std::sin(2.0 * M_PI * 1.0 * t));
+    fast.push_back(std::sin(2.0 * M_PI * 38.0 * t));
+  }
+  const Recording d = decimated(r, 3, {"slow", "fast"});
+  ASSERT_EQ(d.size(), 4000u);
+  double fast_rms = 0, slow_error = 0;
+  for (std::size_t k = 100; k + 100 < d.size(); ++k) {
+    fast_rms = std::max(fast_rms, std::abs(d.at("fast")[k]));
+    slow_error = std::max(slow_error, std::abs(d.at("slow")[k] - std::sin(2.0 * M_PI * d.t[k])));
+  }
+  EXPECT_LT(fast_rms, 0.01);    // plain thinning keeps its full amplitude of 1 at 4.7 Hz
+  EXPECT_LT(slow_error, 0.01);  // no lag, no loss
+  // Unfiltered columns are only thinned.
+  const Recording plain = decimated(r, 3, {});
+  EXPECT_DOUBLE_EQ(plain.at("fast")[5], r.at("fast")[15]);
+}
+
+// A vibration above the analysed rate (38 Hz; the analysis keeps 33 Hz) is named at its own
+// frequency from the recording's rate, not at an alias, and with its amplitude.
+TEST(Analysis, AVibrationAboveTheAnalysedRateIsNamedAtItsTrueFrequency) {
+  Recording r = clamp_recording(0.0, 1.0, 7);
+  for (std::size_t k = 0; k < r.size(); ++k)
+    r.signals["clamp_force"][k] += 4.0 * std::sin(2.0 * M_PI * 38.0 * r.t[k] + 0.3);
+  const FitReport rep = analyse(r, quick());
+  ASSERT_EQ(rep.channels.size(), 1u);
+  const ChannelReport& c = rep.channels[0];
+  EXPECT_LT(rep.analysed_up_to_hz, 38.0);
+  EXPECT_TRUE(c.chosen.empty()) << c.chosen[0].effect;  // nothing at an alias frequency
+  ASSERT_EQ(c.fast_tones.size(), 1u) << c.verdict;
+  EXPECT_NEAR(c.fast_tones[0].tone.frequency_hz, 38.0, 0.01);
+  EXPECT_NEAR(c.fast_tones[0].tone.amplitude, 4.0, 0.2);
+  EXPECT_LT(c.fast_tones[0].held_out_rms_after, 0.5 * c.fast_tones[0].held_out_rms_before);
+  EXPECT_EQ(c.verdict, "effect(s) found");
+}
+
+namespace {
+// A disc drive's torque: inertia, viscous damping and dry friction (Coulomb, plus a Stribeck
+// extra near standstill), over a speed that sweeps through zero.
+Recording torque_recording(double coulomb_Nm, double stribeck_Nm, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  Recording r;
+  r.file = "synthetic";
+  auto& w = r.signals["omega"];
+  auto& q = r.signals["disc_torque"];
+  for (int k = 0; k < 12000; ++k) {  // 120 s at 100 Hz
+    const double t = 0.01 * k;
+    const double omega = 0.5 * std::sin(2.0 * M_PI * t / 12.0);
+    const double accel = 0.5 * 2.0 * M_PI / 12.0 * std::cos(2.0 * M_PI * t / 12.0);
+    const double dry = coulomb_Nm + stribeck_Nm * std::exp(-std::pow(omega / 0.05, 2));
+    r.t.push_back(t);
+    w.push_back(omega);
+    q.push_back(0.2 * accel + 1.5 * omega + dry * std::tanh(omega / 1e-4) + noise(rng));
+  }
+  return r;
+}
+}  // namespace
+
+// Parsimony: Coulomb friction alone is named Coulomb friction, not Stribeck friction (which
+// holds it and would fit as well); a real Stribeck extra is named Stribeck.
+TEST(Analysis, CoulombFrictionAloneIsNotNamedStribeck) {
+  const FitReport coulomb = analyse(torque_recording(2.0, 0.0, 1), quick());
+  ASSERT_EQ(coulomb.channels.size(), 1u);
+  ASSERT_FALSE(coulomb.channels[0].chosen.empty()) << coulomb.channels[0].verdict;
+  EXPECT_EQ(coulomb.channels[0].chosen[0].spec->kind, EffectKind::kCoulomb);
+  const FitReport stribeck = analyse(torque_recording(1.0, 2.0, 2), quick());
+  ASSERT_FALSE(stribeck.channels[0].chosen.empty()) << stribeck.channels[0].verdict;
+  EXPECT_EQ(stribeck.channels[0].chosen[0].spec->kind, EffectKind::kStribeck);
+  const Effect& e = stribeck.channels[0].final_fit.effects[0];
+  EXPECT_NEAR(e.values[0], 1.0, 0.2);  // Coulomb level
+  EXPECT_NEAR(e.values[1], 2.0, 0.4);  // the extra at standstill
 }

@@ -86,6 +86,14 @@ run_case pair-relaxation-delay 1.0 \
 run_case pair-offset-vibration 1.0 \
   "clamp_force:sensor offset:offset=8;clamp_force:periodic disturbance (vibration):amplitude=6,frequency_hz=7" \
   "force_offset_N = 8.0" "vibration_hz = 7.0" "vibration_force_N = 6.0"
+# A parameter that changes once, midway (287 s recordings): the clamp stiffens by 40 % (a new
+# seedling batch), the soil's draft grows by half; at two noise levels on the load cell.
+for noise in 0.5 2.0; do
+  run_case "clamp-stiffer-noise-$noise" "$noise" "clamp_force:change:k_c=1.4@143" \
+    "change_at_s = 143.0" "clamp_stiffness_change_pct = 40.0"
+done
+run_case soil-heavier 1.0 "depth_force:change:c_s=1.5@143" \
+  "change_at_s = 143.0" "soil_draft_change_pct = 50.0"
 # Terrain the depth wheel follows is no effect of the library: it must be reported as an
 # unexplained residual on depth_mm, not forced onto a wrong name.
 run_case terrain 1.0 "unexplained:depth_mm" --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|"

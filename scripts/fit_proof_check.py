@@ -34,6 +34,31 @@ def main():
     else:
         for item in expect.split(";"):
             output, name, params = item.split(":")
+            if name == "change":
+                # "change:PARAM=RATIO@T": PARAM's after/before within 20 % of RATIO, the switch
+                # time within 5 % of the recording's length of T, held-out error halved.
+                ch = by_output.get(output)
+                change = ch.get("change") if ch else None
+                if change is None:
+                    problems.append("%s: no change found (%s)" % (output, ch["verdict"] if ch else "not analysed"))
+                    continue
+                param, rest = params.split("=")
+                ratio, at = (float(v) for v in rest.split("@"))
+                moved = {p["name"]: p for p in change["parameters"]}
+                if param not in moved:
+                    problems.append("%s: %s did not change (changed: %s)" % (output, param, ", ".join(moved) or "none"))
+                else:
+                    got = moved[param]["after"] / moved[param]["before"]
+                    if abs(got - ratio) > 0.2 * ratio:
+                        problems.append("%s changed by %.3g, hidden %.3g" % (param, got, ratio))
+                if abs(change["at_s"] - at) > 0.05 * fit["duration_s"]:
+                    problems.append("change at %.1f s, hidden %.1f s" % (change["at_s"], at))
+                before = ch["held_out_rms"]["nominal"]
+                after = ch["held_out_rms"]["augmented"]
+                if before <= 0 or after > 0.5 * before:
+                    problems.append("%s held-out RMS %.4g -> %.4g (less than a 50 %% drop)" % (output, before, after))
+                found.append("%s:change" % output)
+                continue
             ch = by_output.get(output)
             if ch is None:
                 problems.append("%s not analysed" % output)

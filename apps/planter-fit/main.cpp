@@ -52,6 +52,20 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
       }
       std::printf("\n");
     }
+    if (c.change) {
+      std::printf("    a parameter changed at t = %.1f +- %.1f s:", c.change->at_s,
+                  c.change->at_sd_s);
+      for (const auto& m : c.change->changed)
+        std::printf("%s%s %.4g -> %.4g",
+                    &m == &c.change->changed.front() ? " "
+                    : c.change->tied                 ? ", or "
+                                                     : ", ",
+                    m.name.c_str(), m.before, m.after);
+      if (c.change->tied)
+        std::printf(" (this recording cannot tell which: a sweep of %s over its range would)",
+                    c.channel->input().c_str());
+      std::printf("\n");
+    }
     for (const auto& f : c.fast_tones) {
       std::printf(
           "    periodic disturbance (vibration) above the analysed %.3g Hz: frequency_hz = "

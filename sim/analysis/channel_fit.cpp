@@ -147,7 +147,50 @@ double robust_scale(const std::vector<double>& pred, const std::vector<double>& 
   return std::max(1e-9, 1.4826 * a[a.size() / 2]);
 }
 
+// Standard deviations back to their owners (a grid parameter: its resolution, not a fit), the
+// prediction, its errors and the parameter count.
+void finish(const ChannelModel& ch, const Recording& r, const Split& split,
+            const std::vector<double>& sd, double resolution, ChannelFit& fit) {
+  const std::vector<double>& y = r.at(ch.output());
+  std::size_t k = 0;
+  fit.nominal_sd.assign(fit.nominal.size(), 0.0);
+  for (auto& v : fit.nominal_sd) v = sd.size() > k ? sd[k++] : 0.0;
+  fit.effect_sd.clear();
+  for (const auto& e : fit.effects) {
+    std::vector<double> s;
+    for (const auto& p : e.spec->params)
+      s.push_back(p.grid ? resolution : (sd.size() > k ? sd[k++] : 0.0));
+    fit.effect_sd.push_back(s);
+  }
+  ch.simulate(r, fit.nominal, fit.effects, fit.prediction);
+  fit.rms_calibration = rms(fit.prediction, y, 0, split.calibration_end);
+  fit.rms_held_out = rms(fit.prediction, y, split.calibration_end, y.size());
+  fit.parameters = static_cast<int>(fit.nominal.size());
+  for (const auto& e : fit.effects) fit.parameters += static_cast<int>(e.values.size());
+}
+
 }  // namespace
+
+std::size_t fitted_rows(const Split& split) { return rows(split).size(); }
+
+ChannelFit refit(const ChannelModel& ch, const Recording& r, const Split& split,
+                 const ChannelFit& fit, double* rss) {
+  ChannelFit out;
+  out.nominal = fit.nominal;
+  out.effects = fit.effects;
+  const double huber = 3.0 * robust_scale(fit.prediction, r.at(ch.output()), split.calibration_end);
+  std::vector<double> sd;
+  const double sum = solve(ch, r, split, out.nominal, out.effects, huber, &sd);
+  if (rss) *rss = sum;
+  // A grid parameter keeps the resolution the original fit reached.
+  double resolution = 0.0;
+  for (std::size_t e = 0; e < fit.effects.size() && e < fit.effect_sd.size(); ++e)
+    for (std::size_t k = 0; k < fit.effects[e].values.size(); ++k)
+      if (fit.effects[e].spec->params[k].grid) resolution = fit.effect_sd[e][k];
+  finish(ch, r, split, sd, resolution, out);
+  out.bic = fit.bic;
+  return out;
+}
 
 double signal_span(const std::vector<double>& v) {
   if (v.empty()) return 0.0;
@@ -252,21 +295,7 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
   fit.effects = best_effects;
   std::vector<double> sd;
   const double rss = solve(ch, r, split, fit.nominal, fit.effects, huber, &sd);
-  // Standard deviations back to their owners (a grid parameter: its resolution, not a fit).
-  std::size_t k = 0;
-  fit.nominal_sd.assign(fit.nominal.size(), 0.0);
-  for (auto& v : fit.nominal_sd) v = sd.size() > k ? sd[k++] : 0.0;
-  for (const auto& e : fit.effects) {
-    std::vector<double> s;
-    for (const auto& p : e.spec->params)
-      s.push_back(p.grid ? resolution : (sd.size() > k ? sd[k++] : 0.0));
-    fit.effect_sd.push_back(s);
-  }
-  ch.simulate(r, fit.nominal, fit.effects, fit.prediction);
-  fit.rms_calibration = rms(fit.prediction, y, 0, split.calibration_end);
-  fit.rms_held_out = rms(fit.prediction, y, split.calibration_end, y.size());
-  fit.parameters = static_cast<int>(fit.nominal.size());
-  for (const auto& e : fit.effects) fit.parameters += static_cast<int>(e.values.size());
+  finish(ch, r, split, sd, resolution, fit);
   const double n = static_cast<double>(rows(split).size());
   fit.bic = n * std::log(std::max(rss, 1e-300) / n) + fit.parameters * std::log(n);
   return fit;

@@ -30,6 +30,14 @@ struct ChannelFit {
 ChannelFit fit_channel(const ChannelModel& channel, const Recording& r, const Split& split,
                        const std::vector<double>& nominal_start, std::vector<Effect> effects);
 
+// `fit` refitted on the calibration rows `split` keeps (a fold left out), from its own values,
+// the grid parameters kept; with standard deviations, the prediction over all samples and its
+// RMS on the held-out part. `rss` (if given) gets the RSS over the fitted rows.
+ChannelFit refit(const ChannelModel& channel, const Recording& r, const Split& split,
+                 const ChannelFit& fit, double* rss = nullptr);
+// How many calibration rows a fit on `split` compares (the n of its BIC).
+std::size_t fitted_rows(const Split& split);
+
 // The fit refitted with a fold left out (split.fold_from..fold_to), starting from `fit`, the
 // grid parameters kept; returns the RMS error it then makes on the fold.
 double fold_rms(const ChannelModel& channel, const Recording& r, const Split& split,

@@ -10,7 +10,7 @@
 namespace planter::analysis {
 
 // The low-pass cut-off as a share of the decimated Nyquist frequency.
-inline constexpr double kAntiAliasCutoffShare = 0.6;
+inline constexpr double kAntiAliasCutoffShare = 0.8;
 
 // A fourth-order Butterworth low-pass run forwards and backwards (zero phase, eighth-order
 // magnitude; Oppenheim & Schafer, "Discrete-Time Signal Processing", 3rd ed., sec. 7.3 for the

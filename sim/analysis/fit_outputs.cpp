@@ -113,6 +113,21 @@ std::string fit_json(const FitReport& r, double wall_s) {
       ch["effects"].push_back(fast_tone_json(f, *c.channel, r.analysed_up_to_hz));
     ch["augmented_nominal"] = params_json(c.channel->nominal_params(), c.final_fit.nominal,
                                           c.final_fit.nominal_sd, *c.channel);
+    if (c.change) {
+      nlohmann::json moved = nlohmann::json::array();
+      for (const auto& m : c.change->changed)
+        moved.push_back({{"name", m.name},
+                         {"unit", concrete_unit(m.unit, *c.channel)},
+                         {"before", m.before},
+                         {"before_sd", m.before_sd},
+                         {"after", m.after},
+                         {"after_sd", m.after_sd}});
+      ch["change"] = {{"at_s", c.change->at_s},
+                      {"at_sd_s", c.change->at_sd_s},
+                      {"delta_bic", c.change->delta_bic},
+                      {"tied", c.change->tied},
+                      {"parameters", moved}};
+    }
     ch["ties"] = nlohmann::json::array();
     for (const auto& tie : c.ties)
       ch["ties"].push_back({{"chosen", tie.chosen},
@@ -157,6 +172,9 @@ std::string fit_model_toml(const FitReport& r) {
     const auto specs = c.channel->nominal_params();
     for (std::size_t k = 0; k < specs.size(); ++k)
       s << model_key(specs[k].name) << " = " << c.final_fit.nominal[k] << "\n";
+    if (c.change)
+      s << "# changed at t = " << c.change->at_s
+        << " s: the values below are those after the change (fit.json has both sides)\n";
     std::vector<Effect> effects = c.final_fit.effects;
     // The strongest tone found above the analysed rate, when the fit has no periodic effect of
     // its own (a channel takes one of each).
@@ -220,6 +238,20 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
       for (std::size_t k = 0; k < e.values.size(); ++k)
         h << " " << e.spec->params[k].name << " = " << e.values[k];
       h << "</p>";
+    }
+    if (c.change) {
+      h << "<p><b>a parameter changed at t = " << c.change->at_s << " &plusmn; "
+        << c.change->at_sd_s << " s</b>:";
+      for (const auto& m : c.change->changed)
+        h << (&m == &c.change->changed.front() ? " "
+              : c.change->tied                 ? ", or "
+                                               : ", ")
+          << m.name << " " << m.before << " &rarr; " << m.after << " "
+          << report::html_escape(concrete_unit(m.unit, *c.channel));
+      if (c.change->tied)
+        h << " (this recording cannot tell which: a sweep of " << c.channel->input()
+          << " over its range would)";
+      h << ".</p>";
     }
     for (const auto& f : c.fast_tones)
       h << "<p><b>periodic disturbance (vibration) above the analysed " << r.analysed_up_to_hz

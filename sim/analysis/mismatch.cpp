@@ -285,14 +285,43 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   // The noise is re-estimated under the final model: what it now explains is not noise.
   rep.noise_rms = std::min(
       rep.noise_rms, noise_rms(residual_of(rep.final_fit.prediction, y), split.calibration_end));
-  const double left = rep.final_fit.rms_held_out;
   double mean_square = 0;
   const std::size_t from = split.calibration_end, n = y.size() - from;
   for (std::size_t k = from; k < y.size(); ++k) mean_square += y[k] * y[k] / static_cast<double>(n);
-  rep.unexplained = left > 3.0 * std::max(rep.noise_rms, 1e-12) &&
-                    rep.location.whiteness_violations > 0.5 &&
-                    left > o.min_unexplained_share * std::sqrt(mean_square);
-  if (rep.chosen.empty())
+  auto unexplained = [&] {
+    const double left = rep.final_fit.rms_held_out;
+    return left > 3.0 * std::max(rep.noise_rms, 1e-12) && rep.location.whiteness_violations > 0.5 &&
+           left > o.min_unexplained_share * std::sqrt(mean_square);
+  };
+  rep.unexplained = unexplained();
+  // What is left may be one parameter that changed during the recording.
+  if (rep.unexplained) {
+    if (std::optional<ChangePoint> cp =
+            find_change_point(ch, r, split, rep.final_fit, rep.noise_rms)) {
+      const double noise2 = rep.noise_rms * rep.noise_rms;
+      const double before2 = rep.final_fit.rms_calibration * rep.final_fit.rms_calibration;
+      const double after2 = cp->rms_calibration * cp->rms_calibration;
+      const double explained = before2 > noise2 ? (before2 - after2) / (before2 - noise2) : 0.0;
+      const double held_out_gain = rep.final_fit.rms_held_out > 0
+                                       ? 1.0 - cp->rms_held_out / rep.final_fit.rms_held_out
+                                       : 0.0;
+      if (cp->delta_bic < -o.min_delta_bic && explained >= o.min_explained &&
+          held_out_gain >= o.min_improvement && !cp->changed.empty()) {
+        rep.final_fit.nominal = cp->after.nominal;
+        rep.final_fit.nominal_sd = cp->after.nominal_sd;
+        rep.final_fit.effects = cp->after.effects;
+        rep.final_fit.effect_sd = cp->after.effect_sd;
+        rep.final_fit.prediction = cp->prediction;
+        rep.final_fit.rms_calibration = cp->rms_calibration;
+        rep.final_fit.rms_held_out = cp->rms_held_out;
+        rep.change = std::move(cp);
+        rep.noise_rms = std::min(rep.noise_rms, noise_rms(residual_of(rep.final_fit.prediction, y),
+                                                          split.calibration_end));
+        rep.unexplained = unexplained();
+      }
+    }
+  }
+  if (rep.chosen.empty() && !rep.change)
     rep.verdict = rep.unexplained ? "unexplained residual" : "no significant mismatch";
   else
     rep.verdict =
@@ -376,7 +405,7 @@ FitReport analyse(const Recording& full, const FitOptions& o) {
       c.channel->simulate(at_rate, c.final_fit.nominal, c.final_fit.effects, pred);
       const std::vector<double> e = residual_of(pred, at_rate.at(c.channel->output()));
       c.fast_tones = find_fast_tones(at_rate.t, e, rep.analysed_up_to_hz, held_out);
-      if (!c.fast_tones.empty() && c.chosen.empty())
+      if (!c.fast_tones.empty() && c.chosen.empty() && !c.change)
         c.verdict =
             c.unexplained ? "effect(s) found; a residual is still unexplained" : "effect(s) found";
     }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/analysis/change_points.h"
 #include "sim/analysis/channel_fit.h"
 #include "sim/analysis/glitches.h"
 #include "sim/analysis/model_file.h"
@@ -58,6 +59,10 @@ struct ChannelReport {
   std::vector<Tie> ties;          // near ties with what was chosen
   // Vibration above the analysed rate, found in the final residual at the recording's own rate.
   std::vector<FastTone> fast_tones;
+  // A parameter that changed once, when the fit without it leaves a structured residual and the
+  // change earns its parameters by the same rules as an effect. The final fit then holds the
+  // values after the change.
+  std::optional<ChangePoint> change;
   ChannelFit final_fit;
   std::string verdict;  // "no significant mismatch", "effect(s) found", "unexplained residual"
   bool unexplained = false;

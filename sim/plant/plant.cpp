@@ -48,8 +48,8 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   // Ground and soil wheel.
   const double x_before = ground_.x_m();
   ground_.step(t, dt);
-  const double draft = cfg_.soil.draft_coeff * ground_.v_mps() *
-                       std::pow(std::max(0.0, depth_.position_mm()) * 1e-3, 2.0);
+  const double draft = cfg_.soil.draft_coeff * fx.changed(fx.soil_draft_change_pct, t) *
+                       ground_.v_mps() * std::pow(std::max(0.0, depth_.position_mm()) * 1e-3, 2.0);
   const double slip_pct = cfg_.soil.slip_mean_pct +
                           cfg_.soil.slip_variation_pct * std::sin(kTwoPi * ground_.x_m() / 3.7) +
                           fx.slip_per_kN * draft * 1e-3;
@@ -71,8 +71,8 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   dev.roller.set_actual(std::llround(raw_of(board_, "clamp_pos_mm", roller_.position_mm())), 0, 0);
   const double compression =
       roller_.position_mm() + seedlings_.nip_thickness_mm(t) - cfg_.drive.clamp_x0_mm;
-  const double elastic =
-      cfg_.drive.clamp_k_N * std::pow(std::max(0.0, compression), cfg_.drive.clamp_n);
+  const double elastic = cfg_.drive.clamp_k_N * fx.changed(fx.clamp_stiffness_change_pct, t) *
+                         std::pow(std::max(0.0, compression), cfg_.drive.clamp_n);
   // Viscoelastic relaxation: a Maxwell branch takes a share of the load over tau.
   if (fx.clamp_relaxation_frac > 0.0) {
     relaxation_N_ +=

@@ -97,6 +97,14 @@ struct Effects {
   double force_offset_N = 0.0;  // load-cell offset
   double force_gain_pct = 0.0;  // load-cell span error
   double force_drift_N_per_min = 0.0;
+  // A parameter that changes once, at a time (a new seedling batch, a wetter field): from
+  // change_at_s on, the clamp's stiffness and the soil's draft are scaled by these shares.
+  double change_at_s = 0.0;
+  double clamp_stiffness_change_pct = 0.0;
+  double soil_draft_change_pct = 0.0;
+  [[nodiscard]] double changed(double pct, double t_s) const {
+    return t_s >= change_at_s ? 1.0 + 0.01 * pct : 1.0;
+  }
 };
 
 struct FaultEvents {

@@ -159,6 +159,9 @@ Scenario load_scenario(const std::string& path) {
     // An asymmetric band: the width for reverse set-points (absent: the same as forward).
     if (t->has("disc_deadzone_neg_radps"))
       e.disc_deadzone_neg_radps = t->number("disc_deadzone_neg_radps", 0.0, 0.0, 1.0, "rad/s");
+    e.change_at_s = t->number("change_at_s", 0.0, 0.0, 1e6, "s");
+    e.clamp_stiffness_change_pct = t->number("clamp_stiffness_change_pct", 0.0, -90.0, 500.0, "%");
+    e.soil_draft_change_pct = t->number("soil_draft_change_pct", 0.0, -90.0, 500.0, "%");
     t->reject_unknown_keys();
   }
   if (auto t = root.table("controller")) {

@@ -29,7 +29,9 @@ int error_line(const std::string& text, const std::string& expect) {
 
 // A clamp run: the roller steps between positions; the force follows the nominal law
 // (k 12 N/mm^1.3 above x0 = 1 mm), optionally relaxing, plus sensor noise.
-Recording clamp_recording(double relax_fraction, double noise_N, unsigned seed) {
+// From `stiffer_at_s` on, the clamp is 40 % stiffer (a new seedling batch).
+Recording clamp_recording(double relax_fraction, double noise_N, unsigned seed,
+                          double stiffer_at_s = 1e9) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, noise_N);
   std::uniform_real_distribution<double> level(3.0, 9.0);
@@ -41,7 +43,8 @@ Recording clamp_recording(double relax_fraction, double noise_N, unsigned seed) 
   for (int k = 0; k < 18000; ++k) {  // 180 s at 100 Hz
     const double t = 0.01 * k;
     if (k % 800 == 0) pos = level(rng);
-    const double elastic = 12.0 * std::pow(std::max(0.0, pos - 1.0), 1.3);
+    const double k_c = t >= stiffer_at_s ? 1.4 * 12.0 : 12.0;
+    const double elastic = k_c * std::pow(std::max(0.0, pos - 1.0), 1.3);
     relaxed += (relax_fraction * elastic - relaxed) * 0.01 / 3.0;
     r.t.push_back(t);
     x.push_back(pos);
@@ -273,4 +276,23 @@ TEST(Analysis, CoulombFrictionAloneIsNotNamedStribeck) {
   const Effect& e = stribeck.channels[0].final_fit.effects[0];
   EXPECT_NEAR(e.values[0], 1.0, 0.2);  // Coulomb level
   EXPECT_NEAR(e.values[1], 2.0, 0.4);  // the extra at standstill
+}
+
+// A parameter that changes once: the clamp stiffens by 40 % at 90 s of 180. The change is found
+// within 5 % of the recording's length, and named: the stiffness, with its values either side.
+TEST(Analysis, AStiffnessThatChangesOnceIsNamedWithItsTime) {
+  const FitReport rep = analyse(clamp_recording(0.0, 1.0, 13, 90.0), quick());
+  ASSERT_EQ(rep.channels.size(), 1u);
+  const ChannelReport& c = rep.channels[0];
+  ASSERT_TRUE(c.change.has_value()) << c.verdict;
+  EXPECT_NEAR(c.change->at_s, 90.0, 9.0);
+  EXPECT_GT(c.change->at_sd_s, 0.0);
+  ASSERT_FALSE(c.change->changed.empty());
+  EXPECT_EQ(c.change->changed[0].name, "k_c");
+  EXPECT_FALSE(c.change->tied);  // the roller moves over 3-9 mm: stiffness and contact differ
+  EXPECT_NEAR(c.change->changed[0].after / c.change->changed[0].before, 1.4, 0.28);
+  EXPECT_LT(c.final_fit.rms_held_out, 0.5 * c.nominal.rms_held_out);
+  // A recording without the change has none.
+  const FitReport clean = analyse(clamp_recording(0.0, 1.0, 13), quick());
+  EXPECT_FALSE(clean.channels[0].change.has_value());
 }

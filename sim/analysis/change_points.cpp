@@ -2,18 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
+
+#include "sim/analysis/residual_stats.h"
 
 namespace planter::analysis {
 namespace {
-
-double rms_between(const std::vector<double>& a, const std::vector<double>& b, std::size_t from,
-                   std::size_t to) {
-  double s = 0;
-  for (std::size_t k = from; k < to; ++k) s += (a[k] - b[k]) * (a[k] - b[k]);
-  return to > from ? std::sqrt(s / static_cast<double>(to - from)) : 0.0;
-}
 
 struct Side {
   ChannelFit fit;

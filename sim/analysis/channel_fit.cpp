@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "sim/analysis/residual_stats.h"
+
 namespace planter::analysis {
 namespace {
 
@@ -62,13 +64,6 @@ struct SimulationError {
     return true;
   }
 };
-
-double rms(const std::vector<double>& a, const std::vector<double>& b, std::size_t from,
-           std::size_t to) {
-  double s = 0;
-  for (std::size_t k = from; k < to; ++k) s += (a[k] - b[k]) * (a[k] - b[k]);
-  return to > from ? std::sqrt(s / static_cast<double>(to - from)) : 0.0;
-}
 
 // Solves the smooth parameters with the grid ones fixed; returns the calibration RSS.
 double solve(const ChannelModel& ch, const Recording& r, const Split& split,
@@ -163,8 +158,8 @@ void finish(const ChannelModel& ch, const Recording& r, const Split& split,
     fit.effect_sd.push_back(s);
   }
   ch.simulate(r, fit.nominal, fit.effects, fit.prediction);
-  fit.rms_calibration = rms(fit.prediction, y, 0, split.calibration_end);
-  fit.rms_held_out = rms(fit.prediction, y, split.calibration_end, y.size());
+  fit.rms_calibration = rms_between(fit.prediction, y, 0, split.calibration_end);
+  fit.rms_held_out = rms_between(fit.prediction, y, split.calibration_end, y.size());
   fit.parameters = static_cast<int>(fit.nominal.size());
   for (const auto& e : fit.effects) fit.parameters += static_cast<int>(e.values.size());
 }
@@ -310,7 +305,7 @@ double fold_rms(const ChannelModel& ch, const Recording& r, const Split& split,
   solve(ch, r, split, nominal, effects, huber, nullptr);
   std::vector<double> pred;
   ch.simulate(r, nominal, effects, pred);
-  return rms(pred, y, split.fold_from, split.fold_to);
+  return rms_between(pred, y, split.fold_from, split.fold_to);
 }
 
 }  // namespace planter::analysis

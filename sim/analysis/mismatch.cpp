@@ -7,6 +7,7 @@
 
 #include "sim/analysis/decimation.h"
 #include "sim/analysis/model_file.h"
+#include "sim/analysis/residual_stats.h"
 
 namespace planter::analysis {
 namespace {
@@ -41,17 +42,6 @@ double correlation(const std::vector<double>& a, const std::vector<double>& b, s
     sbb += z * z;
   }
   return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
-}
-
-double noise_rms(const std::vector<double>& y, std::size_t end) {
-  double s = 0;
-  std::size_t n = 0;
-  for (std::size_t k = 2; k < end; ++k) {
-    const double d2 = y[k] - 2.0 * y[k - 1] + y[k - 2];
-    s += d2 * d2;
-    ++n;
-  }
-  return n > 0 ? std::sqrt(s / static_cast<double>(n) / 6.0) : 0.0;
 }
 
 Location locate(const ChannelModel& ch, const Recording& r, const std::vector<double>& e,
@@ -149,7 +139,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   ChannelReport rep;
   rep.channel = &ch;
   const std::vector<double>& y = r.at(ch.output());
-  rep.noise_rms = noise_rms(y, split.calibration_end);
+  rep.noise_rms = white_noise_rms(y, split.calibration_end);
   // A model given with --model: its values start the fit and its effects are already known;
   // the search is for what is missing beyond them.
   const ModelChannel* given = nullptr;
@@ -201,7 +191,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     const std::vector<double> base_e = residual_of(base.prediction, y);
     // The noise under this base: from its residual, so that an effect already modelled (a
     // vibration near the thinned Nyquist rate) no longer counts as noise.
-    const double noise = std::min(rep.noise_rms, noise_rms(base_e, split.calibration_end));
+    const double noise = std::min(rep.noise_rms, white_noise_rms(base_e, split.calibration_end));
     const std::vector<double> base_fold_errors = fold_errors(base, noise);
     for (const EffectSpec* spec : ch.candidates(r)) {
       // Not twice, and not beside an effect it holds or that holds it (Stribeck and Coulomb).
@@ -283,8 +273,8 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   // of its RMS (below that it is a numerical detail of the model, not physics to act on).
   // Its size, not its spread: a stop in the held-out part must not hide a residual.
   // The noise is re-estimated under the final model: what it now explains is not noise.
-  rep.noise_rms = std::min(
-      rep.noise_rms, noise_rms(residual_of(rep.final_fit.prediction, y), split.calibration_end));
+  rep.noise_rms = std::min(rep.noise_rms, white_noise_rms(residual_of(rep.final_fit.prediction, y),
+                                                          split.calibration_end));
   double mean_square = 0;
   const std::size_t from = split.calibration_end, n = y.size() - from;
   for (std::size_t k = from; k < y.size(); ++k) mean_square += y[k] * y[k] / static_cast<double>(n);
@@ -315,8 +305,9 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
         rep.final_fit.rms_calibration = cp->rms_calibration;
         rep.final_fit.rms_held_out = cp->rms_held_out;
         rep.change = std::move(cp);
-        rep.noise_rms = std::min(rep.noise_rms, noise_rms(residual_of(rep.final_fit.prediction, y),
-                                                          split.calibration_end));
+        rep.noise_rms = std::min(
+            rep.noise_rms,
+            white_noise_rms(residual_of(rep.final_fit.prediction, y), split.calibration_end));
         rep.unexplained = unexplained();
       }
     }

@@ -5,28 +5,12 @@
 #include <complex>
 #include <unsupported/Eigen/FFT>
 
+#include "sim/analysis/residual_stats.h"
+
 namespace planter::analysis {
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
-
-double rms_between(const std::vector<double>& e, std::size_t from, std::size_t to) {
-  double s = 0;
-  for (std::size_t k = from; k < to; ++k) s += e[k] * e[k];
-  return to > from ? std::sqrt(s / static_cast<double>(to - from)) : 0.0;
-}
-
-// White noise from second differences (a slow tone or trend hardly changes them).
-double second_difference_noise(const std::vector<double>& e, std::size_t end) {
-  double s = 0;
-  std::size_t n = 0;
-  for (std::size_t k = 2; k < end; ++k) {
-    const double d2 = e[k] - 2.0 * e[k - 1] + e[k - 2];
-    s += d2 * d2;
-    ++n;
-  }
-  return n > 0 ? std::sqrt(s / static_cast<double>(n) / 6.0) : 0.0;
-}
 
 void subtract(const std::vector<double>& t, const Tone& tone, std::vector<double>& e) {
   // The tone matches -residual: adding it to the prediction removes it from the residual.
@@ -123,7 +107,7 @@ std::vector<FastTone> find_fast_tones(const std::vector<double>& t,
     found.push_back(ft);
   }
   // Only tones at least as large as the white noise left: smaller ones are no physics to act on.
-  const double noise = second_difference_noise(e, end);
+  const double noise = white_noise_rms(e, end);
   std::erase_if(found, [&](const FastTone& f) { return f.tone.amplitude < noise; });
   if (found.empty()) return found;
   double fundamental = found[0].tone.frequency_hz;

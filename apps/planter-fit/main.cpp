@@ -10,6 +10,7 @@
 
 #include "config/config_error.h"
 #include "config/output_set.h"
+#include "sim/analysis/day_tracks.h"
 #include "sim/analysis/fit_outputs.h"
 #include "sim/analysis/model_file.h"
 
@@ -23,11 +24,19 @@ int fail(int code, const std::string& message) {
 }
 
 void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
+  if (r.day)
+    std::printf(
+        "recording: %s, %zu rows, %.1f s: the first %zu rows searched, the model then tracked "
+        "across %zu windows\n",
+        r.file.c_str(), r.day->rows, r.day->duration_s, r.rows, r.day->windows);
+  if (r.day && r.day->untracked_rows > 0)
+    std::printf("the last %zu rows are under a quarter window: not tracked\n",
+                r.day->untracked_rows);
   std::printf(
-      "recording: %s, %zu rows at %.4g Hz (%zu analysed, up to %.3g Hz), %.1f s (held out from "
+      "%s: %s, %zu rows at %.4g Hz (%zu analysed, up to %.3g Hz), %.1f s (held out from "
       "%.1f s)\n",
-      r.file.c_str(), r.rows, r.rate_hz, r.analysed_rows, r.analysed_up_to_hz, r.duration_s,
-      r.held_out_from_s);
+      r.day ? "first window" : "recording", r.file.c_str(), r.rows, r.rate_hz, r.analysed_rows,
+      r.analysed_up_to_hz, r.duration_s, r.held_out_from_s);
   for (const auto& u : r.unobservable) std::printf("not observable: %s\n", u.c_str());
   if (!r.glitches.empty()) {
     std::printf("excluded %zu single-sample glitch(es), replaced by their neighbours' mean:",
@@ -80,6 +89,11 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
           "    %s or %s: this recording cannot separate them (BIC %+.1f); to tell them "
           "apart, record %s\n",
           tie.chosen.c_str(), tie.alternative.c_str(), tie.delta_bic, tie.experiment.c_str());
+    if (r.day) {
+      const ChannelDay& d = r.day->channels[static_cast<std::size_t>(&c - r.channels.data())];
+      std::printf("    across %zu windows of %.0f s: %s\n", r.day->windows, r.day->window_s,
+                  d.verdict.c_str());
+    }
     if (c.unexplained) {
       std::printf(
           "    unexplained: worst window at %.0f s (%.1fx), input correlation %.2f, "
@@ -119,12 +133,18 @@ int main(int argc, char** argv) {
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();
-    const Recording rec = load_recording(file);
-    planter::config::OutputSet outputs(out, "planter-fit", force);  // refuses before the work
     FitOptions o;
     o.jobs = jobs;
+    // The first window (the whole of a shorter recording) is read and analysed; the rest of a
+    // longer one is read a window at a time and the model tracked across it.
+    RecordingReader reader(file);
+    Recording rec;
+    reader.read(rec, o.window_rows);
+    reader.require_rows(rec, 50);
+    planter::config::OutputSet outputs(out, "planter-fit", force);  // refuses before the work
     if (!model.empty()) o.start_model = load_augmented_model(model);
-    const FitReport rep = analyse(rec, o);
+    FitReport rep = analyse(rec, o);
+    if (reader.more()) rep.day = track_day(reader, rec, rep, o);
     const Recording analysed = analysed_recording(rec, o, rep.glitches);
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

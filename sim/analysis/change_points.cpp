@@ -28,25 +28,7 @@ std::pair<Side, Side> split_at(const ChannelModel& ch, const Recording& r, const
   return {b, a};
 }
 
-// Every fitted parameter of a fit, named, with its value and standard deviation.
-struct Named {
-  std::string name, unit;
-  double value, sd;
-};
-std::vector<Named> named(const ChannelModel& ch, const ChannelFit& f) {
-  std::vector<Named> out;
-  const auto specs = ch.nominal_params();
-  for (std::size_t k = 0; k < specs.size(); ++k)
-    out.push_back({specs[k].name, specs[k].unit, f.nominal[k], f.nominal_sd[k]});
-  for (std::size_t e = 0; e < f.effects.size(); ++e)
-    for (std::size_t k = 0; k < f.effects[e].values.size(); ++k) {
-      const ParamSpec& p = f.effects[e].spec->params[k];
-      if (!p.grid) out.push_back({p.name, p.unit, f.effects[e].values[k], f.effect_sd[e][k]});
-    }
-  return out;
-}
-
-// A pointer to every fitted (non-grid) parameter of a fit, in the order of named().
+// A pointer to every fitted (non-grid) parameter of a fit, in the order of fitted_values().
 std::vector<double*> slots(ChannelFit& f) {
   std::vector<double*> out;
   for (auto& v : f.nominal) out.push_back(&v);
@@ -178,7 +160,7 @@ std::optional<ChangePoint> find_change_point(const ChannelModel& ch, const Recor
     const Single& one = singles[0];
     ChannelFit after = cp.before;
     *slots(after)[one.index] = one.value;
-    const std::vector<Named> nb = named(ch, cp.before);
+    const std::vector<FittedValue> nb = fitted_values(ch, cp.before);
     const double rss_noise = noise_rms * noise_rms * static_cast<double>(end - best);
     const double left = std::max(one.rss - rss_noise, 0.1 * rss_noise);
     for (const Single& s : singles)
@@ -197,7 +179,8 @@ std::optional<ChangePoint> find_change_point(const ChannelModel& ch, const Recor
   if (!cp.changed.empty()) return cp;
   // Otherwise the parameters that moved: by more than five standard deviations of the
   // difference and by more than 5 % of their size.
-  const std::vector<Named> nb = named(ch, cp.before), na = named(ch, cp.after);
+  const std::vector<FittedValue> nb = fitted_values(ch, cp.before),
+                                 na = fitted_values(ch, cp.after);
   std::vector<std::pair<double, ParameterChange>> moved;
   for (std::size_t k = 0; k < nb.size() && k < na.size(); ++k) {
     const double diff = std::abs(na[k].value - nb[k].value);

@@ -168,6 +168,22 @@ void finish(const ChannelModel& ch, const Recording& r, const Split& split,
 
 std::size_t fitted_rows(const Split& split) { return rows(split).size(); }
 
+std::vector<FittedValue> fitted_values(const ChannelModel& ch, const ChannelFit& f) {
+  std::vector<FittedValue> out;
+  const auto specs = ch.nominal_params();
+  for (std::size_t k = 0; k < specs.size(); ++k)
+    out.push_back({specs[k].name, specs[k].unit, f.nominal[k],
+                   k < f.nominal_sd.size() ? f.nominal_sd[k] : 0.0});
+  for (std::size_t e = 0; e < f.effects.size(); ++e)
+    for (std::size_t k = 0; k < f.effects[e].values.size(); ++k) {
+      const ParamSpec& p = f.effects[e].spec->params[k];
+      if (!p.grid)
+        out.push_back({p.name, p.unit, f.effects[e].values[k],
+                       e < f.effect_sd.size() ? f.effect_sd[e][k] : 0.0});
+    }
+  return out;
+}
+
 ChannelFit refit(const ChannelModel& ch, const Recording& r, const Split& split,
                  const ChannelFit& fit, double* rss) {
   ChannelFit out;

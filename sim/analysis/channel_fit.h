@@ -2,6 +2,7 @@
 // Fits a channel's nominal parameters, with or without candidate effects, in simulation
 // (free-run) error form: Ceres with bounds and a Huber loss on the calibration part; the
 // non-smooth parameters (a delay, a gap, a width, a step) on a grid around the solver.
+#include <string>
 #include <vector>
 
 #include "sim/analysis/channel_model.h"
@@ -35,6 +36,16 @@ ChannelFit fit_channel(const ChannelModel& channel, const Recording& r, const Sp
 // RMS on the held-out part. `rss` (if given) gets the RSS over the fitted rows.
 ChannelFit refit(const ChannelModel& channel, const Recording& r, const Split& split,
                  const ChannelFit& fit, double* rss = nullptr);
+// Every fitted (non-grid) parameter of a fit, named, in a fixed order: the nominal ones, then
+// each effect's.
+struct FittedValue {
+  std::string name;
+  std::string unit;
+  double value = 0.0;
+  double sd = 0.0;
+};
+std::vector<FittedValue> fitted_values(const ChannelModel& channel, const ChannelFit& fit);
+
 // How many calibration rows a fit on `split` compares (the n of its BIC).
 std::size_t fitted_rows(const Split& split);
 

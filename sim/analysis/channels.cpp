@@ -162,8 +162,12 @@ class ClampChannel : public ChannelModel {
                 std::vector<double>& y) const override {
     const std::vector<double> x = transform_input(r, r.at("clamp_pos_mm"), fx);
     y.resize(x.size());
-    for (std::size_t k = 0; k < x.size(); ++k)
-      y[k] = p[0] * std::pow(std::max(0.0, x[k] - p[1]), p[2]);
+    // k (x - x0)^n as k exp(n ln(x - x0)): the fits evaluate it millions of times, and the
+    // general pow() is twice as slow for the same result here (x - x0 > 0, n in 0.9-2.5).
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      const double d = x[k] - p[1];
+      y[k] = d > 0.0 ? p[0] * std::exp(p[2] * std::log(d)) : 0.0;
+    }
     apply_output(r, fx, nullptr, nullptr, y);
   }
 };

@@ -84,6 +84,12 @@ std::string fit_json(const FitReport& r, double wall_s) {
   j["duration_s"] = r.duration_s;
   j["held_out_from_s"] = r.held_out_from_s;
   j["rate_hz"] = r.rate_hz;
+  if (r.day)
+    j["windows"] = {{"count", r.day->windows},
+                    {"window_s", r.day->window_s},
+                    {"rows", r.day->rows},
+                    {"untracked_rows", r.day->untracked_rows},
+                    {"duration_s", r.day->duration_s}};
   j["analysed_rows"] = r.analysed_rows;
   j["analysed_up_to_hz"] = r.analysed_up_to_hz;
   j["wall_s"] = wall_s;
@@ -127,6 +133,24 @@ std::string fit_json(const FitReport& r, double wall_s) {
                       {"delta_bic", c.change->delta_bic},
                       {"tied", c.change->tied},
                       {"parameters", moved}};
+    }
+    if (r.day) {
+      const ChannelDay& d = r.day->channels[static_cast<std::size_t>(&c - r.channels.data())];
+      nlohmann::json tracks = nlohmann::json::array();
+      for (const Track& t : d.tracks) {
+        nlohmann::json tj{{"name", t.name},       {"unit", concrete_unit(t.unit, *c.channel)},
+                          {"verdict", t.verdict}, {"t_s", t.t_s},
+                          {"value", t.value},     {"sd", t.sd}};
+        if (t.verdict == "drifting") tj["slope_per_h"] = t.slope_per_h;
+        if (t.verdict == "changed") {
+          tj["at_s"] = t.at_s;
+          tj["at_sd_s"] = t.at_sd_s;
+          tj["before"] = t.before;
+          tj["after"] = t.after;
+        }
+        tracks.push_back(tj);
+      }
+      ch["across_the_recording"] = {{"verdict", d.verdict}, {"tracks", tracks}};
     }
     ch["ties"] = nlohmann::json::array();
     for (const auto& tie : c.ties)
@@ -238,6 +262,17 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
       for (std::size_t k = 0; k < e.values.size(); ++k)
         h << " " << e.spec->params[k].name << " = " << e.values[k];
       h << "</p>";
+    }
+    if (r.day) {
+      const ChannelDay& d = r.day->channels[static_cast<std::size_t>(&c - r.channels.data())];
+      h << "<p><b>Across " << r.day->windows << " windows of " << r.day->window_s
+        << " s: " << report::html_escape(d.verdict) << "</b></p><table><tr><th>parameter</th>"
+        << "<th>verdict</th><th>first window</th><th>last window</th></tr>";
+      for (const Track& track : d.tracks)
+        if (!track.value.empty())
+          h << "<tr><td>" << track.name << "</td><td>" << track.verdict << "</td><td>"
+            << track.value.front() << "</td><td>" << track.value.back() << "</td></tr>";
+      h << "</table>";
     }
     if (c.change) {
       h << "<p><b>a parameter changed at t = " << c.change->at_s << " &plusmn; "

@@ -7,6 +7,7 @@
 
 #include "sim/analysis/change_points.h"
 #include "sim/analysis/channel_fit.h"
+#include "sim/analysis/day_report.h"
 #include "sim/analysis/glitches.h"
 #include "sim/analysis/model_file.h"
 #include "sim/analysis/tones.h"
@@ -83,7 +84,10 @@ struct FitOptions {
   double nested_min_explained = 0.05;
   double min_unexplained_share = 0.005;  // of the output's held-out RMS, to call a residual
   int jobs = 1;
-  std::size_t max_rows = 12000;           // longer recordings are decimated to this many rows
+  std::size_t max_rows = 12000;  // longer recordings are decimated to this many rows
+  // A recording longer than this many rows is analysed on its first window of them and its
+  // model tracked across the rest, window by window (day_tracks.h): 10 minutes at 100 Hz.
+  std::size_t window_rows = 60000;
   std::vector<ModelChannel> start_model;  // from --model: start values and known effects
 };
 
@@ -99,6 +103,7 @@ struct FitReport {
   std::vector<ChannelReport> channels;
   std::vector<std::string> unobservable;  // channels whose columns are missing
   std::vector<Glitch> glitches;           // samples excluded as single-sample glitches
+  std::optional<DayReport> day;           // a recording longer than one window: across it
 };
 
 // Throws RecordingError when no channel is observable. Glitches are excluded first

@@ -1,8 +1,12 @@
 #include "sim/analysis/recording.h"
 
+#include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -34,63 +38,117 @@ std::string trim(const std::string& s) {
 
 }  // namespace
 
-Recording parse_recording(const std::string& text, const std::string& file, std::size_t min_rows) {
-  Recording r;
-  r.file = file;
+struct RecordingReader::Source {
+  std::ifstream file;
+  std::istringstream text;
+  std::istream* in = nullptr;
+};
+
+RecordingReader::RecordingReader(const std::string& path) : file_(path), source_(new Source) {
+  config::require_regular_file(path);
+  source_->file.open(path, std::ios::binary);
+  if (!source_->file) throw RecordingError(path, 0, "cannot be opened");
+  source_->in = &source_->file;
+  read_header();
+}
+
+RecordingReader::RecordingReader(const std::string& text, const std::string& file)
+    : file_(file), source_(new Source) {
+  source_->text.str(text);
+  source_->in = &source_->text;
+  read_header();
+}
+
+RecordingReader::~RecordingReader() { delete source_; }
+
+bool RecordingReader::more() const {
+  return !at_end_ && source_->in->peek() != std::char_traits<char>::eof();
+}
+
+bool RecordingReader::next_line(std::string& line) {
+  if (!std::getline(*source_->in, line)) {
+    if (source_->in->bad()) throw RecordingError(file_, line_no_ + 1, "cannot be read");
+    return false;
+  }
+  ++line_no_;
   // A CSV saved on Windows may start with a UTF-8 byte-order mark: it is not part of "t".
-  std::istringstream in(config::starts_with_utf8_bom(text) ? text.substr(3) : text);
+  if (line_no_ == 1) config::strip_utf8_bom(line);
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return true;
+}
+
+void RecordingReader::read_header() {
   std::string line;
-  int line_no = 0;
-  std::vector<std::string> header;
-  int state_col = -1, t_col = -1;
-  std::vector<std::vector<double>*> columns;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (header.empty()) {
-      if (line.empty()) continue;
-      if (line[0] == '#') {
-        const auto colon = line.find(':');
-        if (colon != std::string::npos)
-          r.metadata[trim(line.substr(1, colon - 1))] = trim(line.substr(colon + 1));
-        continue;
-      }
-      header = split_commas(line);
-      std::set<std::string> seen;
-      for (std::size_t c = 0; c < header.size(); ++c) {
-        header[c] = trim(header[c]);
-        const std::string& name = header[c];
-        if (name.empty())
-          throw RecordingError(file, line_no,
-                               "header: column " + std::to_string(c + 1) + " has no name");
-        if (!seen.insert(name).second)
-          throw RecordingError(file, line_no,
-                               "header: column '" + config::excerpt(name) + "' appears twice");
-        if (name == "t") t_col = static_cast<int>(c);
-        if (name == "state") state_col = static_cast<int>(c);
-      }
-      if (t_col < 0)
-        throw RecordingError(file, line_no,
-                             "header: no 't' column (the first line after the # comments must "
-                             "be the header of signal names, with t in seconds)");
-      for (std::size_t c = 0; c < header.size(); ++c) {
-        columns.push_back(static_cast<int>(c) == state_col || static_cast<int>(c) == t_col
-                              ? nullptr
-                              : &r.signals[header[c]]);
-      }
+  while (next_line(line)) {
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos)
+        metadata_[trim(line.substr(1, colon - 1))] = trim(line.substr(colon + 1));
       continue;
+    }
+    header_ = split_commas(line);
+    std::set<std::string> seen;
+    for (std::size_t c = 0; c < header_.size(); ++c) {
+      header_[c] = trim(header_[c]);
+      const std::string& name = header_[c];
+      if (name.empty())
+        throw RecordingError(file_, line_no_,
+                             "header: column " + std::to_string(c + 1) + " has no name");
+      if (!seen.insert(name).second)
+        throw RecordingError(file_, line_no_,
+                             "header: column '" + config::excerpt(name) + "' appears twice");
+      if (name == "t") t_col_ = static_cast<int>(c);
+      if (name == "state") state_col_ = static_cast<int>(c);
+    }
+    if (t_col_ < 0)
+      throw RecordingError(file_, line_no_,
+                           "header: no 't' column (the first line after the # comments must "
+                           "be the header of signal names, with t in seconds)");
+    kept_.assign(header_.size(), true);
+    return;
+  }
+  throw RecordingError(file_, line_no_, "no header line (an empty file?)");
+}
+
+void RecordingReader::keep_only(const std::vector<std::string>& columns) {
+  if (columns.empty()) {
+    kept_.assign(header_.size(), true);
+    keep_state_ = true;
+    return;
+  }
+  for (std::size_t c = 0; c < header_.size(); ++c)
+    kept_[c] = std::find(columns.begin(), columns.end(), header_[c]) != columns.end();
+  keep_state_ = std::find(columns.begin(), columns.end(), "state") != columns.end();
+}
+
+std::size_t RecordingReader::read(Recording& r, std::size_t max_rows) {
+  r = Recording{};
+  r.file = file_;
+  r.metadata = metadata_;
+  std::vector<std::vector<double>*> columns(header_.size(), nullptr);
+  for (std::size_t c = 0; c < header_.size(); ++c)
+    if (kept_[c] && static_cast<int>(c) != state_col_ && static_cast<int>(c) != t_col_)
+      columns[c] = &r.signals[header_[c]];
+  std::string line;
+  std::size_t rows = 0;
+  while (rows < max_rows) {
+    if (!next_line(line)) {
+      at_end_ = true;
+      break;
     }
     if (line.empty()) continue;
     const std::vector<std::string> cells = split_commas(line);
-    if (cells.size() != header.size())
-      throw RecordingError(
-          file, line_no,
-          std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
+    if (cells.size() != header_.size())
+      throw RecordingError(file_, line_no_,
+                           std::to_string(cells.size()) + " cells, the header has " +
+                               std::to_string(header_.size()));
     for (std::size_t c = 0; c < cells.size(); ++c) {
-      if (static_cast<int>(c) == state_col) {
-        r.state.push_back(trim(cells[c]));
+      if (static_cast<int>(c) == state_col_) {
+        if (keep_state_) r.state.push_back(trim(cells[c]));
         continue;
       }
+      if (columns[c] == nullptr && static_cast<int>(c) != t_col_) continue;
       const std::string cell = trim(cells[c]);
       char* end = nullptr;
       errno = 0;
@@ -98,37 +156,54 @@ Recording parse_recording(const std::string& text, const std::string& file, std:
       // ERANGE with a tiny result is underflow (1e-310 reads as a denormal or 0: a number).
       const bool overflow = errno == ERANGE && std::fabs(v) == HUGE_VAL;
       if (cell.empty() || end != cell.c_str() + cell.size() || overflow)
-        throw RecordingError(file, line_no,
-                             "column '" + config::excerpt(header[c]) + "': '" +
+        throw RecordingError(file_, line_no_,
+                             "column '" + config::excerpt(header_[c]) + "': '" +
                                  config::excerpt(cell) + "' is not a number");
       if (!std::isfinite(v))
-        throw RecordingError(file, line_no,
-                             "column '" + config::excerpt(header[c]) +
+        throw RecordingError(file_, line_no_,
+                             "column '" + config::excerpt(header_[c]) +
                                  "': " + config::excerpt(cell) +
                                  " (NaN or infinite values are not allowed)");
-      if (static_cast<int>(c) == t_col) {
-        if (!r.t.empty() && v <= r.t.back())
+      if (static_cast<int>(c) == t_col_) {
+        if (any_row_ && v <= last_t_)
           throw RecordingError(
-              file, line_no,
+              file_, line_no_,
               "time " + config::excerpt(cell) +
-                  " s does not increase (previous row: " + std::to_string(r.t.back()) + " s)");
+                  " s does not increase (previous row: " + std::to_string(last_t_) + " s)");
+        last_t_ = v;
+        any_row_ = true;
         r.t.push_back(v);
       } else {
         columns[c]->push_back(v);
       }
     }
+    ++rows;
   }
-  if (header.empty()) throw RecordingError(file, line_no, "no header line (an empty file?)");
+  return rows;
+}
+
+void RecordingReader::require_rows(const Recording& r, std::size_t min_rows) const {
   if (r.t.size() < min_rows)
-    throw RecordingError(file, line_no,
+    throw RecordingError(file_, line_no_,
                          "too short: " + std::to_string(r.t.size()) + " rows, at least " +
                              std::to_string(min_rows) + " are needed");
+}
+
+Recording parse_recording(const std::string& text, const std::string& file, std::size_t min_rows) {
+  RecordingReader reader(text, file);
+  Recording r;
+  reader.read(r, SIZE_MAX);
+  reader.require_rows(r, min_rows);
   return r;
 }
 
 Recording load_recording(const std::string& path, std::size_t min_rows) {
   // The checks of every input (no FIFO, no directory, the reason when missing); no size cap.
-  return parse_recording(config::read_input_file(path, SIZE_MAX), path, min_rows);
+  RecordingReader reader(path);
+  Recording r;
+  reader.read(r, SIZE_MAX);
+  reader.require_rows(r, min_rows);
+  return r;
 }
 
 }  // namespace planter::analysis

@@ -32,6 +32,50 @@ struct Recording {
   [[nodiscard]] std::size_t size() const { return t.size(); }
 };
 
+// Reads a recording a block of rows at a time, so that a recording of any length can be
+// analysed in windows with bounded memory. The metadata and the header are read on opening.
+class RecordingReader {
+ public:
+  // From a file (checked as every input: no FIFO, no directory; a byte-order mark skipped).
+  explicit RecordingReader(const std::string& path);
+  // From text already in memory; `file` names the messages.
+  RecordingReader(const std::string& text, const std::string& file);
+  ~RecordingReader();
+  RecordingReader(const RecordingReader&) = delete;
+  RecordingReader& operator=(const RecordingReader&) = delete;
+
+  // Only these columns are kept (besides t); every row is still checked for its cell count,
+  // and a kept cell for being a number. Empty: all columns, and the state.
+  void keep_only(const std::vector<std::string>& columns);
+  // Starts `out` afresh (file, metadata, the kept columns) and reads up to max_rows rows into
+  // it. Returns the rows read: fewer than max_rows only at the end of the file.
+  std::size_t read(Recording& out, std::size_t max_rows);
+  [[nodiscard]] bool at_end() const { return at_end_; }
+  // Whether anything follows what has been read (a trailing blank line counts).
+  [[nodiscard]] bool more() const;
+  [[nodiscard]] int line() const { return line_no_; }
+  [[nodiscard]] const std::vector<std::string>& header() const { return header_; }
+  // Throws "too short" at the line reached unless `r` has at least min_rows rows.
+  void require_rows(const Recording& r, std::size_t min_rows) const;
+
+ private:
+  void read_header();
+  bool next_line(std::string& line);
+
+  std::string file_;
+  struct Source;
+  Source* source_;
+  std::map<std::string, std::string> metadata_;
+  std::vector<std::string> header_;
+  std::vector<bool> kept_;
+  bool keep_state_ = true;
+  int t_col_ = -1, state_col_ = -1;
+  int line_no_ = 0;
+  bool at_end_ = false;
+  double last_t_ = 0.0;
+  bool any_row_ = false;
+};
+
 // Parses CSV text (file names the messages). Needs at least `min_rows` rows.
 Recording parse_recording(const std::string& text, const std::string& file,
                           std::size_t min_rows = 50);

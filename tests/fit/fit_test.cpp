@@ -7,6 +7,7 @@
 #include <random>
 #include <sstream>
 
+#include "sim/analysis/day_tracks.h"
 #include "sim/analysis/decimation.h"
 #include "sim/analysis/fit_outputs.h"
 #include "sim/analysis/mismatch.h"
@@ -295,4 +296,60 @@ TEST(Analysis, AStiffnessThatChangesOnceIsNamedWithItsTime) {
   // A recording without the change has none.
   const FitReport clean = analyse(clamp_recording(0.0, 1.0, 13), quick());
   EXPECT_FALSE(clean.channels[0].change.has_value());
+}
+
+// A track across the day: constant, a line or one step, judged by BIC with the track's own
+// scatter; the step's time between the windows either side of it.
+TEST(DayTracks, EachTrackIsJudgedStableDriftingOrChanged) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  auto track = [&](auto level) {
+    Track t;
+    for (int w = 0; w < 60; ++w) {
+      t.t_s.push_back(300.0 + 600.0 * w);
+      t.value.push_back(level(t.t_s.back()) + noise(rng));
+      t.sd.push_back(0.05);
+    }
+    judge_track(t);
+    return t;
+  };
+  EXPECT_EQ(track([](double) { return 20.0; }).verdict, "stable");
+  const Track step = track([](double t) { return t < 18000.0 ? 20.0 : 28.0; });
+  EXPECT_EQ(step.verdict, "changed");
+  EXPECT_NEAR(step.at_s, 18000.0, 600.0);
+  EXPECT_NEAR(step.before, 20.0, 0.1);
+  EXPECT_NEAR(step.after, 28.0, 0.1);
+  const Track drift = track([](double t) { return 20.0 + 2.0 * t / 3600.0; });
+  EXPECT_EQ(drift.verdict, "drifting");
+  EXPECT_NEAR(drift.slope_per_h, 2.0, 0.05);
+  // A step smaller than 5 % of the level is no change to act on.
+  EXPECT_EQ(track([](double t) { return t < 18000.0 ? 20.0 : 20.5; }).verdict, "stable");
+}
+
+// A recording longer than a window: the first window is searched, the rest read a window at a
+// time, and the stiffness that changes at 90 s of 180 is found across the windows.
+TEST(DayTracks, AChangeAcrossTheRecordingIsFoundWindowByWindow) {
+  const Recording whole = clamp_recording(0.0, 1.0, 17, 90.0);
+  std::ostringstream csv;
+  csv << "t,clamp_pos_mm,clamp_force\n";
+  csv.precision(10);
+  for (std::size_t k = 0; k < whole.size(); ++k)
+    csv << whole.t[k] << "," << whole.at("clamp_pos_mm")[k] << "," << whole.at("clamp_force")[k]
+        << "\n";
+  FitOptions o = quick();
+  o.window_rows = 3000;  // 30 s: six windows
+  RecordingReader reader(csv.str(), "synthetic");
+  Recording first;
+  ASSERT_EQ(reader.read(first, o.window_rows), 3000u);
+  const FitReport rep = analyse(first, o);
+  const DayReport day = track_day(reader, first, rep, o);
+  EXPECT_EQ(day.windows, 6u);
+  EXPECT_EQ(day.rows, whole.size());
+  ASSERT_EQ(day.channels.size(), 1u);
+  const Track& k_c = day.channels[0].tracks[0];
+  ASSERT_EQ(k_c.name, "k_c");
+  EXPECT_EQ(k_c.verdict, "changed") << day.channels[0].verdict;
+  EXPECT_NEAR(k_c.at_s, 90.0, 9.0);
+  EXPECT_NEAR(k_c.after / k_c.before, 1.4, 0.28);
+  EXPECT_EQ(day.channels[0].verdict.rfind("changed: k_c", 0), 0u) << day.channels[0].verdict;
 }

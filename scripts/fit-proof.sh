@@ -45,6 +45,13 @@ for noise in 0.5 2.0 5.0; do
 done
 run_case relaxation 1.0 "clamp_force:viscoelastic relaxation (creep) of the clamp:fraction=0.3,tau_s=3" \
   "clamp_relaxation_frac = 0.3" "clamp_relaxation_tau_s = 3.0"
+# Two time scales (a Prony series of two terms): half the drop in a second, the rest over 40 s.
+for noise in 0.5 2.0; do
+  run_case "relaxation-two-scales-noise-$noise" "$noise" \
+    "clamp_force:viscoelastic relaxation (creep) of the clamp:fraction=0.2,tau_s=1;clamp_force:viscoelastic relaxation, a second time scale (Prony series):fraction2=0.2,tau2_s=40" \
+    "clamp_relaxation_frac = 0.2" "clamp_relaxation_tau_s = 1.0" \
+    "clamp_relaxation2_frac = 0.2" "clamp_relaxation2_tau_s = 40.0"
+done
 run_case force-offset 1.0 "clamp_force:sensor offset:offset=8" "force_offset_N = 8.0"
 run_case force-drift 1.0 "clamp_force:sensor drift:drift_per_s=0.05" "force_drift_N_per_min = 3.0"
 run_case vibration 1.0 "clamp_force:periodic disturbance (vibration):amplitude=6,frequency_hz=7" \

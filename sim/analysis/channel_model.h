@@ -34,9 +34,12 @@ enum class EffectKind {
   kPeriodic,       // + A sin(2 pi f t + phi)
   kQuantisation,   // round to q
   kRelaxation,     // a Maxwell branch takes share `frac` of the output with time constant tau
+  kRelaxation2,    // a second branch beside it: a two-term Prony series
   kSag,            // - c * load / 1 kN (compliance under the channel's load)
   kStiction,       // at standstill: the drive's effort K * command, held up to F_s
 };
+
+struct Effect;
 
 // What an output effect may need besides the recording: the channel's load (N; sag, slip)
 // and the speed its friction acts at.
@@ -44,6 +47,7 @@ struct OutputContext {
   const Recording& r;
   const std::vector<double>* load = nullptr;
   const std::vector<double>* speed = nullptr;
+  const std::vector<Effect>* effects = nullptr;  // all of the channel's (Prony terms act together)
 };
 
 // One named effect, whole: what it is, its parameters and bounds, where and how it acts, and
@@ -70,6 +74,8 @@ struct EffectSpec {
   // The simpler effect this one holds as a special case (Stribeck holds Coulomb): it must beat
   // that one by a clear margin, not only tie it.
   std::optional<EffectKind> extends{};
+  // Only tried beside this one (a second Prony term beside the first).
+  std::optional<EffectKind> needs{};
   // What a user would record to tell this effect from another that fits as well.
   std::string separating_experiment{};
 };

@@ -155,8 +155,8 @@ class ClampChannel : public ChannelModel {
   // k_c: the nominal fit absorbs it.
   std::vector<const EffectSpec*> candidates(const Recording&) const override {
     return specs({EffectKind::kOffset, EffectKind::kDrift, EffectKind::kRelaxation,
-                  EffectKind::kBacklash, EffectKind::kPeriodic, EffectKind::kQuantisation,
-                  EffectKind::kDelay});
+                  EffectKind::kRelaxation2, EffectKind::kBacklash, EffectKind::kPeriodic,
+                  EffectKind::kQuantisation, EffectKind::kDelay});
   }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {

@@ -7,6 +7,8 @@
 namespace planter::analysis {
 
 const Effect* find_effect(const std::vector<Effect>& fx, EffectKind kind);
+// The two branches of a Prony series are interchangeable: the faster is named first.
+void order_prony_terms(std::vector<Effect>& fx, std::vector<std::vector<double>>& sd);
 // Delay, dead zone and play, applied to a recorded input.
 std::vector<double> transform_input(const Recording& r, const std::vector<double>& u,
                                     const std::vector<Effect>& fx);

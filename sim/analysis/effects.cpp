@@ -53,18 +53,28 @@ void backlash(const Recording&, const std::vector<double>& p, std::vector<double
   }
 }
 
+// A generalized Maxwell model (a Prony series; Findley, "Creep and Relaxation of Nonlinear
+// Viscoelastic Materials", ch. 5): each branch i follows frac_i * y with time constant tau_i and
+// is no longer carried, so a step in load gives the full force, which then decays towards
+// (1 - sum frac_i) of it. The second branch, when the fit has one, acts here with the first.
 void relaxation(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
-  const double frac = p[0], tau = p[1];
-  // The relaxed share follows frac * y with time constant tau and is no longer carried:
-  // a step in load gives the full force, which then decays towards (1 - frac) of it.
-  double relaxed = frac * y[0];
+  std::vector<std::pair<double, double>> branches{{p[0], p[1]}};
+  if (c.effects != nullptr)
+    if (const Effect* second = find_effect(*c.effects, EffectKind::kRelaxation2))
+      branches.emplace_back(second->values[0], second->values[1]);
+  std::vector<double> relaxed;
+  for (const auto& [frac, tau] : branches) relaxed.push_back(frac * y[0]);
   for (std::size_t k = 0; k < y.size(); ++k) {
     const double dt = k > 0 ? c.r.t[k] - c.r.t[k - 1] : 0.0;
-    relaxed += (frac * y[k] - relaxed) * std::min(1.0, dt / tau);
-    // A contact force cannot pull: the relaxed branch lowers the output towards zero, never
-    // past it (an opened clamp reads nothing while the branch recovers).
-    const double relaxed_y = y[k] - relaxed;
-    y[k] = y[k] >= 0.0 ? std::max(0.0, relaxed_y) : std::min(0.0, relaxed_y);
+    double carried = y[k];
+    for (std::size_t b = 0; b < branches.size(); ++b) {
+      const auto [frac, tau] = branches[b];
+      relaxed[b] += (frac * y[k] - relaxed[b]) * std::min(1.0, dt / tau);
+      carried -= relaxed[b];
+    }
+    // A contact force cannot pull: the relaxed branches lower the output towards zero, never
+    // past it (an opened clamp reads nothing while the branches recover).
+    y[k] = y[k] >= 0.0 ? std::max(0.0, carried) : std::min(0.0, carried);
   }
 }
 
@@ -175,6 +185,14 @@ const std::vector<EffectSpec>& library() {
          .extra_starts = {{0.2, 0.5}, {0.2, 3.0}, {0.2, 15.0}},
          .separating_experiment = "the clamp held closed at one position for a minute or more: "
                                   "relaxation settles, drift keeps growing"});
+    add({.kind = EffectKind::kRelaxation2,
+         .name = "viscoelastic relaxation, a second time scale (Prony series)",
+         .signature = "after a load change, a fast decay and then a slow one",
+         .params = {{"fraction2", "1", 0.1, 0.0, 0.9}, {"tau2_s", "s", 30.0, 0.05, 3600.0}},
+         .extra_starts = {{0.1, 0.5}, {0.1, 10.0}, {0.1, 100.0}},
+         .needs = EffectKind::kRelaxation,
+         .separating_experiment = "the clamp held closed at one position for ten minutes or "
+                                  "more: each time scale settles in its turn"});
     add({.kind = EffectKind::kSag,
          .name = "actuator compliance (sag) under load",
          .signature = "residual proportional to the load on the actuator",
@@ -289,6 +307,17 @@ const Effect* find_effect(const std::vector<Effect>& fx, EffectKind kind) {
   return nullptr;
 }
 
+void order_prony_terms(std::vector<Effect>& fx, std::vector<std::vector<double>>& sd) {
+  std::size_t one = fx.size(), two = fx.size();
+  for (std::size_t e = 0; e < fx.size(); ++e) {
+    if (fx[e].spec->kind == EffectKind::kRelaxation) one = e;
+    if (fx[e].spec->kind == EffectKind::kRelaxation2) two = e;
+  }
+  if (one == fx.size() || two == fx.size() || fx[one].values[1] <= fx[two].values[1]) return;
+  std::swap(fx[one].values, fx[two].values);
+  if (one < sd.size() && two < sd.size()) std::swap(sd[one], sd[two]);
+}
+
 std::vector<double> transform_input(const Recording& r, const std::vector<double>& u,
                                     const std::vector<Effect>& fx) {
   std::vector<double> out = u;
@@ -302,7 +331,7 @@ std::vector<double> transform_input(const Recording& r, const std::vector<double
 void apply_output(const Recording& r, const std::vector<Effect>& fx,
                   const std::vector<double>* load, const std::vector<double>* speed,
                   std::vector<double>& y) {
-  const OutputContext context{r, load, speed};
+  const OutputContext context{r, load, speed, &fx};
   for (const EffectSpec& spec : library()) {
     if (spec.on_output == nullptr) continue;
     if (const Effect* e = find_effect(fx, spec.kind)) spec.on_output(context, e->values, y);

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "sim/analysis/decimation.h"
+#include "sim/analysis/effect_hooks.h"
 #include "sim/analysis/model_file.h"
 #include "sim/analysis/residual_stats.h"
 
@@ -199,7 +200,10 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       for (const auto& s : start)
         used = used || s.spec == spec || spec->extends == s.spec->kind ||
                s.spec->extends == spec->kind;
-      if (used) continue;
+      // A term that only makes sense beside another (a second Prony term) waits for it.
+      bool present = !spec->needs;
+      for (const auto& s : start) present = present || s.spec->kind == *spec->needs;
+      if (used || !present) continue;
       std::vector<Effect> fx = start;
       fx.push_back(initial_effect(*spec, r, base_e));
       Candidate c;
@@ -241,12 +245,17 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     const Candidate* best = nullptr;
     for (const auto& c : cands)
       if (earns(c) && (!best || c.delta_bic < best->delta_bic)) best = &c;
-    if (best && best->spec->extends)
+    for (bool simpler = true; simpler && best && best->spec->extends;) {
+      simpler = false;
+      const Candidate* richer = best;
       for (const auto& c : cands)
-        if (c.spec->kind == *best->spec->extends && earns(c) &&
-            (best->delta_bic > c.delta_bic - o.nested_delta_bic ||
-             best->explained < c.explained + o.nested_min_explained))
+        if (c.spec->kind == *richer->spec->extends && earns(c) &&
+            (richer->delta_bic > c.delta_bic - o.nested_delta_bic ||
+             richer->explained < c.explained + o.nested_min_explained)) {
           best = &c;
+          simpler = true;
+        }
+    }
     if (!best) return nullptr;
     for (const auto& c : cands) {
       if (&c == best || !earns(c) || c.delta_bic - best->delta_bic >= o.tie_delta_bic) continue;
@@ -266,6 +275,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     if (const Candidate* second = choose(pairs)) {
       rep.chosen.push_back(*second);
       rep.final_fit = second->fit;
+      order_prony_terms(rep.final_fit.effects, rep.final_fit.effect_sd);
     }
   }
   // What is left is unexplained when it is well above the measurement noise, structured

@@ -78,7 +78,13 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
     relaxation_N_ +=
         (fx.clamp_relaxation_frac * elastic - relaxation_N_) * dt / fx.clamp_relaxation_tau_s;
   }
-  const double clamp_force = std::max(0.0, elastic - relaxation_N_);
+  // A second branch: a generalized Maxwell (Prony) series of two terms (Findley, "Creep and
+  // Relaxation of Nonlinear Viscoelastic Materials", ch. 5).
+  if (fx.clamp_relaxation2_frac > 0.0) {
+    relaxation2_N_ +=
+        (fx.clamp_relaxation2_frac * elastic - relaxation2_N_) * dt / fx.clamp_relaxation2_tau_s;
+  }
+  const double clamp_force = std::max(0.0, elastic - relaxation_N_ - relaxation2_N_);
   std::normal_distribution<double> noise(0.0, 1.0);
   const double vibration = fx.vibration_hz > 0.0 ? std::sin(kTwoPi * fx.vibration_hz * t) : 0.0;
   const double measured = (clamp_force + fixture_load_N_) * (1.0 + 0.01 * fx.force_gain_pct) +

@@ -56,6 +56,7 @@ class Plant {
   SeedlingProcess seedlings_;
   std::mt19937_64 noise_rng_;
   double relaxation_N_ = 0.0;
+  double relaxation2_N_ = 0.0;
   double fixture_load_N_ = 0.0;
   PlantTruth truth_;
 };

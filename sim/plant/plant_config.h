@@ -90,6 +90,8 @@ struct Effects {
   double slip_per_kN = 0.0;               // wheel slip growing with opener draft (% per kN)
   double clamp_relaxation_frac = 0.0;     // viscoelastic relaxation of the disc lips
   double clamp_relaxation_tau_s = 2.0;
+  double clamp_relaxation2_frac = 0.0;  // a second, slower branch (a two-term Prony series)
+  double clamp_relaxation2_tau_s = 60.0;
   double depth_sag_mm_per_kN = 0.0;  // opener compliance under soil draft
   double vibration_hz = 0.0;         // engine vibration
   double vibration_force_N = 0.0;

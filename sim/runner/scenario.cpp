@@ -146,6 +146,12 @@ Scenario load_scenario(const std::string& path) {
     e.slip_per_kN = t->number("slip_per_kN", 0.0, 0.0, 50.0, "%/kN");
     e.clamp_relaxation_frac = t->number("clamp_relaxation_frac", 0.0, 0.0, 0.9);
     e.clamp_relaxation_tau_s = t->number("clamp_relaxation_tau_s", 2.0, 0.01, 1000.0, "s");
+    // A second Maxwell branch: relaxation over two time scales (a Prony series of two terms).
+    e.clamp_relaxation2_frac = t->number("clamp_relaxation2_frac", 0.0, 0.0, 0.9);
+    e.clamp_relaxation2_tau_s = t->number("clamp_relaxation2_tau_s", 60.0, 0.01, 10000.0, "s");
+    if (e.clamp_relaxation_frac + e.clamp_relaxation2_frac > 0.9)
+      t->fail("clamp_relaxation2_frac",
+              "with clamp_relaxation_frac must stay at most 0.9 (the branches share the load)");
     e.depth_sag_mm_per_kN = t->number("depth_sag_mm_per_kN", 0.0, 0.0, 100.0, "mm/kN");
     e.vibration_hz = t->number("vibration_hz", 0.0, 0.0, 200.0, "Hz");
     e.vibration_force_N = t->number("vibration_force_N", 0.0, 0.0, 100.0, "N");

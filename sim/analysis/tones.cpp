@@ -61,10 +61,19 @@ std::vector<FastTone> find_fast_tones(const std::vector<double>& t,
     while (nfft < end) nfft *= 2;
     double mean = 0;
     for (std::size_t k = 0; k < end; ++k) mean += e[k] / static_cast<double>(end);
+    // On an even grid, interpolated: jittered sampling wanders in phase (a 1 ms walk at
+    // 30 Hz turns a tone into a smear); the refinement below uses the true times.
     std::vector<double> x(nfft, 0.0);
-    for (std::size_t k = 0; k < end; ++k)
-      x[k] = (e[k] - mean) *
+    const double step = (t[end - 1] - t[0]) / static_cast<double>(end - 1);
+    std::size_t j = 0;
+    for (std::size_t k = 0; k < end; ++k) {
+      const double at = t[0] + step * static_cast<double>(k);
+      while (j + 2 < end && t[j + 1] < at) ++j;
+      const double share = std::clamp((at - t[j]) / (t[j + 1] - t[j]), 0.0, 1.0);
+      const double v = e[j] + share * (e[j + 1] - e[j]);
+      x[k] = (v - mean) *
              (0.5 - 0.5 * std::cos(kTwoPi * static_cast<double>(k) / static_cast<double>(end - 1)));
+    }
     std::vector<std::complex<double>> spectrum;
     Eigen::FFT<double> fft;
     fft.fwd(spectrum, x);
@@ -100,7 +109,7 @@ std::vector<FastTone> find_fast_tones(const std::vector<double>& t,
     if (best_ratio < c) break;
     const double f = static_cast<double>(best + lo) * bin_hz;
     FastTone ft;
-    ft.tone = refine_tone(t, e, end, f - 2.0 * bin_hz, f + 2.0 * bin_hz);
+    ft.tone = refine_tone(t, e, end, f - 3.0 * bin_hz, f + 3.0 * bin_hz);
     ft.held_out_rms_before = rms_between(e, end, e.size());
     subtract(t, ft.tone, e);
     ft.held_out_rms_after = rms_between(e, end, e.size());

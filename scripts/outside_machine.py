@@ -1,0 +1,124 @@
+#!/usr/bin/python3
+"""A second generator of whole-machine recordings, written apart from planter-sim: the same
+columns, but its own structure and integrator. There is no firmware and no bus: an operator's
+speed profile drives the machine open loop, the clamp cycles between positions, the states are
+integrated with classical fourth-order Runge-Kutta at 1 ms, and the rows are sampled at about
+100 Hz with +-1 ms jitter. The forms are the nominal structures of PRODUCT.md (what planter-fit
+assumes): the soil wheel's speed estimate lags the ground, the disc drive is a first-order lag
+with a torque of J dw/dt + b w, the clamp law is k (x - x0)^n, the depth actuator a rate-limited
+first-order lag, the draft c_s v d^2. Effects are hidden with options.
+
+Usage: outside_machine.py OUT.csv [--noise K] [--seed N] [--relaxation FRAC TAU_S]
+       [--command-delay S] [--coulomb NM] [--force-offset N] [--vibration HZ AMP_N]
+--noise scales every channel's measurement noise (1: the reference levels).
+"""
+import argparse
+import math
+import random
+
+p = argparse.ArgumentParser()
+p.add_argument("out")
+p.add_argument("--noise", type=float, default=1.0)
+p.add_argument("--seed", type=int, default=1)
+p.add_argument("--relaxation", type=float, nargs=2, default=[0.0, 1.0])
+p.add_argument("--command-delay", type=float, default=0.0)
+p.add_argument("--coulomb", type=float, default=0.0)
+p.add_argument("--force-offset", type=float, default=0.0)
+p.add_argument("--vibration", type=float, nargs=2, default=[0.0, 0.0])
+a = p.parse_args()
+rng = random.Random(a.seed)
+
+# The machine (values of its own, not planter-sim's).
+SIGMA, DISC_R = 1.5, 0.19          # m
+T_D, OMEGA_MAX = 0.08, 1.2         # s, rad/s
+J, B = 0.35, 1.8                   # kg m^2, N m s/rad
+K_C, X0, N_EXP = 16.0, 1.2, 1.25   # N/mm^n, mm, 1
+T_A, R_MAX = 0.4, 30.0             # s, mm/s
+C_S = 3.0e5                        # N s/m^3
+LAG = 0.06                         # s, the wheel's speed estimate
+DURATION, DT = 300.0, 0.001
+NOISE = {"v": 2e-4, "w": 1e-3, "q": 5e-3, "f": 0.5, "d": 0.05, "df": 0.3}
+
+
+def ground_speed(t):
+    """The operator: starts, two stops, a slower stretch (m/s)."""
+    def ramp(t0, t1, v0, v1, x):
+        return v0 + (v1 - v0) * min(1.0, max(0.0, (x - t0) / (t1 - t0)))
+    if t < 3:
+        return ramp(1, 3, 0, 0.06, t)
+    if t < 90:
+        return 0.06
+    if t < 105:
+        return ramp(90, 92, 0.06, 0.0, t)
+    if t < 200:
+        return ramp(105, 107, 0.0, 0.045, t)
+    if t < 215:
+        return ramp(200, 202, 0.045, 0.0, t)
+    return ramp(215, 217, 0.0, 0.06, t)
+
+
+def clamp_target(t):
+    """The roller cycles: closed at a level that changes every 7 s, open for 1 s (mm); it
+    travels there at up to 40 mm/s."""
+    k = int(t // 7.0)
+    if t - 7.0 * k > 6.0:
+        return 0.0
+    return 3.0 + 5.0 * ((k * 7919) % 100) / 100.0
+
+
+def depth_command(t):
+    return 60.0 if t < 120 else (45.0 if t < 180 else 75.0)
+
+
+def rk4(f, y, t, h):
+    k1 = f(t, y)
+    k2 = f(t + h / 2, [yi + h / 2 * ki for yi, ki in zip(y, k1)])
+    k3 = f(t + h / 2, [yi + h / 2 * ki for yi, ki in zip(y, k2)])
+    k4 = f(t + h, [yi + h * ki for yi, ki in zip(y, k3)])
+    return [yi + h / 6 * (a1 + 2 * a2 + 2 * a3 + a4) for yi, a1, a2, a3, a4 in zip(y, k1, k2, k3, k4)]
+
+
+def omega_command(t):
+    return SIGMA * ground_speed(t) / DISC_R
+
+
+def derivatives(t, y):
+    """States: disc speed, depth, the relaxed share of the clamp force, the roller."""
+    w, d, relaxed, x = y
+    target = min(omega_command(t - a.command_delay), OMEGA_MAX)
+    dw = (target - w) / T_D
+    dd = max(-R_MAX, min(R_MAX, (depth_command(t) - d) / T_A))
+    dx = max(-40.0, min(40.0, (clamp_target(t) - x) / 0.01))
+    elastic = K_C * max(0.0, x - X0) ** N_EXP
+    frac, tau = a.relaxation
+    dr = (frac * elastic - relaxed) / tau if frac > 0 else 0.0
+    return [dw, dd, dr, dx]
+
+
+columns = ["t", "v_ground", "v_wheel", "omega_cmd", "omega", "disc_torque", "clamp_pos_mm",
+           "clamp_force", "depth_cmd_mm", "depth_mm", "depth_force"]
+t, y = 0.0, [0.0, 60.0, 0.0, 0.0]
+next_sample = 0.0
+noise = {k: v * a.noise for k, v in NOISE.items()}
+with open(a.out, "w") as out:
+    out.write("# source: outside_machine.py (a second generator, not planter-sim)\n")
+    out.write(",".join(columns) + "\n")
+    while t < DURATION:
+        if t >= next_sample:
+            w, d, relaxed, x = y
+            dw = derivatives(t, y)[0]
+            v = ground_speed(t)
+            dry = a.coulomb * math.tanh(w / 1e-3)
+            elastic = K_C * max(0.0, x - X0) ** N_EXP
+            force = max(0.0, elastic - relaxed) + a.force_offset + \
+                a.vibration[1] * math.sin(2 * math.pi * a.vibration[0] * t)
+            draft = C_S * v * (max(0.0, d) * 1e-3) ** 2
+            row = [t, v + rng.gauss(0, noise["v"]), ground_speed(t - LAG) + rng.gauss(0, noise["v"]),
+                   omega_command(t), w + rng.gauss(0, noise["w"]),
+                   J * dw + B * w + dry + rng.gauss(0, noise["q"]), x,
+                   force + rng.gauss(0, noise["f"]), depth_command(t), d + rng.gauss(0, noise["d"]),
+                   draft + rng.gauss(0, noise["df"])]
+            out.write(",".join("%.6g" % x if i else "%.4f" % x for i, x in enumerate(row)) + "\n")
+            next_sample += 0.01 + rng.uniform(-0.001, 0.001)
+        y = rk4(derivatives, y, t, DT)
+        t += DT

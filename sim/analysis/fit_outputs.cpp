@@ -313,13 +313,28 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
       << c.location.time_correlation << "; spectrum peak " << c.location.dominant_frequency_hz
       << " Hz.";
     for (const auto& g : c.location.regimes) h << " " << g.name << ": " << g.rms_ratio << "x;";
+    // Marks on the time axis, as vertical lines: where the held-out part starts, and when a
+    // parameter changed.
+    const std::vector<double> held_x{r.held_out_from_s, r.held_out_from_s};
+    const std::vector<double> change_x =
+        c.change ? std::vector<double>{c.change->at_s, c.change->at_s} : std::vector<double>{};
+    const std::vector<double> span_y{*lo, *hi}, residual_y{-emax, emax};
+    std::vector<report::PlotLine> lines{{&ys, "#222", "recording"},
+                                        {&nom, "#36c", "nominal"},
+                                        {&aug, "#c33", "augmented"},
+                                        {&span_y, "#999", "held out from here", &held_x}};
+    std::vector<report::PlotLine> residual_lines{{&e0, "#36c", "nominal"},
+                                                 {&e1, "#c33", "augmented"},
+                                                 {&residual_y, "#999", "held out", &held_x}};
+    if (c.change) {
+      lines.push_back({&span_y, "#e80", "changed", &change_x});
+      residual_lines.push_back({&residual_y, "#e80", "changed", &change_x});
+    }
     h << "</p>"
-      << report::svg_plot(
-             c.channel->output(), "", "time [s]", t,
-             {{&ys, "#222", "recording"}, {&nom, "#36c", "nominal"}, {&aug, "#c33", "augmented"}},
-             *lo, *hi)
-      << report::svg_plot("residual", "", "time [s]", t,
-                          {{&e0, "#36c", "nominal"}, {&e1, "#c33", "augmented"}}, -emax, emax);
+      << report::svg_plot(c.channel->output(), column_unit(c.channel->output()), "time [s]", t,
+                          lines, *lo, *hi)
+      << report::svg_plot("residual", column_unit(c.channel->output()), "time [s]", t,
+                          residual_lines, -emax, emax);
   }
   h << "</body></html>\n";
   return h.str();

@@ -118,6 +118,13 @@ for noise in 1 4; do
     "clamp_force:viscoelastic relaxation (creep) of the clamp:fraction=0.3,tau_s=2" \
     --noise $noise --seed 12 --relaxation 0.3 2.0
 done
+# Hysteresis of the clamp (Bouc-Wen, 6 N over 0.5 mm); its height is checked, its shape delta
+# is printed in fit.json (it reads about 0.63 mm: see the README).
+for noise in 1 4; do
+  run_outside "outside-hysteresis-noise-$noise" \
+    "clamp_force:hysteresis of the clamp (Bouc-Wen):height=6" \
+    --noise $noise --seed 18 --hysteresis 6 0.5
+done
 run_outside outside-command-delay "omega:transport delay:delay_s=0.2" --seed 13 --command-delay 0.2
 run_outside outside-coulomb "disc_torque:Coulomb friction:coulomb=1" --seed 14 --coulomb 1.0
 run_outside outside-force-offset "clamp_force:sensor offset:offset=5" --seed 15 --force-offset 5

@@ -10,6 +10,7 @@ first-order lag, the draft c_s v d^2. Effects are hidden with options.
 
 Usage: outside_machine.py OUT.csv [--noise K] [--seed N] [--relaxation FRAC TAU_S]
        [--command-delay S] [--coulomb NM] [--force-offset N] [--vibration HZ AMP_N]
+       [--hysteresis H_N DELTA_MM]
 --noise scales every channel's measurement noise (1: the reference levels).
 """
 import argparse
@@ -25,6 +26,7 @@ p.add_argument("--command-delay", type=float, default=0.0)
 p.add_argument("--coulomb", type=float, default=0.0)
 p.add_argument("--force-offset", type=float, default=0.0)
 p.add_argument("--vibration", type=float, nargs=2, default=[0.0, 0.0])
+p.add_argument("--hysteresis", type=float, nargs=2, default=[0.0, 1.0])
 a = p.parse_args()
 rng = random.Random(a.seed)
 
@@ -83,8 +85,9 @@ def omega_command(t):
 
 
 def derivatives(t, y):
-    """States: disc speed, depth, the relaxed share of the clamp force, the roller."""
-    w, d, relaxed, x = y
+    """States: disc speed, depth, the relaxed share of the clamp force, the roller, and the
+    clamp's hysteresis (Bouc-Wen with n = 1, beta = gamma)."""
+    w, d, relaxed, x, z = y
     target = min(omega_command(t - a.command_delay), OMEGA_MAX)
     dw = (target - w) / T_D
     dd = max(-R_MAX, min(R_MAX, (depth_command(t) - d) / T_A))
@@ -92,12 +95,14 @@ def derivatives(t, y):
     elastic = K_C * max(0.0, x - X0) ** N_EXP
     frac, tau = a.relaxation
     dr = (frac * elastic - relaxed) / tau if frac > 0 else 0.0
-    return [dw, dd, dr, dx]
+    delta = a.hysteresis[1]
+    dz = (dx - 0.5 * abs(dx) * z - 0.5 * dx * abs(z)) / delta
+    return [dw, dd, dr, dx, dz]
 
 
 columns = ["t", "v_ground", "v_wheel", "omega_cmd", "omega", "disc_torque", "clamp_pos_mm",
            "clamp_force", "depth_cmd_mm", "depth_mm", "depth_force"]
-t, y = 0.0, [0.0, 60.0, 0.0, 0.0]
+t, y = 0.0, [0.0, 60.0, 0.0, 0.0, 0.0]
 next_sample = 0.0
 noise = {k: v * a.noise for k, v in NOISE.items()}
 with open(a.out, "w") as out:
@@ -105,12 +110,12 @@ with open(a.out, "w") as out:
     out.write(",".join(columns) + "\n")
     while t < DURATION:
         if t >= next_sample:
-            w, d, relaxed, x = y
+            w, d, relaxed, x, z = y
             dw = derivatives(t, y)[0]
             v = ground_speed(t)
             dry = a.coulomb * math.tanh(w / 1e-3)
             elastic = K_C * max(0.0, x - X0) ** N_EXP
-            force = max(0.0, elastic - relaxed) + a.force_offset + \
+            force = max(0.0, elastic - relaxed) + a.hysteresis[0] * z + a.force_offset + \
                 a.vibration[1] * math.sin(2 * math.pi * a.vibration[0] * t)
             draft = C_S * v * (max(0.0, d) * 1e-3) ** 2
             row = [t, v + rng.gauss(0, noise["v"]), ground_speed(t - LAG) + rng.gauss(0, noise["v"]),

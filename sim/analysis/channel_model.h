@@ -35,6 +35,7 @@ enum class EffectKind {
   kQuantisation,   // round to q
   kRelaxation,     // a Maxwell branch takes share `frac` of the output with time constant tau
   kRelaxation2,    // a second branch beside it: a two-term Prony series
+  kHysteresis,     // + H z, z the Bouc-Wen state of the input's displacement
   kSag,            // - c * load / 1 kN (compliance under the channel's load)
   kStiction,       // at standstill: the drive's effort K * command, held up to F_s
 };
@@ -48,6 +49,8 @@ struct OutputContext {
   const std::vector<double>* load = nullptr;
   const std::vector<double>* speed = nullptr;
   const std::vector<Effect>* effects = nullptr;  // all of the channel's (Prony terms act together)
+  const std::vector<double>* displacement =
+      nullptr;  // what hysteresis follows (the clamp's roller)
 };
 
 // One named effect, whole: what it is, its parameters and bounds, where and how it acts, and

@@ -155,8 +155,8 @@ class ClampChannel : public ChannelModel {
   // k_c: the nominal fit absorbs it.
   std::vector<const EffectSpec*> candidates(const Recording&) const override {
     return specs({EffectKind::kOffset, EffectKind::kDrift, EffectKind::kRelaxation,
-                  EffectKind::kRelaxation2, EffectKind::kBacklash, EffectKind::kPeriodic,
-                  EffectKind::kQuantisation, EffectKind::kDelay});
+                  EffectKind::kRelaxation2, EffectKind::kHysteresis, EffectKind::kBacklash,
+                  EffectKind::kPeriodic, EffectKind::kQuantisation, EffectKind::kDelay});
   }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
@@ -168,7 +168,7 @@ class ClampChannel : public ChannelModel {
       const double d = x[k] - p[1];
       y[k] = d > 0.0 ? p[0] * std::exp(p[2] * std::log(d)) : 0.0;
     }
-    apply_output(r, fx, nullptr, nullptr, y);
+    apply_output(r, fx, nullptr, nullptr, y, &r.at("clamp_pos_mm"));
   }
 };
 

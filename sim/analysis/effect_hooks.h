@@ -15,6 +15,6 @@ std::vector<double> transform_input(const Recording& r, const std::vector<double
 // Everything that acts on the output; `load` (N) for sag and slip, `speed` for friction.
 void apply_output(const Recording& r, const std::vector<Effect>& fx,
                   const std::vector<double>* load, const std::vector<double>* speed,
-                  std::vector<double>& y);
+                  std::vector<double>& y, const std::vector<double>* displacement = nullptr);
 
 }  // namespace planter::analysis

@@ -78,6 +78,26 @@ void relaxation(const OutputContext& c, const std::vector<double>& p, std::vecto
   }
 }
 
+// Hysteresis in the Bouc-Wen form (Wen, J. Eng. Mech. Div. ASCE 102(2), 1976; the survey of
+// Ismail, Ikhouane & Rodellar, Arch. Comput. Methods Eng. 16, 2009), with n = 1 and
+// beta = gamma = 1 / (2 delta): z' = (x' - |x'| z / 2 - x' |z| / 2) / delta, so z runs to +-1
+// within a few delta of travel and recovers linearly on a reversal. It adds H z.
+void hysteresis(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  if (c.displacement == nullptr || p[0] == 0.0) return;
+  const std::vector<double>& x = *c.displacement;
+  const double height = p[0], delta = p[1];
+  double z = 0.0;
+  for (std::size_t k = 1; k < y.size(); ++k) {
+    const double dx = x[k] - x[k - 1];
+    // Sub-steps of a tenth of delta keep the explicit update inside [-1, 1].
+    const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(dx) / (0.1 * delta))));
+    const double h = dx / steps;
+    for (int s = 0; s < steps; ++s)
+      z = std::clamp(z + (h - 0.5 * std::abs(h) * z - 0.5 * h * std::abs(z)) / delta, -1.0, 1.0);
+    y[k] += height * z;
+  }
+}
+
 void sag(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
   if (c.load == nullptr) return;
   for (std::size_t k = 0; k < y.size(); ++k) y[k] -= p[0] * (*c.load)[k] / 1000.0;
@@ -193,6 +213,16 @@ const std::vector<EffectSpec>& library() {
          .needs = EffectKind::kRelaxation,
          .separating_experiment = "the clamp held closed at one position for ten minutes or "
                                   "more: each time scale settles in its turn"});
+    add({.kind = EffectKind::kHysteresis,
+         .name = "hysteresis of the clamp (Bouc-Wen)",
+         .signature = "closing and opening give different forces at the same position",
+         .params = {{"height", "output units", 0.0, -1e4, 1e4},
+                    {"delta", "input units", 0.5, 0.01, 100.0}},
+         .on_output = hysteresis,
+         .extra_starts = {{0.0, 0.1}, {0.0, 2.0}},
+         .separating_experiment = "the clamp closed and opened slowly over its range: "
+                                  "hysteresis draws a loop whose width does not depend on the "
+                                  "speed, relaxation one that does"});
     add({.kind = EffectKind::kSag,
          .name = "actuator compliance (sag) under load",
          .signature = "residual proportional to the load on the actuator",
@@ -330,8 +360,8 @@ std::vector<double> transform_input(const Recording& r, const std::vector<double
 
 void apply_output(const Recording& r, const std::vector<Effect>& fx,
                   const std::vector<double>* load, const std::vector<double>* speed,
-                  std::vector<double>& y) {
-  const OutputContext context{r, load, speed, &fx};
+                  std::vector<double>& y, const std::vector<double>* displacement) {
+  const OutputContext context{r, load, speed, &fx, displacement};
   for (const EffectSpec& spec : library()) {
     if (spec.on_output == nullptr) continue;
     if (const Effect* e = find_effect(fx, spec.kind)) spec.on_output(context, e->values, y);

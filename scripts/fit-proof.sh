@@ -13,33 +13,40 @@ sim=$build/sim/planter-sim
 fit=$build/apps/planter-fit/planter-fit
 # The base scenario (scripts/fit-base-scenario.sh): the field scenario on 15 m, clean.
 source "$root/scripts/fit-base-scenario.sh"
-passed=0
-exact=0
-total=0
-run_case() {  # run_case NAME NOISE EXPECT [--base-sed SED_EXPR] [effects lines...]
-  local name=$1 noise=$2 expect=$3 base_sed=""
-  shift 3
+# Two cases run at a time (FIT_PROOF_JOBS), planter-fit with one thread each: the clamp's
+# channel dominates a fit, so two cases keep both cores busy. Each case writes its result line
+# to OUT/NAME.line; they are printed in order at the end.
+jobs_max=${FIT_PROOF_JOBS:-2}
+names=()
+spawn() {  # spawn WORKER NAME ARGS...
+  local name=$2
   # FIT_PROOF_ONLY=REGEX runs the cases whose names match (while working on one class).
   [[ -z ${FIT_PROOF_ONLY:-} || $name =~ $FIT_PROOF_ONLY ]] || return 0
+  names+=("$name")
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs_max" ]; do wait -n; done
+  "$@" >"$out/$name.line" 2>&1 &
+}
+judge() {  # judge NAME EXPECT: prints the case's line from its fit.json
+  /usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/$1/fit/fit.json" "$1" "$2"
+}
+sim_case() {  # sim_case NAME NOISE EXPECT [--base-sed SED_EXPR] [effects lines...]
+  local name=$1 noise=$2 expect=$3 base_sed=""
+  shift 3
   if [ "${1:-}" = --base-sed ]; then
     base_sed=$2
     shift 2
   fi
-  total=$((total + 1))
   # The effect keys go at the end, under [effects] (the base's last table).
   { base "$noise" | sed -e "$base_sed"; printf '%s\n' "$@"; } >"$out/$name.toml"
   "$sim" run "$out/$name.toml" --out "$out/$name" >/dev/null 2>"$out/$name.sim.err" || {
     echo "FAIL $name: planter-sim failed: $(head -1 "$out/$name.sim.err")"
     return
   }
-  "$fit" "$out/$name/recording.csv" --out "$out/$name/fit" --json >"$out/$name/fit.stdout" 2>&1
-  local line
-  if line=$(/usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/$name/fit/fit.json" "$name" "$expect"); then
-    passed=$((passed + 1))
-    [[ $line == *"also named"* ]] || exact=$((exact + 1))
-  fi
-  echo "$line"
+  "$fit" "$out/$name/recording.csv" --out "$out/$name/fit" --json --jobs 1 \
+    >"$out/$name/fit.stdout" 2>&1
+  judge "$name" "$expect"
 }
+run_case() { spawn sim_case "$@"; }
 for noise in 0.5 2.0 5.0; do
   run_case "clean-noise-$noise" "$noise" clean
 done
@@ -94,24 +101,19 @@ run_case soil-heavier 1.0 "depth_force:change:c_s=1.5@143" \
 run_case terrain 1.0 "unexplained:depth_mm" --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|"
 # A second generator, written apart from planter-sim (scripts/outside_machine.py): no firmware,
 # an open-loop operator, Runge-Kutta at 1 ms, jittered 100 Hz sampling, its own machine values.
-run_outside() {  # run_outside NAME EXPECT [outside_machine.py options...]
+outside_case() {  # outside_case NAME EXPECT [outside_machine.py options...]
   local name=$1 expect=$2
   shift 2
-  [[ -z ${FIT_PROOF_ONLY:-} || $name =~ $FIT_PROOF_ONLY ]] || return 0
-  total=$((total + 1))
   mkdir -p "$out/$name"
   /usr/bin/python3 "$root/scripts/outside_machine.py" "$out/$name/recording.csv" "$@" || {
     echo "FAIL $name: the outside generator failed"
     return
   }
-  "$fit" "$out/$name/recording.csv" --out "$out/$name/fit" --json >"$out/$name/fit.stdout" 2>&1
-  local line
-  if line=$(/usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/$name/fit/fit.json" "$name" "$expect"); then
-    passed=$((passed + 1))
-    [[ $line == *"also named"* ]] || exact=$((exact + 1))
-  fi
-  echo "$line"
+  "$fit" "$out/$name/recording.csv" --out "$out/$name/fit" --json --jobs 1 \
+    >"$out/$name/fit.stdout" 2>&1
+  judge "$name" "$expect"
 }
+run_outside() { spawn outside_case "$@"; }
 for noise in 1 4; do
   run_outside "outside-clean-noise-$noise" clean --noise $noise --seed 11
   run_outside "outside-relaxation-noise-$noise" \
@@ -131,5 +133,17 @@ run_outside outside-force-offset "clamp_force:sensor offset:offset=5" --seed 15 
 run_outside outside-vibration-fast \
   "clamp_force:periodic disturbance (vibration):amplitude=3,frequency_hz=30" \
   --seed 16 --vibration 30 3
+wait
+passed=0
+exact=0
+for name in "${names[@]}"; do
+  line=$(cat "$out/$name.line")
+  echo "$line"
+  if [[ $line == PASS* ]]; then
+    passed=$((passed + 1))
+    [[ $line == *"also named"* ]] || exact=$((exact + 1))
+  fi
+done
+total=${#names[@]}
 echo "of the $passed that pass, $exact name nothing beyond what was hidden"
 echo "planter-fit blind proof: $passed of $total cases pass"

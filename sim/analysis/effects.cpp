@@ -80,8 +80,9 @@ void relaxation(const OutputContext& c, const std::vector<double>& p, std::vecto
 
 // Hysteresis in the Bouc-Wen form (Wen, J. Eng. Mech. Div. ASCE 102(2), 1976; the survey of
 // Ismail, Ikhouane & Rodellar, Arch. Comput. Methods Eng. 16, 2009), with n = 1 and
-// beta = gamma = 1 / (2 delta): z' = (x' - |x'| z / 2 - x' |z| / 2) / delta, so z runs to +-1
-// within a few delta of travel and recovers linearly on a reversal. It adds H z.
+// beta = gamma = 1 / (2 delta): z' = (x' - |x'| z / 2 - x' |z| / 2) / delta. Along a move in one
+// direction it is solved exactly: against the move z recovers linearly (d|z|/dx = 1/delta),
+// with it z approaches +-1 as 1 - exp(-travel / delta). It adds H z.
 void hysteresis(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
   if (c.displacement == nullptr || p[0] == 0.0) return;
   const std::vector<double>& x = *c.displacement;
@@ -89,11 +90,22 @@ void hysteresis(const OutputContext& c, const std::vector<double>& p, std::vecto
   double z = 0.0;
   for (std::size_t k = 1; k < y.size(); ++k) {
     const double dx = x[k] - x[k - 1];
-    // Sub-steps of a tenth of delta keep the explicit update inside [-1, 1].
-    const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(dx) / (0.1 * delta))));
-    const double h = dx / steps;
-    for (int s = 0; s < steps; ++s)
-      z = std::clamp(z + (h - 0.5 * std::abs(h) * z - 0.5 * h * std::abs(z)) / delta, -1.0, 1.0);
+    if (dx != 0.0) {
+      const double s = dx > 0.0 ? 1.0 : -1.0;
+      double u = s * z, travel = std::abs(dx);  // u: z along the move
+      if (u < 0.0) {
+        const double to_zero = -u * delta;
+        if (travel <= to_zero) {
+          u += travel / delta;
+          travel = 0.0;
+        } else {
+          travel -= to_zero;
+          u = 0.0;
+        }
+      }
+      if (travel > 0.0) u = 1.0 - (1.0 - u) * std::exp(-travel / delta);
+      z = s * u;
+    }
     y[k] += height * z;
   }
 }

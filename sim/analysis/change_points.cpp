@@ -28,24 +28,6 @@ std::pair<Side, Side> split_at(const ChannelModel& ch, const Recording& r, const
   return {b, a};
 }
 
-// A pointer to every fitted (non-grid) parameter of a fit, in the order of fitted_values().
-std::vector<double*> slots(ChannelFit& f) {
-  std::vector<double*> out;
-  for (auto& v : f.nominal) out.push_back(&v);
-  for (auto& e : f.effects)
-    for (std::size_t k = 0; k < e.values.size(); ++k)
-      if (!e.spec->params[k].grid) out.push_back(&e.values[k]);
-  return out;
-}
-
-std::vector<ParamSpec> specs_of(const ChannelModel& ch, const ChannelFit& f) {
-  std::vector<ParamSpec> out = ch.nominal_params();
-  for (const auto& e : f.effects)
-    for (const auto& p : e.spec->params)
-      if (!p.grid) out.push_back(p);
-  return out;
-}
-
 double rss_between(const ChannelModel& ch, const Recording& r, const ChannelFit& f,
                    std::size_t from, std::size_t to) {
   std::vector<double> pred;
@@ -69,8 +51,9 @@ std::vector<Single> single_changes(const ChannelModel& ch, const Recording& r,
                                    double rss_all) {
   std::vector<Single> out;
   ChannelFit trial = before;
-  const std::vector<double*> p = slots(trial);
-  const std::vector<ParamSpec> specs = specs_of(ch, trial);
+  const ParameterLayout lay = fitted_layout(ch, trial);
+  const std::vector<double*>& p = lay.slots;
+  const std::vector<ParamSpec>& specs = lay.specs;
   const double rss_none = rss_between(ch, r, trial, from, to);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double keep = *p[i];
@@ -159,7 +142,7 @@ std::optional<ChangePoint> find_change_point(const ChannelModel& ch, const Recor
   if (!singles.empty() && singles[0].share >= 0.9) {
     const Single& one = singles[0];
     ChannelFit after = cp.before;
-    *slots(after)[one.index] = one.value;
+    *fitted_layout(ch, after).slots[one.index] = one.value;
     const std::vector<FittedValue> nb = fitted_values(ch, cp.before);
     const double rss_noise = noise_rms * noise_rms * static_cast<double>(end - best);
     const double left = std::max(one.rss - rss_noise, 0.1 * rss_noise);

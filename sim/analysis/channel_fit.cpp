@@ -13,10 +13,7 @@ namespace planter::analysis {
 namespace {
 
 // Where each free parameter lives: the nominal vector or an effect's values.
-struct Layout {
-  std::vector<double*> slots;
-  std::vector<ParamSpec> specs;
-};
+using Layout = ParameterLayout;
 
 Layout layout(std::vector<double>& nominal, std::vector<Effect>& effects,
               const std::vector<ParamSpec>& nominal_specs, bool include_grid) {
@@ -167,6 +164,10 @@ void finish(const ChannelModel& ch, const Recording& r, const Split& split,
 }  // namespace
 
 std::size_t fitted_rows(const Split& split) { return rows(split).size(); }
+
+ParameterLayout fitted_layout(const ChannelModel& ch, ChannelFit& f) {
+  return layout(f.nominal, f.effects, ch.nominal_params(), false);
+}
 
 std::vector<FittedValue> fitted_values(const ChannelModel& ch, const ChannelFit& f) {
   std::vector<FittedValue> out;

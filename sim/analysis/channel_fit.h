@@ -46,6 +46,14 @@ struct FittedValue {
 };
 std::vector<FittedValue> fitted_values(const ChannelModel& channel, const ChannelFit& fit);
 
+// Where each fitted (non-grid) parameter of a fit lives, with its spec, in the solver's order
+// (the order of fitted_values()): to vary one parameter of a fit by hand.
+struct ParameterLayout {
+  std::vector<double*> slots;
+  std::vector<ParamSpec> specs;
+};
+ParameterLayout fitted_layout(const ChannelModel& channel, ChannelFit& fit);
+
 // How many calibration rows a fit on `split` compares (the n of its BIC).
 std::size_t fitted_rows(const Split& split);
 

@@ -44,7 +44,8 @@ struct RecordingReader::Source {
   std::istream* in = nullptr;
 };
 
-RecordingReader::RecordingReader(const std::string& path) : file_(path), source_(new Source) {
+RecordingReader::RecordingReader(const std::string& path)
+    : file_(path), source_(std::make_unique<Source>()) {
   config::require_regular_file(path);
   source_->file.open(path, std::ios::binary);
   if (!source_->file) throw RecordingError(path, 0, "cannot be opened");
@@ -53,13 +54,13 @@ RecordingReader::RecordingReader(const std::string& path) : file_(path), source_
 }
 
 RecordingReader::RecordingReader(const std::string& text, const std::string& file)
-    : file_(file), source_(new Source) {
+    : file_(file), source_(std::make_unique<Source>()) {
   source_->text.str(text);
   source_->in = &source_->text;
   read_header();
 }
 
-RecordingReader::~RecordingReader() { delete source_; }
+RecordingReader::~RecordingReader() = default;
 
 bool RecordingReader::more() const {
   return !at_end_ && source_->in->peek() != std::char_traits<char>::eof();

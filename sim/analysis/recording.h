@@ -3,6 +3,7 @@
 // header of signal names, one row per sample, time strictly increasing. Columns may be
 // absent; `state` is kept as text. Every defect is one RecordingError with its line.
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -64,7 +65,8 @@ class RecordingReader {
 
   std::string file_;
   struct Source;
-  Source* source_;
+  // Owned here so a constructor that throws (a bad header) still frees it.
+  std::unique_ptr<Source> source_;
   std::map<std::string, std::string> metadata_;
   std::vector<std::string> header_;
   std::vector<bool> kept_;

@@ -94,7 +94,7 @@ for noise in 0.5 2.0; do
   run_case "clamp-stiffer-noise-$noise" "$noise" "clamp_force:change:k_c=1.4@143" \
     "change_at_s = 143.0" "clamp_stiffness_change_pct = 40.0"
 done
-run_case soil-heavier 1.0 "depth_force:change:c_s=1.5@143" \
+run_case soil-heavier 1.0 "depth_force:change:draft_100mm=1.5@143" \
   "change_at_s = 143.0" "soil_draft_change_pct = 50.0"
 # Terrain the depth wheel follows is no effect of the library: it must be reported as an
 # unexplained residual on depth_mm, not forced onto a wrong name.

@@ -6,7 +6,9 @@ integrated with classical fourth-order Runge-Kutta at 1 ms, and the rows are sam
 100 Hz with +-1 ms jitter. The forms are the nominal structures of PRODUCT.md (what planter-fit
 assumes): the soil wheel's speed estimate lags the ground, the disc drive is a first-order lag
 with a torque of J dw/dt + b w, the clamp law is k (x - x0)^n, the depth actuator a rate-limited
-first-order lag, the draft c_s v d^2. Effects are hidden with options.
+first-order lag, the draft F (A + B S + C S^2) T_ref (d/T_ref)^m in ASABE D497's form, built up
+over travel and relaxing at rest (a share s: ds/dt = v (1 - s) / K - s / tau). Effects are hidden
+with options.
 
 Usage: outside_machine.py OUT.csv [--noise K] [--seed N] [--relaxation FRAC TAU_S]
        [--command-delay S] [--coulomb NM] [--force-offset N] [--vibration HZ AMP_N]
@@ -36,10 +38,19 @@ T_D, OMEGA_MAX = 0.08, 1.2         # s, rad/s
 J, B = 0.35, 1.8                   # kg m^2, N m s/rad
 K_C, X0, N_EXP = 16.0, 1.2, 1.25   # N/mm^n, mm, 1
 T_A, R_MAX = 0.4, 30.0             # s, mm/s
-C_S = 3.0e5                        # N s/m^3
+# Draft (D497 form): coarse soil, a lighter tine than planter-sim's default, depth exponent 1.3.
+F_TEX, A_D, B_D, M_D = 0.65, 60.0, 4.0, 1.3   # 1, N/cm, N/(cm km/h), 1
+K_MOB, TAU_REST = 0.015, 20.0      # m, s: a longer build-up and a quicker relaxation than planter-sim
 LAG = 0.06                         # s, the wheel's speed estimate
 DURATION, DT = 300.0, 0.001
 NOISE = {"v": 2e-4, "w": 1e-3, "q": 5e-3, "f": 0.5, "d": 0.05, "df": 0.3}
+
+
+def wheel_speed(t):
+    """The soil wheel's speed estimate: it lags the ground, and its noise comes from counting
+    encoder edges, so a wheel that stands reads exactly zero."""
+    w = ground_speed(t - LAG)
+    return w + rng.gauss(0, noise["v"]) if w > 0.0 else 0.0
 
 
 def ground_speed(t):
@@ -86,8 +97,8 @@ def omega_command(t):
 
 def derivatives(t, y):
     """States: disc speed, depth, the relaxed share of the clamp force, the roller, and the
-    clamp's hysteresis (Bouc-Wen with n = 1, beta = gamma)."""
-    w, d, relaxed, x, z = y
+    clamp's hysteresis (Bouc-Wen with n = 1, beta = gamma), and the mobilised share of the draft."""
+    w, d, relaxed, x, z, share = y
     target = min(omega_command(t - a.command_delay), OMEGA_MAX)
     dw = (target - w) / T_D
     dd = max(-R_MAX, min(R_MAX, (depth_command(t) - d) / T_A))
@@ -97,12 +108,13 @@ def derivatives(t, y):
     dr = (frac * elastic - relaxed) / tau if frac > 0 else 0.0
     delta = a.hysteresis[1]
     dz = (dx - 0.5 * abs(dx) * z - 0.5 * dx * abs(z)) / delta
-    return [dw, dd, dr, dx, dz]
+    dshare = ground_speed(t) * (1.0 - share) / K_MOB - share / TAU_REST
+    return [dw, dd, dr, dx, dz, dshare]
 
 
 columns = ["t", "v_ground", "v_wheel", "omega_cmd", "omega", "disc_torque", "clamp_pos_mm",
            "clamp_force", "depth_cmd_mm", "depth_mm", "depth_force"]
-t, y = 0.0, [0.0, 60.0, 0.0, 0.0, 0.0]
+t, y = 0.0, [0.0, 60.0, 0.0, 0.0, 0.0, 0.0]
 next_sample = 0.0
 noise = {k: v * a.noise for k, v in NOISE.items()}
 with open(a.out, "w") as out:
@@ -110,15 +122,16 @@ with open(a.out, "w") as out:
     out.write(",".join(columns) + "\n")
     while t < DURATION:
         if t >= next_sample:
-            w, d, relaxed, x, z = y
+            w, d, relaxed, x, z, share = y
             dw = derivatives(t, y)[0]
             v = ground_speed(t)
             dry = a.coulomb * math.tanh(w / 1e-3)
             elastic = K_C * max(0.0, x - X0) ** N_EXP
             force = max(0.0, elastic - relaxed) + a.hysteresis[0] * z + a.force_offset + \
                 a.vibration[1] * math.sin(2 * math.pi * a.vibration[0] * t)
-            draft = C_S * v * (max(0.0, d) * 1e-3) ** 2
-            row = [t, v + rng.gauss(0, noise["v"]), ground_speed(t - LAG) + rng.gauss(0, noise["v"]),
+            s_kmh = 3.6 * max(0.0, v)
+            draft = F_TEX * (A_D + B_D * s_kmh) * 10.0 * (max(0.0, d) / 100.0) ** M_D * share
+            row = [t, v + rng.gauss(0, noise["v"]), wheel_speed(t),
                    omega_command(t), w + rng.gauss(0, noise["w"]),
                    J * dw + B * w + dry + rng.gauss(0, noise["q"]), x,
                    force + rng.gauss(0, noise["f"]), depth_command(t), d + rng.gauss(0, noise["d"]),

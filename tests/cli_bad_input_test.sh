@@ -25,6 +25,12 @@ sed "s|speed_mps = 0.06|speed_mps = 7|" "$src/scenarios/zhangqiu-field.toml" | s
 expect out-of-range "r.toml:[0-9]+: 'route.speed_mps': 7 is out of range; allowed \[0.005, 1\] m/s" -- "$sim" run "$tmp/r.toml" --out "$tmp/o"
 sed "s|^stops = .*|stops = [{ at_m = 14.2, duration_s = 6.0, planting_off = true }]|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/p.toml"
 expect short-planting-off-stop "p.toml:[0-9]+: 'route.stops\[0\].duration_s': must be at least start_delay_s \+ 5 s" -- "$sim" run "$tmp/p.toml" --out "$tmp/o"
+# The draft law proportional to speed is gone: its key is refused with the reason, as is a
+# texture D497 does not name.
+sed "s|^texture = .*|draft_coeff = 4.8e5|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/d.toml"
+expect old-draft-key "d.toml:[0-9]+: 'soil.draft_coeff': .*ASABE D497" -- "$sim" run "$tmp/d.toml" --out "$tmp/o"
+sed "s|^texture = .*|texture = \"loamy\"|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/x.toml"
+expect bad-texture "x.toml:[0-9]+: 'soil.texture': is 'loamy'; allowed: fine, medium, coarse" -- "$sim" run "$tmp/x.toml" --out "$tmp/o"
 printf '[scenario\n' >"$tmp/broken.toml"
 expect syntax "broken.toml:1:" -- "$sim" run "$tmp/broken.toml" --out "$tmp/o"
 expect missing-file "none.toml: no such file" -- "$sim" run "$tmp/none.toml" --out "$tmp/o"

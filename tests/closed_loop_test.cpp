@@ -1,8 +1,11 @@
 // Closed-loop tests: the firmware controller on the lockstep simulator, over the virtual CAN bus.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "firmware/canopen/cia402.h"
 #include "sim/runner/lockstep_runner.h"
+#include "sim/soil/opener_draft.h"
 
 using namespace planter;
 using namespace planter::sim;
@@ -320,4 +323,41 @@ TEST(LinkLoss, AnEStopDuringTheLossWaitsForTheOperator) {
   run_until(r, 16.0);
   EXPECT_EQ(r.controller().link_resets(), 0u);
   EXPECT_NE(r.controller().state(), SupervisorState::kRunning);
+}
+
+// The opener's draft at two forward speeds, in the closed loop: ASABE D497's form changes it by
+// B dS / (A + B S), and the share mobilised at a steady speed by well under 1 %: together under
+// 5 % between 0.03 and 0.06 m/s, where the old c_s v d^2 doubled it.
+TEST(SoilDraft, TwoForwardSpeedsChangeItByTheStandardsAmountNotTwofold) {
+  auto draft_per_cm_at = [](double speed_mps) {
+    Scenario s = short_run(1.2);
+    s.plant.route.speed_mps = speed_mps;
+    s.plant.terrain.roughness_mm = 0.0;
+    s.plant.route.speed_variation_pct = 0.0;
+    LockstepRunner r(s);
+    double sum = 0.0;
+    int n = 0;
+    r.set_observer([&](const TickRecord& row) {
+      const double v = row.truth.v_mps;
+      if (std::abs(v - speed_mps) < 1e-4 && row.truth.depth_mm > 90.0) {
+        sum += row.truth.draft_N / (0.1 * row.truth.depth_mm);  // depth exponent 1: N per cm
+        ++n;
+      }
+    });
+    r.run();
+    EXPECT_GT(n, 500) << "too few ticks at " << speed_mps << " m/s and full depth";
+    return sum / std::max(1, n);
+  };
+  const double slow = draft_per_cm_at(0.03), fast = draft_per_cm_at(0.06);
+  const soil::OpenerDraftLaw law;  // the scenario's medium texture and the default row
+  auto law_per_cm = [&law](double v) {
+    return law.texture_factor * soil::draft_per_cm_N(law, v) * soil::steady_mobilised_share(law, v);
+  };
+  EXPECT_NEAR(slow, law_per_cm(0.03), 0.5);
+  const double expected = law_per_cm(0.06) / law_per_cm(0.03);
+  std::printf("draft per cm of depth: %.3f N at 0.03 m/s, %.3f N at 0.06 m/s (x%.4f, law x%.4f)\n",
+              slow, fast, fast / slow, expected);
+  EXPECT_NEAR(fast / slow, expected, 0.002);
+  EXPECT_LT(fast / slow, 1.05);
+  EXPECT_GT(fast / slow, 1.0);
 }

@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "sim/analysis/channel_model.h"
+#include "sim/analysis/decimation.h"
 #include "sim/analysis/effect_hooks.h"
+#include "sim/soil/opener_draft.h"
 
 namespace planter::analysis {
 namespace {
@@ -204,6 +206,34 @@ class DepthChannel : public ChannelModel {
   }
 };
 
+// Soil draft on the opener in ASABE D497's form, mobilised over travel and relaxing at rest
+// (sim/soil/opener_draft.h, where the sources are cited). A recording holds one or two forward
+// speeds, so B and C cannot be told from A: they are held at the standard row's ratios to A. The
+// fit finds the draft at the reference depth, the depth exponent m, the mobilisation travel K and
+// the relaxation time tau. The speed column and the force sensor need not be sampled together
+// (planter-sim writes the true speed at the tick and the force as the controller received it,
+// 20 ms later): their relative lag is a nominal parameter, as the soil wheel's is.
+constexpr double kRestWindow_s = 0.5;
+
+// True where the machine stands: the soil wheel's speed reads exactly zero (no encoder edge)
+// for kRestWindow_s either side, which covers the wheel's estimator lag at a start. A speed
+// column's noise at rest is then not integrated as travel. A wheel speed that never reads
+// exactly zero (a filtered estimate) marks nothing.
+std::vector<bool> standing(const Recording& r) {
+  const std::vector<double>& wheel = r.at("v_wheel");
+  const std::size_t n = wheel.size();
+  const double rate = sample_rate_hz(r);
+  const auto half = static_cast<std::size_t>(std::ceil(kRestWindow_s * std::max(rate, 0.0)));
+  std::vector<std::size_t> moving_before(n + 1, 0);  // prefix count of moving samples
+  for (std::size_t k = 0; k < n; ++k) moving_before[k + 1] = moving_before[k] + (wheel[k] != 0.0);
+  std::vector<bool> out(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t lo = k > half ? k - half : 0, hi = std::min(n, k + half + 1);
+    out[k] = moving_before[hi] == moving_before[lo];
+  }
+  return out;
+}
+
 class DraftChannel : public ChannelModel {
  public:
   std::string subsystem() const override { return "depth"; }
@@ -211,7 +241,12 @@ class DraftChannel : public ChannelModel {
   std::string input() const override { return "depth_mm"; }
   std::vector<std::string> needs() const override { return {"depth_mm", "depth_force", "v_wheel"}; }
   std::vector<ParamSpec> nominal_params() const override {
-    return {{"c_s", "N s/m^3", 1e5, 0.0, 1e9}};
+    const soil::OpenerDraftLaw row;
+    return {{"draft_100mm", "N", 500.0, 0.0, 1e5},
+            {"m", "1", 1.5, 1.0, 2.0},
+            {"speed_lag_s", "s", 0.02, 0.0, 0.5},
+            {"mobilisation_mm", "mm", row.mobilisation_mm, 0.5, 200.0},
+            {"rest_relaxation_s", "s", row.rest_relaxation_s, 0.5, 3600.0}};
   }
   std::vector<const EffectSpec*> candidates(const Recording&) const override {
     return specs({EffectKind::kOffset, EffectKind::kPeriodic, EffectKind::kDelay,
@@ -220,11 +255,31 @@ class DraftChannel : public ChannelModel {
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
     const std::vector<double> d = transform_input(r, r.at("depth_mm"), fx);
-    const auto& v = r.has("v_ground") ? r.at("v_ground") : r.at("v_wheel");
+    const Effect lag{&effect_spec(EffectKind::kDelay), {p[2]}};
+    const std::vector<double> v =
+        transform_input(r, r.has("v_ground") ? r.at("v_ground") : r.at("v_wheel"), {lag});
+    const std::vector<bool> rest = standing(r);
+    // The default row, scaled so that F_i A T_ref is the fitted draft at the reference depth.
+    const soil::OpenerDraftLaw row;
+    soil::OpenerDraftLaw law = row;
+    const double scale = p[0] / (0.1 * soil::kDraftReferenceDepth_mm * row.a_N_per_cm);
+    law.texture_factor = 1.0;
+    law.a_N_per_cm = row.a_N_per_cm * scale;
+    law.b_N_per_cm_kmh = row.b_N_per_cm_kmh * scale;
+    law.c_N_per_cm_kmh2 = row.c_N_per_cm_kmh2 * scale;
+    law.depth_exponent = p[1];
+    law.mobilisation_mm = p[3];
+    law.rest_relaxation_s = p[4];
     y.resize(d.size());
+    double share = 0.0;
     for (std::size_t k = 0; k < d.size(); ++k) {
-      const double depth_m = std::max(0.0, d[k]) * 1e-3;
-      y[k] = p[0] * std::max(0.0, v[k]) * depth_m * depth_m;
+      const double v_k = rest[k] ? 0.0 : v[k];
+      if (k > 0) {
+        const double dt = r.t[k] - r.t[k - 1];
+        const double v_prev = rest[k - 1] ? 0.0 : v[k - 1];
+        share = soil::mobilised_share(law, share, 0.5 * (v_k + v_prev) * dt, dt);
+      }
+      y[k] = soil::opener_draft_N(law, v_k, d[k], share);
     }
     apply_output(r, fx, nullptr, nullptr, y);
   }

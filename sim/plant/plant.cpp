@@ -48,8 +48,10 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   // Ground and soil wheel.
   const double x_before = ground_.x_m();
   ground_.step(t, dt);
-  const double draft = cfg_.soil.draft_coeff * fx.changed(fx.soil_draft_change_pct, t) *
-                       ground_.v_mps() * std::pow(std::max(0.0, depth_.position_mm()) * 1e-3, 2.0);
+  draft_share_ = soil::mobilised_share(cfg_.soil.draft, draft_share_, ground_.x_m() - x_before, dt);
+  const double draft =
+      soil::opener_draft_N(cfg_.soil.draft, ground_.v_mps(), depth_.position_mm(), draft_share_) *
+      fx.changed(fx.soil_draft_change_pct, t);
   const double slip_pct = cfg_.soil.slip_mean_pct +
                           cfg_.soil.slip_variation_pct * std::sin(kTwoPi * ground_.x_m() / 3.7) +
                           fx.slip_per_kN * draft * 1e-3;

@@ -55,6 +55,7 @@ class Plant {
   LinearActuatorModel depth_;
   SeedlingProcess seedlings_;
   std::mt19937_64 noise_rng_;
+  double draft_share_ = 0.0;  // the soil draft's mobilised share (sim/soil/opener_draft.h)
   double relaxation_N_ = 0.0;
   double relaxation2_N_ = 0.0;
   double fixture_load_N_ = 0.0;

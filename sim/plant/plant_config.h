@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "sim/seedling/seedling_force_model.h"
+#include "sim/soil/opener_draft.h"
 
 namespace planter::sim {
 
@@ -37,7 +38,7 @@ struct SoilConfig {
   double wheel_radius_m = 0.150;    // true soil-wheel radius
   double slip_mean_pct = 0.0;       // travel reduction of the towed soil wheel
   double slip_variation_pct = 0.0;  // slow variation along the row
-  double draft_coeff = 4.8e5;       // depth_force = c_s * v * depth^2 (v m/s, depth m)
+  soil::OpenerDraftLaw draft;       // draft on the opener (ASABE D497 form, sim/soil/)
 };
 
 struct SeedlingConfig {

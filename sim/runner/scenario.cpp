@@ -88,7 +88,21 @@ Scenario load_scenario(const std::string& path) {
     p.soil.wheel_radius_m = t->number("wheel_radius_m", 0.15, 0.02, 1.0, "m");
     p.soil.slip_mean_pct = t->number("slip_mean_pct", 0.0, -20.0, 50.0, "%");
     p.soil.slip_variation_pct = t->number("slip_variation_pct", 0.0, 0.0, 20.0, "%");
-    p.soil.draft_coeff = t->number("draft_coeff", 4.8e5, 0.0, 1e8);
+    if (t->has("draft_coeff"))
+      t->fail("draft_coeff",
+              "was c_s in a draft proportional to speed, which was wrong; the draft now has "
+              "ASABE D497's form: set texture and, if measured, draft_a_N_per_cm (README, "
+              "\"Soil draft\")");
+    soil::OpenerDraftLaw& d = p.soil.draft;
+    const std::string texture = t->string("texture", "medium");
+    d.texture_factor = soil::texture_factor_of(texture);
+    if (d.texture_factor < 0.0)
+      t->fail("texture", "is '" + texture + "'; allowed: fine, medium, coarse (D497's F_i)");
+    d.a_N_per_cm = t->number("draft_a_N_per_cm", d.a_N_per_cm, 0.0, 1e4, "N/cm");
+    d.b_N_per_cm_kmh = t->number("draft_b_N_per_cm_kmh", d.b_N_per_cm_kmh, 0.0, 1e4, "N/(cm km/h)");
+    d.c_N_per_cm_kmh2 =
+        t->number("draft_c_N_per_cm_kmh2", d.c_N_per_cm_kmh2, 0.0, 1e4, "N/(cm (km/h)^2)");
+    d.depth_exponent = t->number("draft_depth_exponent", d.depth_exponent, 1.0, 2.0);
     t->reject_unknown_keys();
   }
   if (auto t = root.table("seedlings")) {

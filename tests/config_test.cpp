@@ -1,11 +1,15 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "config/board_config.h"
 #include "config/config_error.h"
+#include "sim/plant/effect_keys.h"
+#include "sim/runner/model_assumptions.h"
 #include "sim/runner/scenario.h"
 
 using namespace planter;
@@ -173,6 +177,66 @@ TEST(ScenarioConfig, FieldScenarioLoads) {
   EXPECT_DOUBLE_EQ(s.plant.route.distance_m, 30.0);
   ASSERT_EQ(s.plant.route.stops.size(), 1u);
   EXPECT_DOUBLE_EQ(s.plant.effects.disc_coulomb_Nm, 0.0);  // effects are off by default
+}
+
+// The field scenario with its paths made absolute and lines appended under its last table,
+// [effects], written to a scratch file.
+std::string field_scenario_with(const std::string& effects_lines) {
+  namespace fs = std::filesystem;
+  std::string text = text_of(std::string(PLANTER_SOURCE_DIR) + "/scenarios/zhangqiu-field.toml");
+  text = std::regex_replace(text, std::regex("\\.\\./"), std::string(PLANTER_SOURCE_DIR) + "/");
+  const fs::path file = fs::temp_directory_path() /
+                        ("planter-scenario-" + std::to_string(::getpid()) + "-" +
+                         std::to_string(std::hash<std::string>{}(effects_lines)) + ".toml");
+  std::ofstream(file) << text << effects_lines << "\n";
+  return file.string();
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string out;
+  for (const auto& l : lines) out += l + "\n";
+  return out;
+}
+
+// Every key of the [effects] table is read from a scenario into its member, at its limits.
+TEST(ScenarioConfig, EveryEffectKeyIsReadIntoItsMember) {
+  for (const sim::EffectKey& k : sim::kEffectKeys) {
+    for (const double v : {k.min, k.max}) {
+      std::ostringstream line;
+      line << k.key << " = " << std::showpoint << v;
+      const std::string path = field_scenario_with(line.str());
+      const sim::Scenario s = sim::load_scenario(path);
+      EXPECT_DOUBLE_EQ(s.plant.effects.*k.member, v) << line.str();
+      std::filesystem::remove(path);
+    }
+  }
+}
+
+// The report's assumptions come from the configuration that ran: the field scenario's DEM
+// force model, not the normal strength a scenario without one uses; the effects switched on.
+TEST(ScenarioConfig, AssumptionsAreWrittenFromWhatRan) {
+  const std::string path = field_scenario_with("force_offset_N = 8.0");
+  sim::Scenario s = sim::load_scenario(path);
+  std::filesystem::remove(path);
+  ASSERT_TRUE(s.plant.seedlings.force_model.loaded);
+  const std::string with_dem = joined(sim::model_assumptions(s));
+  EXPECT_NE(with_dem.find("the first peak of the DEM's reduced-order model (" +
+                          std::string(PLANTER_SOURCE_DIR) + "/models/seedling_force.toml)"),
+            std::string::npos)
+      << with_dem;
+  char peak[32];
+  std::snprintf(peak, sizeof peak, "%.1f N at", s.plant.seedlings.force_model.peak_force_N);
+  EXPECT_NE(with_dem.find(peak), std::string::npos) << with_dem;
+  EXPECT_EQ(with_dem.find("normal, mean"), std::string::npos) << with_dem;
+  EXPECT_NE(with_dem.find("force_offset_N = 8 N (load-cell offset)"), std::string::npos)
+      << with_dem;
+  EXPECT_NE(with_dem.find("F_i = 0.85, A = 91.0 N/cm"), std::string::npos) << with_dem;
+
+  s.plant.seedlings.force_model.loaded = false;
+  s.plant.effects.force_offset_N = 0.0;
+  const std::string without = joined(sim::model_assumptions(s));
+  EXPECT_NE(without.find("normal, mean 140.6 N, SD 24.9 N"), std::string::npos) << without;
+  EXPECT_NE(without.find("Hidden effects: none"), std::string::npos) << without;
 }
 
 // Values inside their ranges whose arithmetic is wrong: refused with the key and the limit.

@@ -18,7 +18,9 @@
 #ifdef PLANTER_WITH_REPLAY
 #include "sim/analysis/recording.h"
 #endif
+#include "sim/plant/effect_keys.h"
 #include "sim/runner/lockstep_runner.h"
+#include "sim/runner/model_assumptions.h"
 #include "sim/runner/recording_writer.h"
 
 namespace fs = std::filesystem;
@@ -95,7 +97,8 @@ int run_scenario(const std::string& scenario_path, const std::string& out_dir, b
     recording.write(row);
     if (tick++ % 10 == 0) series.add(row);
   });
-  const Summary summary = runner.run();
+  Summary summary = runner.run();
+  summary.assumptions = model_assumptions(scenario);
   recording.close();
   out.write("summary.json", summary.to_json() + "\n");
   out.write("seedlings.csv", seedlings_csv(runner.plant().seedlings()));
@@ -164,6 +167,19 @@ int run_devices(const std::string& scenario_path, const std::string& board_path,
   return 0;
 }
 
+// The [effects] keys a scenario may set: what each hides in the plant, its range and unit.
+int print_effect_keys() {
+  std::printf(
+      "[effects] keys of a scenario (all off by default; README \"Adding a physical "
+      "effect\"):\n");
+  for (const EffectKey& k : kEffectKeys) {
+    char range[64];
+    std::snprintf(range, sizeof range, "%g to %g %s", k.min, k.max, k.unit);
+    std::printf("  %-28s %-24s %s\n", k.key, range, k.what);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -185,6 +201,8 @@ int main(int argc, char** argv) {
   sweep->add_option("--distance", sweep_distance, "metres per run")
       ->capture_default_str()
       ->check(CLI::Range(0.5, 100.0));
+  auto* effects =
+      app.add_subcommand("effects", "list the [effects] keys a scenario may set to hide physics");
   RealtimeDevicesOptions devices_options;
   std::string devices_board;
   auto* devices = app.add_subcommand(
@@ -216,6 +234,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) return run_scenario(scenario, out, quiet, force);
     if (*sweep) return run_sweep(scenario, out, sweep_distance, force);
+    if (*effects) return print_effect_keys();
     if (*devices) return run_devices(scenario, devices_board, devices_options);
 #ifdef PLANTER_WITH_REPLAY
     if (*replay) return run_replay(model, recording, out, force);

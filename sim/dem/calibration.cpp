@@ -18,6 +18,13 @@
 namespace planter::dem {
 namespace {
 
+using doe::box_behnken_3;
+using doe::fit_main_effects;
+using doe::fit_quadratic_3;
+using doe::plackett_burman_12;
+using doe::predict_quadratic_3;
+using doe::solve_quadratic_3_for;
+
 constexpr double kAscentStep = 0.2;  // coded units per step for the steepest factor
 constexpr int kAscentSteps = 8;
 

@@ -10,9 +10,13 @@
 #include <vector>
 
 #include "sim/dem/compression_report.h"
-#include "sim/dem/doe.h"
+#include "sim/doe/doe.h"
 
 namespace planter::dem {
+
+// The designs and their analysis are shared with planter-sim's sweep (sim/doe).
+using doe::Anova;
+using doe::TermTest;
 
 // One factor of the screening: its name, how it sets a setup, and its low/high levels.
 // Stiffness and strength span decades, so they are coded on a log scale.

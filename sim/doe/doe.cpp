@@ -1,4 +1,4 @@
-#include "sim/dem/doe.h"
+#include "sim/doe/doe.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-namespace planter::dem {
+namespace planter::doe {
 namespace {
 
 double f_upper_tail(double f, int df1, int df2) {
@@ -142,4 +142,82 @@ Eigen::Vector3d solve_quadratic_3_for(const Anova& a, double target) {
   return best;
 }
 
-}  // namespace planter::dem
+LackOfFit lack_of_fit(const Eigen::MatrixXd& coded, const Eigen::VectorXd& y, const Anova& a) {
+  LackOfFit l;
+  // Group the rows by their settings; the pure error is the spread within each group.
+  std::vector<Eigen::Index> group(static_cast<std::size_t>(coded.rows()), -1);
+  std::vector<Eigen::Index> first_rows;
+  for (Eigen::Index r = 0; r < coded.rows(); ++r) {
+    for (const Eigen::Index f : first_rows) {
+      if ((coded.row(r) - coded.row(f)).cwiseAbs().maxCoeff() < 1e-9) {
+        group[static_cast<std::size_t>(r)] = f;
+        break;
+      }
+    }
+    if (group[static_cast<std::size_t>(r)] < 0) {
+      group[static_cast<std::size_t>(r)] = r;
+      first_rows.push_back(r);
+    }
+  }
+  for (const Eigen::Index f : first_rows) {
+    double sum = 0.0;
+    int n = 0;
+    for (Eigen::Index r = 0; r < coded.rows(); ++r) {
+      if (group[static_cast<std::size_t>(r)] == f) {
+        sum += y(r);
+        ++n;
+      }
+    }
+    const double mean = sum / n;
+    for (Eigen::Index r = 0; r < coded.rows(); ++r) {
+      if (group[static_cast<std::size_t>(r)] == f) l.pure_error_ss += (y(r) - mean) * (y(r) - mean);
+    }
+    l.pure_error_df += n - 1;
+  }
+  const int distinct = static_cast<int>(first_rows.size());
+  const int params = static_cast<int>(a.beta.size());
+  l.df = distinct - params;
+  l.available = l.pure_error_df > 0 && l.df > 0;
+  if (!l.available) return l;
+  l.ss = std::max(0.0, a.residual_ss - l.pure_error_ss);
+  const double pure_ms = std::max(l.pure_error_ss / l.pure_error_df, 1e-300);
+  l.f_value = (l.ss / l.df) / pure_ms;
+  l.p_value = f_upper_tail(l.f_value, l.df, l.pure_error_df);
+  return l;
+}
+
+double desirability(const Goal& g, double y) {
+  const double span = g.best - g.worst;
+  if (span == 0.0) return y == g.best ? 1.0 : 0.0;
+  return std::clamp((y - g.worst) / span, 0.0, 1.0);
+}
+
+Optimum desirability_optimum_3(const std::vector<Goal>& goals) {
+  constexpr int kSteps = 40;
+  Optimum best;
+  best.desirability = -1.0;
+  for (int i = 0; i <= kSteps; ++i) {
+    for (int j = 0; j <= kSteps; ++j) {
+      for (int k = 0; k <= kSteps; ++k) {
+        const Eigen::Vector3d x(-1.0 + 2.0 * i / kSteps, -1.0 + 2.0 * j / kSteps,
+                                -1.0 + 2.0 * k / kSteps);
+        double log_sum = 0.0;
+        bool zero = false;
+        for (const Goal& g : goals) {
+          const double d = desirability(g, predict_quadratic_3(*g.surface, x));
+          if (d <= 0.0) zero = true;
+          log_sum += std::log(std::max(d, 1e-300));
+        }
+        const double overall =
+            zero || goals.empty() ? 0.0 : std::exp(log_sum / static_cast<double>(goals.size()));
+        if (overall > best.desirability + 1e-12) {
+          best.desirability = overall;
+          best.coded = x;
+        }
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace planter::doe

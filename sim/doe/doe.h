@@ -1,13 +1,16 @@
 #pragma once
 // Designs of experiments and their regression analysis, as the paper used them through a
 // commercial package: Plackett-Burman screening, Box-Behnken with a quadratic response
-// surface, and the analysis of variance with p-values, R^2, adjusted R^2 and adequate
-// precision. Coded factor levels are -1, 0, +1.
+// surface, the analysis of variance with p-values, R^2, adjusted R^2, adequate precision and
+// lack of fit, and the desirability optimum. Coded factor levels are -1, 0, +1. Forms:
+// Montgomery, "Design and Analysis of Experiments", ch. 3, 11 (lack of fit: sec. 11.3);
+// Derringer and Suich, "Simultaneous optimization of several response variables", J. Quality
+// Technology 12(4), 1980 (desirability).
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
-namespace planter::dem {
+namespace planter::doe {
 
 // 12 runs for up to 11 two-level factors (Plackett and Burman's generator, cyclic).
 Eigen::MatrixXd plackett_burman_12(int factors);
@@ -44,4 +47,28 @@ double predict_quadratic_3(const Anova& a, const Eigen::Vector3d& x);
 // of equal ones, the nearest the centre).
 Eigen::Vector3d solve_quadratic_3_for(const Anova& a, double target);
 
-}  // namespace planter::dem
+// Lack of fit against pure error, from rows run at the same coded settings (replicates).
+struct LackOfFit {
+  bool available = false;  // needs replicates and more distinct settings than terms
+  double ss = 0.0, pure_error_ss = 0.0;
+  int df = 0, pure_error_df = 0;
+  double f_value = 0.0, p_value = 1.0;
+};
+LackOfFit lack_of_fit(const Eigen::MatrixXd& coded, const Eigen::VectorXd& y, const Anova& a);
+
+// A goal of the desirability optimum: one response's surface, desirability 0 at `worst` and 1
+// at `best`, linear between (Derringer-Suich, weight 1). best > worst maximises, best < worst
+// minimises.
+struct Goal {
+  const Anova* surface = nullptr;
+  double worst = 0.0, best = 1.0;
+};
+double desirability(const Goal& g, double y);
+struct Optimum {
+  Eigen::Vector3d coded = Eigen::Vector3d::Zero();
+  double desirability = 0.0;  // the geometric mean of the goals' desirabilities there
+};
+// The point of the coded cube [-1, 1]^3 with the highest overall desirability (grid search).
+Optimum desirability_optimum_3(const std::vector<Goal>& goals);
+
+}  // namespace planter::doe

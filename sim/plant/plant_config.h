@@ -54,6 +54,7 @@ struct SeedlingConfig {
   // From the DEM (planter-dem reduce) when the scenario names one: the mean strength then
   // follows each seedling's diameter, with the measured spread (strength_sd / strength_mean).
   SeedlingForceModel force_model;
+  std::string force_model_file;  // as the scenario names it (empty: none)
 };
 
 struct MechanismConfig {

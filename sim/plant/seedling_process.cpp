@@ -14,10 +14,7 @@ SeedlingProcess::SeedlingProcess(const PlantConfig& config, std::uint64_t seed)
 }
 
 double SeedlingProcess::contact_area_factor() const {
-  // Fewer protrusions concentrate the load; more area brings the rigid disc into contact.
-  // The paper's response: radial force falls then rises with contact area (Fig. 17b).
-  const double a = (cfg_.mechanism.contact_area_mm2 - 255.0) / 150.0;
-  return 1.0 + 0.15 * a * a;
+  return sim::contact_area_factor(cfg_.mechanism.contact_area_mm2);
 }
 
 double SeedlingProcess::nip_thickness_mm(double t_s) const {

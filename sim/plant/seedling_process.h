@@ -10,6 +10,14 @@
 
 namespace planter::sim {
 
+// The radial force on a seedling per newton of clamp force, by the clamp's contact area:
+// fewer protrusions concentrate the load, more area brings the rigid disc into contact. A shape
+// after the paper's Fig. 17b (radial force falls then rises with contact area), not mechanics.
+inline double contact_area_factor(double contact_area_mm2) {
+  const double a = (contact_area_mm2 - 255.0) / 150.0;
+  return 1.0 + 0.15 * a * a;
+}
+
 struct Seedling {
   double diameter_mm = 0;
   double length_mm = 0;

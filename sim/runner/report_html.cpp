@@ -116,33 +116,9 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
       << "<h2>Seedling outcomes</h2>" << histogram("tilt from vertical [deg]", tilts, 0, 30, 30)
       << histogram("spacing [mm]", spacing, 0, 80, 40)
       << histogram("peak radial force in the nip [N]", peaks, 60, 140, 40)
-      << "<h2>Model assumptions</h2><ul>"
-      << "<li>Seedling strength: normal, mean " << sc.plant.seedlings.strength_mean_N
-      << " N (the paper's stated average "
-      << "peak) and SD " << sc.plant.seedlings.strength_sd_N
-      << " N (the spread of its six measured peaks, 127.2-191.6 N, "
-      << "whose own mean is 161.9 N). A seedling is damaged when the radial force in the roller "
-         "nip exceeds its strength.</li>"
-      << "<li>Radial force on a seedling = clamp force x a contact-area factor (minimum at 255 "
-         "mm^2, rising 15 % per 150 "
-      << "mm^2 either side, after the paper's Fig. 17b); thicker seedlings compress the lips "
-         "further.</li>"
-      << "<li>Tilt = kinematic part (gain x the angle of the clamp point's velocity relative to "
-         "the soil at release, "
-      << "with the soil backflow proportional to depth; zero at sigma "
-      << sc.plant.mechanism.optimum_sigma
-      << " and 102 mm) + weak-hold deflection (12 deg x exp(-hold/45 N)) + noise (seedling size, "
-         "micro-terrain, "
-      << "vibration). Uprightness = mean of (1 - |tilt|/90 deg).</li>"
-      << "<li>The soil wheel slips " << sc.plant.soil.slip_mean_pct << " +- "
-      << sc.plant.soil.slip_variation_pct
-      << " %; the board's wheel radius is the calibrated effective rolling radius (true radius / "
-         "(1 - mean slip)).</li>"
-      << "<li>Clamp: F = k (x - x0)^n with n = " << sc.plant.drive.clamp_n
-      << " (reduced-order, until the DEM fit replaces it); load cell noise "
-      << sc.plant.drive.force_noise_N << " N.</li>"
-      << "<li>Sigma statistics use samples with true (or measured) ground speed above 0.02 "
-         "m/s.</li></ul></body></html>";
+      << "<h2>Model assumptions</h2><p>Written from the configuration that ran.</p><ul>";
+  for (const std::string& a : s.assumptions) out << "<li>" << html_escape(a) << "</li>";
+  out << "</ul></body></html>";
   return out.str();
 }
 

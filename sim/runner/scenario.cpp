@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "config/toml_section.h"
+#include "sim/plant/effect_keys.h"
 
 namespace planter::sim {
 
@@ -92,7 +93,7 @@ Scenario load_scenario(const std::string& path) {
       t->fail("draft_coeff",
               "was c_s in a draft proportional to speed, which was wrong; the draft now has "
               "ASABE D497's form: set texture and, if measured, draft_a_N_per_cm (README, "
-              "\"Soil draft\")");
+              "\"Model assumptions\")");
     soil::OpenerDraftLaw& d = p.soil.draft;
     const std::string texture = t->string("texture", "medium");
     d.texture_factor = soil::texture_factor_of(texture);
@@ -123,6 +124,7 @@ Scenario load_scenario(const std::string& path) {
       if (!std::filesystem::exists(model_path))
         t->fail("force_model", "file " + model_path.string() + " does not exist");
       c.force_model = load_seedling_force_model(model_path.string());
+      c.force_model_file = model;
     }
     t->reject_unknown_keys();
   }
@@ -154,34 +156,11 @@ Scenario load_scenario(const std::string& path) {
   }
   if (auto t = root.table("effects")) {
     Effects& e = p.effects;
-    e.disc_coulomb_Nm = t->number("disc_coulomb_Nm", 0.0, 0.0, 100.0, "N*m");
-    e.disc_backlash_rad = t->number("disc_backlash_rad", 0.0, 0.0, 0.5, "rad");
-    e.command_delay_s = t->number("command_delay_s", 0.0, 0.0, 1.0, "s");
-    e.slip_per_kN = t->number("slip_per_kN", 0.0, 0.0, 50.0, "%/kN");
-    e.clamp_relaxation_frac = t->number("clamp_relaxation_frac", 0.0, 0.0, 0.9);
-    e.clamp_relaxation_tau_s = t->number("clamp_relaxation_tau_s", 2.0, 0.01, 1000.0, "s");
-    // A second Maxwell branch: relaxation over two time scales (a Prony series of two terms).
-    e.clamp_relaxation2_frac = t->number("clamp_relaxation2_frac", 0.0, 0.0, 0.9);
-    e.clamp_relaxation2_tau_s = t->number("clamp_relaxation2_tau_s", 60.0, 0.01, 10000.0, "s");
+    for (const EffectKey& k : kEffectKeys)
+      e.*k.member = t->number(k.key, k.fallback, k.min, k.max, k.unit);
     if (e.clamp_relaxation_frac + e.clamp_relaxation2_frac > 0.9)
       t->fail("clamp_relaxation2_frac",
               "with clamp_relaxation_frac must stay at most 0.9 (the branches share the load)");
-    e.depth_sag_mm_per_kN = t->number("depth_sag_mm_per_kN", 0.0, 0.0, 100.0, "mm/kN");
-    e.vibration_hz = t->number("vibration_hz", 0.0, 0.0, 200.0, "Hz");
-    e.vibration_force_N = t->number("vibration_force_N", 0.0, 0.0, 100.0, "N");
-    e.vibration_tilt_deg = t->number("vibration_tilt_deg", 0.0, 0.0, 30.0, "deg");
-    e.force_offset_N = t->number("force_offset_N", 0.0, -100.0, 100.0, "N");
-    e.force_gain_pct = t->number("force_gain_pct", 0.0, -50.0, 50.0, "%");
-    e.force_drift_N_per_min = t->number("force_drift_N_per_min", 0.0, -10.0, 10.0, "N/min");
-    e.disc_stribeck_Nm = t->number("disc_stribeck_Nm", 0.0, 0.0, 100.0, "N*m");
-    e.disc_stribeck_radps = t->number("disc_stribeck_radps", 0.05, 0.001, 10.0, "rad/s");
-    e.disc_deadzone_radps = t->number("disc_deadzone_radps", 0.0, 0.0, 1.0, "rad/s");
-    // An asymmetric band: the width for reverse set-points (absent: the same as forward).
-    if (t->has("disc_deadzone_neg_radps"))
-      e.disc_deadzone_neg_radps = t->number("disc_deadzone_neg_radps", 0.0, 0.0, 1.0, "rad/s");
-    e.change_at_s = t->number("change_at_s", 0.0, 0.0, 1e6, "s");
-    e.clamp_stiffness_change_pct = t->number("clamp_stiffness_change_pct", 0.0, -90.0, 500.0, "%");
-    e.soil_draft_change_pct = t->number("soil_draft_change_pct", 0.0, -90.0, 500.0, "%");
     t->reject_unknown_keys();
   }
   if (auto t = root.table("controller")) {

@@ -103,6 +103,7 @@ std::string Summary::to_json() const {
   j["distance_m"] = distance_m;
   j["route_complete"] = route_complete;
   j["notes"] = notes;
+  j["assumptions"] = assumptions;
   j["sim_seconds"] = sim_seconds;
   j["wall_seconds"] = wall_seconds;
   j["realtime_factor"] = realtime_factor;

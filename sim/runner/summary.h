@@ -33,6 +33,8 @@ struct Summary {
   bool route_complete = true;
   // What a reader must know beyond the figures (a route cut short, ...).
   std::vector<std::string> notes;
+  // The model assumptions of the run, from its configuration (model_assumptions.h).
+  std::vector<std::string> assumptions;
 
   [[nodiscard]] std::string to_json() const;
 };

@@ -9,12 +9,13 @@
 #include "config/config_error.h"
 #include "sim/dem/calibration.h"
 #include "sim/dem/dem_params.h"
-#include "sim/dem/doe.h"
 #include "sim/dem/seedling.h"
+#include "sim/doe/doe.h"
 #include "sim/seedling/seedling_force_model.h"
 
 using namespace planter;
 using namespace planter::dem;
+using namespace planter::doe;
 
 TEST(Doe, PlackettBurmanColumnsAreBalancedAndOrthogonal) {
   const Eigen::MatrixXd d = plackett_burman_12(8);

@@ -14,6 +14,7 @@
 #include "config/output_set.h"
 #include "hal/linux/hal_error.h"
 #include "sim/apps/replay.h"
+#include "sim/apps/sweep.h"
 #include "sim/hil/realtime_devices.h"
 #ifdef PLANTER_WITH_REPLAY
 #include "sim/analysis/recording.h"
@@ -110,45 +111,6 @@ int run_scenario(const std::string& scenario_path, const std::string& out_dir, b
   return 0;
 }
 
-// The paper's Box-Behnken design on contact area, disc speed and depth (15 runs), each a
-// shortened run of the scenario, so a user sees how uprightness and force respond.
-int run_sweep(const std::string& scenario_path, const std::string& out_dir, double distance_m,
-              bool force) {
-  const Scenario base = load_scenario_warned(scenario_path, "");
-  config::OutputSet out(out_dir, "planter-sim sweep", force);
-  const double area[3] = {105, 255, 405}, omega[3] = {0.15, 0.25, 0.35}, depth[3] = {40, 100, 160};
-  const int design[15][3] = {{-1, -1, 0}, {1, -1, 0}, {-1, 1, 0}, {1, 1, 0},   {-1, 0, -1},
-                             {1, 0, -1},  {-1, 0, 1}, {1, 0, 1},  {0, -1, -1}, {0, 1, -1},
-                             {0, -1, 1},  {0, 1, 1},  {0, 0, 0},  {0, 0, 0},   {0, 0, 0}};
-  std::ostringstream csv;
-  csv << "run,contact_area_mm2,disc_speed_radps,depth_mm,sigma,uprightness_pct,damage_pct,seedling_"
-         "peak_force_mean_N,"
-         "clamp_force_max_N,spacing_mean_mm\n";
-  std::printf("%3s %10s %10s %8s %7s %12s %9s %14s\n", "run", "area_mm2", "omega", "depth", "sigma",
-              "upright_%", "damage_%", "peak_force_N");
-  for (int i = 0; i < 15; ++i) {
-    Scenario s = base;
-    s.plant.route.distance_m = distance_m;
-    s.plant.route.stops.clear();
-    s.seed = base.seed + static_cast<std::uint64_t>(i);
-    const double a = area[design[i][0] + 1], w = omega[design[i][1] + 1],
-                 d = depth[design[i][2] + 1];
-    const double sigma = w * s.board.controller.sigma.disc_radius_m / s.plant.route.speed_mps;
-    set_operating_point(s, sigma, d, a);
-    LockstepRunner runner(s);
-    const Summary r = runner.run();
-    std::printf("%3d %10.0f %10.3f %8.0f %7.3f %12.2f %9.2f %14.1f\n", i + 1, a, w, d, sigma,
-                r.uprightness_pct, r.damage_pct, r.seedling_peak_force_mean_N);
-    csv << i + 1 << ',' << a << ',' << w << ',' << d << ',' << sigma << ',' << r.uprightness_pct
-        << ',' << r.damage_pct << ',' << r.seedling_peak_force_mean_N << ',' << r.clamp_force_max_N
-        << ',' << r.spacing_mean_mm << '\n';
-  }
-  out.write("sweep.csv", csv.str());
-  out.commit();
-  std::printf("wrote %s/sweep.csv\n", out_dir.c_str());
-  return 0;
-}
-
 std::atomic<bool> g_stop{false};  // set from the signal handler; read by the device loop
 void on_signal(int) { g_stop = true; }
 
@@ -187,20 +149,41 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::string scenario, out = "out";
   bool quiet = false, force = false;
-  double sweep_distance = 3.0;
+#ifdef PLANTER_WITH_SWEEP
+  SweepOptions sweep_options;
+#endif
   auto* run = app.add_subcommand("run", "run a scenario: recording.csv, summary.json, report.html");
   run->add_option("scenario", scenario, "scenario file (TOML)")->required();
   run->add_option("--out", out, "output directory")->capture_default_str();
   run->add_flag("--quiet", quiet, "do not print the summary");
   run->add_flag("--force", force, "replace --out even if it holds something other than a run");
-  auto* sweep =
-      app.add_subcommand("sweep", "the paper's Box-Behnken design (area x disc speed x depth)");
+#ifdef PLANTER_WITH_SWEEP
+  auto* sweep = app.add_subcommand(
+      "sweep", "the paper's Box-Behnken experiment: replicated runs, response surfaces, optimum");
   sweep->add_option("scenario", scenario, "base scenario file (TOML)")->required();
   sweep->add_option("--out", out, "output directory")->capture_default_str();
-  sweep->add_flag("--force", force, "replace --out even if it holds something other than a sweep");
-  sweep->add_option("--distance", sweep_distance, "metres per run")
+  sweep->add_flag("--force", sweep_options.force,
+                  "replace --out even if it holds something other than a sweep");
+  sweep->add_option("--distance", sweep_options.distance_m, "metres per run")
       ->capture_default_str()
-      ->check(CLI::Range(0.5, 100.0));
+      ->check(CLI::Range(0.5, 1000.0));
+  sweep->add_option("--replicates", sweep_options.replicates, "runs per design point, at least")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 50));
+  sweep
+      ->add_option("--max-replicates", sweep_options.max_replicates,
+                   "runs per design point, at most, while its damage rate is not resolved")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 200));
+  sweep
+      ->add_option("--damage-precision", sweep_options.damage_precision_pts,
+                   "goal for the standard error of each point's damage rate, in points")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 50.0));
+  sweep->add_option("--jobs", sweep_options.jobs, "runs at a time (0: one per core)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 256));
+#endif
   auto* effects =
       app.add_subcommand("effects", "list the [effects] keys a scenario may set to hide physics");
   RealtimeDevicesOptions devices_options;
@@ -233,7 +216,13 @@ int main(int argc, char** argv) {
   }
   try {
     if (*run) return run_scenario(scenario, out, quiet, force);
-    if (*sweep) return run_sweep(scenario, out, sweep_distance, force);
+#ifdef PLANTER_WITH_SWEEP
+    if (*sweep) {
+      sweep_options.max_replicates =
+          std::max(sweep_options.max_replicates, sweep_options.replicates);
+      return run_sweep(scenario, out, sweep_options);
+    }
+#endif
     if (*effects) return print_effect_keys();
     if (*devices) return run_devices(scenario, devices_board, devices_options);
 #ifdef PLANTER_WITH_REPLAY

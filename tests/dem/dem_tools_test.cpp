@@ -65,6 +65,57 @@ TEST(Doe, QuadraticSurfaceIsRecoveredAndSolvedForATarget) {
   EXPECT_NEAR(predict_quadratic_3(a, x), 160.0, 1.0);
 }
 
+// Lack of fit against the replicates' pure error: a bump at one setting, which no quadratic
+// through the other twelve can follow, is found; a quadratic truth with the same replicate noise
+// is not flagged.
+TEST(Doe, LackOfFitSeparatesAMissingTermFromReplicateNoise) {
+  const Eigen::MatrixXd one = box_behnken_3(3);
+  Eigen::MatrixXd d(3 * one.rows(), 3);
+  d << one, one, one;  // three replicates
+  auto fit_and_test = [&](bool bumped) {
+    Eigen::VectorXd y(d.rows());
+    for (Eigen::Index r = 0; r < d.rows(); ++r) {
+      const double a = d(r, 0), b = d(r, 1);
+      const bool bump = bumped && a == 1.0 && b == 1.0;
+      y(r) = 90.0 + 2.0 * a - 3.0 * b * b + (bump ? 4.0 : 0.0) +
+             0.3 * std::sin(7.0 * static_cast<double>(r));  // replicate noise
+    }
+    const Anova a = fit_quadratic_3(d, y, {"A", "B", "C"});
+    return lack_of_fit(d, y, a);
+  };
+  const LackOfFit missing = fit_and_test(true), none = fit_and_test(false);
+  ASSERT_TRUE(missing.available);
+  EXPECT_EQ(missing.pure_error_df, 45 - 13);  // 45 runs on 13 distinct settings
+  EXPECT_EQ(missing.df, 13 - 10);
+  EXPECT_LT(missing.p_value, 1e-6);
+  EXPECT_GT(none.p_value, 0.05);
+  // Without replicates there is no pure error to test against.
+  const Eigen::MatrixXd single = box_behnken_3(1);
+  Eigen::VectorXd y(single.rows());
+  for (Eigen::Index r = 0; r < single.rows(); ++r) y(r) = single(r, 0);
+  EXPECT_FALSE(lack_of_fit(single, y, fit_quadratic_3(single, y, {"A", "B", "C"})).available);
+}
+
+// The desirability optimum of two goals: one response up to its maximum, 10 at A = 0.5, one
+// down (falling with B): both are met at A = 0.5, B = -1.
+TEST(Doe, DesirabilityOptimumMeetsBothGoals) {
+  const Eigen::MatrixXd d = box_behnken_3(3);
+  Eigen::VectorXd up(d.rows()), down(d.rows());
+  for (Eigen::Index r = 0; r < d.rows(); ++r) {
+    up(r) = 10.0 - (d(r, 0) - 0.5) * (d(r, 0) - 0.5);
+    down(r) = 5.0 + d(r, 1);
+  }
+  const Anova a_up = fit_quadratic_3(d, up, {"A", "B", "C"});
+  const Anova a_down = fit_quadratic_3(d, down, {"A", "B", "C"});
+  const Optimum o = desirability_optimum_3(
+      {{&a_up, up.minCoeff(), 10.0}, {&a_down, down.maxCoeff(), down.minCoeff()}});
+  EXPECT_NEAR(o.coded(0), 0.5, 0.026);
+  EXPECT_NEAR(o.coded(1), -1.0, 1e-9);
+  EXPECT_GT(o.desirability, 0.99);
+  EXPECT_DOUBLE_EQ(desirability({&a_up, 0.0, 10.0}, 12.0), 1.0);  // capped
+  EXPECT_DOUBLE_EQ(desirability({&a_down, 6.0, 4.0}, 5.0), 0.5);  // minimised
+}
+
 TEST(CompressionTest, FirstPeakIsTheFirstMaximumTheForceFallsFrom) {
   CompressionResult r;
   for (int k = 0; k <= 600; ++k) {

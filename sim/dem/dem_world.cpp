@@ -34,6 +34,9 @@ void DemWorld::add_bond(int i, int j) {
   Bond b;
   b.i = std::min(i, j);
   b.j = std::max(i, j);
+  const Particle& pi = particles_[static_cast<std::size_t>(b.i)];
+  const Particle& pj = particles_[static_cast<std::size_t>(b.j)];
+  b.rest_overlap_m = std::max(0.0, pi.radius_m + pj.radius_m - (pj.x - pi.x).norm());
   bonds_.push_back(b);
   neighbours_valid_ = false;
 }
@@ -121,16 +124,19 @@ void DemWorld::rebuild_neighbours() {
 
 void DemWorld::particle_contacts(double dt) {
   for (auto& c : candidates_) {
-    // A bonded pair is held by its bond; Hertz contact starts when the bond breaks.
-    if (c.bond >= 0 && !bonds_[static_cast<std::size_t>(c.bond)].broken) continue;
+    // The Hertz contact acts in parallel with a bond (Potyondy and Cundall 2004: the parallel
+    // bond is "in parallel with" the contact), from the pair's as-built overlap. Switching it on
+    // only when the bond broke started it at the full overlap the soft bond had allowed: energy
+    // from nothing, which shattered the seedling.
+    const double rest = rest_overlap(c);
     Particle& a = particles_[static_cast<std::size_t>(c.i)];
     Particle& b = particles_[static_cast<std::size_t>(c.j)];
-    const double reach = a.radius_m + b.radius_m;
+    const double reach = a.radius_m + b.radius_m - rest;
     if ((b.x - a.x).squaredNorm() >= reach * reach) {
       c.spring.setZero();
       continue;
     }
-    const ContactResult r = hertz_mindlin(material_, c.props, a, b, dt, c.spring);
+    const ContactResult r = hertz_mindlin(material_, c.props, a, b, dt, c.spring, rest);
     a.f += r.force_on_i;
     b.f -= r.force_on_i;
     a.tau += r.torque_on_i;
@@ -213,10 +219,9 @@ double DemWorld::kinetic_energy() const {
 double DemWorld::contact_energy() const {
   double e = 0.0;
   for (const auto& c : candidates_) {
-    if (c.bond >= 0 && !bonds_[static_cast<std::size_t>(c.bond)].broken) continue;
     const Particle& a = particles_[static_cast<std::size_t>(c.i)];
     const Particle& b = particles_[static_cast<std::size_t>(c.j)];
-    e += hertz_energy(c.props, a.radius_m + b.radius_m - (b.x - a.x).norm());
+    e += hertz_energy(c.props, a.radius_m + b.radius_m - rest_overlap(c) - (b.x - a.x).norm());
   }
   return e;
 }

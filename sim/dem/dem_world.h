@@ -57,11 +57,14 @@ class DemWorld {
   struct Candidate {
     int i = 0;
     int j = 0;
-    int bond = -1;  // index into bonds_ while the pair is bonded (no Hertz contact then)
+    int bond = -1;  // index into bonds_ for a pair bonded at build (broken or not)
     PairProperties props;
     Vec3 spring = Vec3::Zero();
   };
   void rebuild_neighbours();
+  [[nodiscard]] double rest_overlap(const Candidate& c) const {
+    return c.bond >= 0 ? bonds_[static_cast<std::size_t>(c.bond)].rest_overlap_m : 0.0;
+  }
   [[nodiscard]] bool neighbours_stale() const;
   void particle_contacts(double dt);
   void platen_contacts(double dt);

@@ -46,11 +46,11 @@ double hertz_normal_force(const PairProperties& p, double overlap_m) {
 }
 
 ContactResult hertz_mindlin(const ContactMaterial& m, const PairProperties& p, const Particle& i,
-                            const Particle& j, double dt, Vec3& spring) {
+                            const Particle& j, double dt, Vec3& spring, double rest_overlap_m) {
   ContactResult r;
   const Vec3 d = j.x - i.x;
   const double dist = d.norm();
-  const double overlap = i.radius_m + j.radius_m - dist;
+  const double overlap = i.radius_m + j.radius_m - rest_overlap_m - dist;
   if (overlap <= 0.0 || dist <= 0.0) {
     spring.setZero();
     return r;

@@ -35,8 +35,10 @@ double hertz_normal_force(const PairProperties& p, double overlap_m);
 double hertz_energy(const PairProperties& p, double overlap_m);
 
 // One contact evaluation. `tangential_spring` is the contact's history (the accumulated
-// tangential displacement times stiffness), carried between steps by the caller.
+// tangential displacement times stiffness), carried between steps by the caller. The overlap
+// counts from `rest_overlap_m` (a bonded pair's as-built overlap; 0 for any other pair).
 ContactResult hertz_mindlin(const ContactMaterial& m, const PairProperties& p, const Particle& i,
-                            const Particle& j, double dt, Vec3& tangential_spring);
+                            const Particle& j, double dt, Vec3& tangential_spring,
+                            double rest_overlap_m = 0.0);
 
 }  // namespace planter::dem

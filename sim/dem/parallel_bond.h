@@ -15,6 +15,9 @@ struct Bond {
   double twist_moment = 0.0;           // about n, on j
   Vec3 bending_moment = Vec3::Zero();  // in the contact plane, on j
   bool broken = false;
+  // The particles' overlap when the bond formed (the builder packs rings a radius apart). The
+  // pair's Hertz contact counts overlap beyond it, so the as-built packing holds no stress.
+  double rest_overlap_m = 0.0;
 };
 
 struct BondGeometry {

@@ -140,6 +140,44 @@ TEST(DemWorld, EnergyIsConservedWithoutDamping) {
   EXPECT_LT(worst, 2e-3) << "energy drift";
 }
 
+// A bond that breaks while its particles are pressed together hands its load to their Hertz
+// contact, which acted in parallel all along: the energy does not jump. (Starting the contact
+// only at the break, at the overlap the soft bond had allowed, made energy from nothing and
+// shattered the seedling.)
+TEST(DemWorld, ABondBreakingUnderCompressionMakesNoEnergy) {
+  ContactMaterial m;
+  m.restitution = 1.0;
+  m.friction = 0.0;
+  m.rolling_friction = 0.0;
+  BondParameters bp;
+  bp.normal_stiffness_N_m3 = 1e6;  // soft, so that the pair overlaps deeply before it breaks
+  bp.shear_stiffness_N_m3 = 1e6;
+  bp.tensile_strength_Pa = 1e5;  // tension never breaks it here: shear does, at 0.3 mm
+  bp.shear_strength_Pa = 300.0;
+  DemWorld world(m, bp);
+  world.add_particle(make_particle(Vec3::Zero(), kRadius, kDensity));
+  world.add_particle(make_particle(Vec3(2 * kRadius, 0, 0), kRadius, kDensity));
+  world.add_bond(0, 1);
+  // Pressed together, and twisted against each other until the bond fails in shear.
+  world.particles()[1].v = Vec3(-2.0, 0, 0);
+  world.particles()[1].w = Vec3(850.0, 0, 0);
+  world.particles()[0].w = Vec3(-850.0, 0, 0);
+  auto energy = [&] {
+    return world.kinetic_energy() + world.bond_energy() + world.contact_energy();
+  };
+  const double e0 = energy();
+  double highest = e0;
+  for (int k = 0; k < 20000 && world.broken_bonds() == 0; ++k) world.step(2e-7);
+  ASSERT_EQ(world.broken_bonds(), 1) << "the bond should have broken in shear";
+  const Vec3 gap = world.particles()[1].x - world.particles()[0].x;
+  ASSERT_LT(gap.norm(), 2 * kRadius - 1e-5) << "the pair should overlap when the bond breaks";
+  for (int k = 0; k < 2000; ++k) {
+    world.step(2e-7);
+    highest = std::max(highest, energy());
+  }
+  EXPECT_LT(highest, e0 * (1.0 + 1e-3)) << "energy rose at the break by " << highest / e0 - 1.0;
+}
+
 TEST(DemWorld, SameInputSameResultBitForBit) {
   auto run = [] {
     ContactMaterial m;

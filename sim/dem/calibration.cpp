@@ -35,8 +35,8 @@ constexpr int kPhysicsRevision = 2;
 
 std::string run_key(const CompressionSetup& s) {
   std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the parameters as written
-  for (unsigned char c : "physics " + std::to_string(kPhysicsRevision) + "\n" +
-                             compression_setup_toml(s)) {
+  for (unsigned char c :
+       "physics " + std::to_string(kPhysicsRevision) + "\n" + compression_setup_toml(s)) {
     h ^= c;
     h *= 1099511628211ULL;
   }

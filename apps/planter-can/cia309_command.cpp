@@ -96,6 +96,7 @@ Cia309Parse parse_cia309(std::string_view line) {
   if (!index || *index < 0 || *index > 0xFFFF)
     return error(i, "an object index from 0x0000 to 0xFFFF");
   cmd.index = static_cast<std::uint16_t>(*index);
+  cmd.index_decimal = tokens[i].rfind("0x", 0) != 0 && tokens[i].rfind("0X", 0) != 0;
   ++i;
   if (i >= tokens.size()) return error(i, "a sub-index from 0 to 255");
   const auto sub = parse_integer(tokens[i]);

@@ -23,6 +23,7 @@ struct Cia309Command {
   std::uint16_t net = 1;
   std::uint8_t node = 0;  // 0 = all nodes (NMT only)
   std::uint16_t index = 0;
+  bool index_decimal = false;  // written without 0x: CiA 309-3 reads it as decimal
   std::uint8_t sub = 0;
   std::optional<ValueType> type;    // reads may leave it to the object table
   std::vector<std::uint8_t> value;  // writes: encoded

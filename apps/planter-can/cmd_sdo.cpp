@@ -56,6 +56,15 @@ std::string execute_cia309(ToolContext& ctx, const Cia309Command& cmd, bool& ok)
       std::snprintf(buf, sizeof buf, "ERROR: 0x%08X %s", res.abort_code,
                     canopen::abort_code_text(res.abort_code));
     }
+    // An index typed as the object tables print it (1018) but without 0x was read as decimal.
+    constexpr std::uint32_t kNoSuchObject = 0x06020000;
+    if (res.abort_code == kNoSuchObject && cmd.index_decimal) {
+      char hint[120];
+      std::snprintf(hint, sizeof hint,
+                    "; the index %u was read as decimal (0x%04X): write 0x%u for hexadecimal",
+                    cmd.index, cmd.index, cmd.index);
+      return std::string(buf) + hint;
+    }
     return buf;
   }
   if (cmd.kind == Cia309Command::Kind::kWrite) return "OK";

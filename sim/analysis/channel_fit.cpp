@@ -238,7 +238,7 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
       const ParamSpec& p = effects[e].spec->params[k];
       if (!p.grid) continue;
       const double hi = effects[e].spec->grid_upper != nullptr
-                            ? effects[e].spec->grid_upper(in_span, out_span)
+                            ? effects[e].spec->grid_upper(in_span, out_span, y)
                             : p.upper;
       GridParam g{e, k, {}};
       if (effects[e].values[k] > 0.0) {

@@ -69,7 +69,10 @@ struct EffectSpec {
                     std::vector<double>& y) = nullptr;
   // Upper end of a grid parameter's search, from the data's input and output spans (nullptr:
   // the parameter's own upper bound).
-  double (*grid_upper)(double in_span, double out_span) = nullptr;
+  // The recorded output too: a quantiser's step can be no coarser than the grid its values lie
+  // on.
+  double (*grid_upper)(double in_span, double out_span,
+                       const std::vector<double>& output) = nullptr;
   // A start read off the residual (nullptr: the parameters' initial values).
   std::vector<double> (*start)(const Recording& r, const std::vector<double>& residual) = nullptr;
   // Further starts tried from the data's own guess (a time constant can sit in any decade).

@@ -157,6 +157,20 @@ void periodic(const OutputContext& c, const std::vector<double>& p, std::vector<
     y[k] += p[0] * std::sin(kTwoPi * p[1] * c.r.t[k] + p[2]);
 }
 
+// The spacing of the grid a signal's values lie on: the median gap between its distinct values
+// (a quantised sensor's step, or a tiny gap for a continuous one).
+double value_grid(const std::vector<double>& y) {
+  std::vector<double> v = y;
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  std::vector<double> gaps;
+  for (std::size_t k = 1; k < v.size(); ++k) gaps.push_back(v[k] - v[k - 1]);
+  if (gaps.empty()) return 0.0;
+  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2),
+                   gaps.end());
+  return gaps[gaps.size() / 2];
+}
+
 void quantisation(const OutputContext&, const std::vector<double>& p, std::vector<double>& y) {
   if (p[0] <= 0.0) return;
   for (auto& v : y) v = p[0] * std::round(v / p[0]);
@@ -198,7 +212,8 @@ const std::vector<EffectSpec>& library() {
          .signature = "no response to small inputs, the band missing from larger ones",
          .params = {{"width", "input units", 0.0, 0.0, 0.0, true}},
          .on_input = dead_zone,
-         .grid_upper = [](double in_span, double) { return 0.3 * in_span; },
+         .grid_upper = [](double in_span, double,
+                          const std::vector<double>&) { return 0.3 * in_span; },
          .separating_experiment = "a slow ramp of the command up from zero: a dead zone answers "
                                   "only past its band, and then short by the band"});
     add({.kind = EffectKind::kBacklash,
@@ -206,7 +221,8 @@ const std::vector<EffectSpec>& library() {
          .signature = "lag at every reversal of the input",
          .params = {{"gap", "input units", 0.0, 0.0, 0.0, true}},
          .on_input = backlash,
-         .grid_upper = [](double in_span, double) { return 0.2 * in_span; },
+         .grid_upper = [](double in_span, double,
+                          const std::vector<double>&) { return 0.2 * in_span; },
          .separating_experiment =
              "a command that reverses slowly: play shows only just after each reversal"});
     add({.kind = EffectKind::kRelaxation,
@@ -228,7 +244,8 @@ const std::vector<EffectSpec>& library() {
     add({.kind = EffectKind::kHysteresis,
          .name = "hysteresis of the clamp (Bouc-Wen)",
          .signature = "closing and opening give different forces at the same position",
-         .params = {{"height", "output units", 0.0, -1e4, 1e4},
+         // A passive clamp dissipates: the loading branch lies above the unloading one (H > 0).
+         .params = {{"height", "output units", 0.0, 0.0, 1e4},
                     {"delta", "input units", 0.5, 0.01, 100.0}},
          .on_output = hysteresis,
          .extra_starts = {{0.0, 0.1}, {0.0, 2.0}},
@@ -313,7 +330,12 @@ const std::vector<EffectSpec>& library() {
          .signature = "a staircase residual, uniform within a step",
          .params = {{"step", "output units", 0.0, 0.0, 0.0, true}},
          .on_output = quantisation,
-         .grid_upper = [](double, double out_span) { return 0.05 * out_span; },
+         // A sensor that quantises records values on its step's grid: a step coarser than the
+         // grid the recorded values lie on would be a staircase the recording does not have.
+         .grid_upper =
+             [](double, double out_span, const std::vector<double>& y) {
+               return std::min(0.05 * out_span, 1.5 * value_grid(y));
+             },
          .separating_experiment =
              "a slow ramp of the output: a quantised sensor steps in one step size"});
     // Applied inside the channels whose dynamics they change (channels.cpp).

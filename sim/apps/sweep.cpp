@@ -12,6 +12,7 @@
 
 #include "config/output_set.h"
 #include "sim/doe/doe.h"
+#include "sim/doe/doe_report.h"
 #include "sim/report/html_text.h"
 #include "sim/runner/lockstep_runner.h"
 #include "sim/runner/model_assumptions.h"
@@ -112,53 +113,22 @@ std::string fmt(const char* f, double v) {
   return b;
 }
 
-nlohmann::ordered_json anova_json(const doe::Anova& a, const doe::LackOfFit& l) {
-  nlohmann::ordered_json j;
-  j["intercept"] = a.intercept;
-  for (const auto& t : a.terms)
-    j["terms"].push_back({{"term", t.name},
-                          {"coefficient", t.coefficient},
-                          {"sum_of_squares", t.sum_of_squares},
-                          {"f", t.f_value},
-                          {"p", t.p_value}});
-  j["model_f"] = a.model_f;
-  j["model_p"] = a.model_p;
-  j["r2"] = a.r2;
-  j["r2_adjusted"] = a.r2_adjusted;
-  j["adequate_precision"] = a.adequate_precision;
-  j["residual_df"] = a.residual_df;
-  if (l.available) {
-    j["lack_of_fit"] = {{"ss", l.ss},
-                        {"df", l.df},
-                        {"pure_error_ss", l.pure_error_ss},
-                        {"pure_error_df", l.pure_error_df},
-                        {"f", l.f_value},
-                        {"p", l.p_value}};
-  }
+nlohmann::json anova_json(const doe::Anova& a, const doe::LackOfFit& l) {
+  nlohmann::json j = doe::anova_json(a);
+  if (l.available) j["lack_of_fit"] = doe::lack_of_fit_json(l);
   return j;
 }
 
 std::string anova_html(const std::string& title, const std::string& unit, const doe::Anova& a,
                        const doe::LackOfFit& l) {
   std::ostringstream h;
-  h << "<h3>" << title << " [" << unit << "]</h3><table><tr><th>term</th><th>coefficient</th>"
-    << "<th>sum of squares</th><th>F</th><th>p</th></tr>"
-    << "<tr><td>intercept</td><td>" << fmt("%.4g", a.intercept) << "</td><td></td><td></td><td>"
-    << "</td></tr>";
-  for (const auto& t : a.terms) {
-    h << "<tr" << (t.p_value < 0.05 ? " class='sig'" : "") << "><td>" << t.name << "</td><td>"
-      << fmt("%.4g", t.coefficient) << "</td><td>" << fmt("%.4g", t.sum_of_squares) << "</td><td>"
-      << fmt("%.3g", t.f_value) << "</td><td>" << fmt("%.3g", t.p_value) << "</td></tr>";
-  }
-  h << "</table><p>Model F " << fmt("%.3g", a.model_f) << ", p " << fmt("%.3g", a.model_p)
-    << "; R^2 " << fmt("%.4f", a.r2) << ", adjusted R^2 " << fmt("%.4f", a.r2_adjusted)
-    << "; adequate precision " << fmt("%.3g", a.adequate_precision) << "; lack of fit ";
+  h << "<h3>" << title << " [" << unit << "]</h3>" << doe::anova_table_html(a) << "<p>Lack of fit ";
   if (l.available)
     h << "F " << fmt("%.3g", l.f_value) << " on " << l.df << " and " << l.pure_error_df << " df, p "
       << fmt("%.3g", l.p_value) << (l.p_value < 0.05 ? " (significant)" : "");
   else
     h << "not testable (no replicates)";
-  h << ". Shaded rows: p &lt; 0.05.</p>";
+  h << ". Bold: p &lt; 0.05.</p>";
   return h.str();
 }
 
@@ -341,7 +311,7 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
         << ',' << r.peak_force_N << ',' << r.clamp_force_max_N << ',' << r.planted << ','
         << r.damaged << '\n';
   }
-  nlohmann::ordered_json j;
+  nlohmann::json j;
   j["scenario"] = base.name;
   j["runs"] = runs.size();
   j["distance_m_per_run"] = o.distance_m;
@@ -367,7 +337,7 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
        << report::html_escape(base.name)
        << "</title><style>body{font-family:sans-serif;max-width:1000px;margin:auto}"
           "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 6px;"
-          "text-align:right}tr.sig{background:#e8f4e0}</style></head><body>"
+          "text-align:right}</style></head><body>"
        << "<h1>The paper's Box-Behnken experiment, simulated</h1><p>" << runs.size() << " runs of "
        << o.distance_m << " m on " << points << " design points (" << kCentrePoints
        << " centre points), at least " << o.replicates

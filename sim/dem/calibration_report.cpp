@@ -7,31 +7,11 @@
 #include "config/durable_file.h"
 #include "sim/dem/calibration.h"
 #include "sim/dem/dem_params.h"
+#include "sim/doe/doe_report.h"
 #include "sim/report/svg_plot.h"
 
 namespace planter::dem {
 namespace {
-
-nlohmann::json anova_json(const Anova& a) {
-  nlohmann::json j;
-  j["intercept"] = a.intercept;
-  j["model"] = {{"sum_of_squares", a.model_ss},
-                {"df", a.model_df},
-                {"f_value", a.model_f},
-                {"p_value", a.model_p}};
-  j["residual"] = {{"sum_of_squares", a.residual_ss}, {"df", a.residual_df}};
-  j["r2"] = a.r2;
-  j["r2_adjusted"] = a.r2_adjusted;
-  j["adequate_precision"] = a.adequate_precision;
-  for (const auto& t : a.terms) {
-    j["terms"].push_back({{"term", t.name},
-                          {"coefficient", t.coefficient},
-                          {"sum_of_squares", t.sum_of_squares},
-                          {"f_value", t.f_value},
-                          {"p_value", t.p_value}});
-  }
-  return j;
-}
 
 nlohmann::json runs_json(const std::vector<DesignRun>& runs) {
   nlohmann::json j = nlohmann::json::array();
@@ -43,24 +23,6 @@ nlohmann::json runs_json(const std::vector<DesignRun>& runs) {
                  {"broken_bonds", d.result.broken_bonds}});
   }
   return j;
-}
-
-std::string anova_table(const Anova& a) {
-  std::ostringstream s;
-  s.precision(4);
-  s << "<table><tr><th>source</th><th>coefficient</th><th>sum of squares</th><th>F</th>"
-       "<th>p</th></tr><tr><td>model</td><td>"
-    << a.intercept << " (intercept)</td><td>" << a.model_ss << "</td><td>" << a.model_f
-    << "</td><td>" << a.model_p << "</td></tr>";
-  for (const auto& t : a.terms) {
-    s << "<tr><td>" << t.name << "</td><td>" << t.coefficient << "</td><td>" << t.sum_of_squares
-      << "</td><td>" << t.f_value << "</td><td>" << (t.p_value < 0.05 ? "<b>" : "") << t.p_value
-      << (t.p_value < 0.05 ? "</b>" : "") << "</td></tr>";
-  }
-  s << "<tr><td>residual</td><td></td><td>" << a.residual_ss << " (df " << a.residual_df
-    << ")</td></tr></table><p>R<sup>2</sup> " << a.r2 << ", adjusted " << a.r2_adjusted
-    << ", adequate precision " << a.adequate_precision << "</p>";
-  return s.str();
 }
 
 }  // namespace
@@ -79,7 +41,7 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
                             {"log_scale", f.log_scale}});
   }
   j["plackett_burman"] = {{"runs", runs_json(r.screening)},
-                          {"anova", anova_json(r.screening_anova)}};
+                          {"anova", doe::anova_json(r.screening_anova)}};
   nlohmann::json chosen = nlohmann::json::array();
   for (int k : r.chosen) chosen.push_back(r.factors[static_cast<std::size_t>(k)].name);
   j["chosen"] = {{"factors", chosen}, {"reason", r.chosen_reason}};
@@ -88,7 +50,7 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
                       {"centre", r.bb_centre},
                       {"high", r.bb_high},
                       {"runs", runs_json(r.box_behnken)},
-                      {"anova", anova_json(r.surface)}};
+                      {"anova", doe::anova_json(r.surface)}};
   if (r.complete) {
     const double got = r.verification.result.peak_force_N;
     j["optimum"] = {
@@ -116,7 +78,7 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
     << "</head><body><h1>Calibration of the seedling model to " << o.target_N << " N</h1>";
   if (!r.complete) h << "<p><b>Incomplete</b>: run again with the same --out to resume.</p>";
   h << "<h2>Plackett-Burman screening (12 runs, main effects)</h2>"
-    << anova_table(r.screening_anova) << "<p>" << r.chosen_reason << ".</p>";
+    << doe::anova_table_html(r.screening_anova) << "<p>" << r.chosen_reason << ".</p>";
   h << "<h2>Steepest ascent</h2><table><tr><th>step</th><th>peak [N]</th><th>at [mm]</th></tr>";
   for (std::size_t s = 0; s < r.ascent.size(); ++s) {
     h << "<tr><td>" << s << (static_cast<int>(s) == r.best_step ? " (best)" : "") << "</td><td>"
@@ -125,7 +87,8 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
   }
   h << "</table>";
   if (!r.box_behnken.empty() && r.surface.beta.size() > 0) {
-    h << "<h2>Box-Behnken (13 runs) and the quadratic surface</h2>" << anova_table(r.surface);
+    h << "<h2>Box-Behnken (13 runs) and the quadratic surface</h2>"
+      << doe::anova_table_html(r.surface);
   }
   if (r.complete) {
     const auto& v = r.verification;

@@ -8,41 +8,48 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
-echo "== setup and release build"
+# Each stage's header carries the minutes since the start, so a slow stage shows in the log.
+stage() { printf '== [%d:%02d] %s\n' $((SECONDS / 60)) $((SECONDS % 60)) "$*"; }
+stage "setup and release build"
 scripts/setup.sh "$root/build"
-echo "== clang-format"
+stage "clang-format"
 scripts/check-format.sh
-echo "== sanitizer build (address, undefined)"
+stage "sanitizer build (address, undefined)"
 scripts/setup.sh "$root/build-asan" -DCMAKE_BUILD_TYPE=Debug -DPLANTER_SANITIZE=ON -DPLANTER_BUILD_BENCH=OFF
-echo "== tests under sanitizers"
-# Leaks are reported (LeakSanitizer). release_only: a test too slow under the sanitizers (the
-# release ctest below runs it).
-(cd "$root/build-asan" && ASAN_OPTIONS=detect_leaks=1 ctest -j "$(nproc)" -LE release_only --output-on-failure)
-echo "== benchmarks"
+stage "tests under sanitizers"
+# Leaks are reported (LeakSanitizer). release_only, and the three named here: tests too slow
+# under the sanitizers (150-200 s each); the release ctest below runs them. The same fit code
+# runs under the sanitizers in the other Analysis tests (the glitch variant of the relaxation,
+# the delay, the friction), and the kill test's writer in cli_bad_input.
+slow_under_asan='^(Analysis\.AStiffnessThatChangesOnceIsNamedWithItsTime|Analysis\.HiddenClampRelaxationIsNamedAndFitted|outputs_under_kill)$'
+(cd "$root/build-asan" && ASAN_OPTIONS=detect_leaks=1 ctest -j "$(nproc)" -LE release_only \
+  -E "$slow_under_asan" --output-on-failure)
+stage "benchmarks"
 "$root/build/bench/planter_bench_rtf" "$root/scenarios/zhangqiu-field.toml"
 "$root/build/bench/planter_bench_alloc" "$root/scenarios/zhangqiu-field.toml"
 "$root/build/bench/planter_bench_latency" "$root/scenarios/zhangqiu-field.toml" 60
 "$root/build/bench/planter_bench_can"
-echo "== seedling DEM: compression with the calibrated parameters, calibration, reduced-order model, speed against Yade"
+stage "seedling DEM: compression with the calibrated parameters, calibration, reduced-order model, speed against Yade"
 scripts/dem-test.sh "$root/build"
-echo "== planter-fit: the blind proof on planter-sim recordings (its count is the figure), then its speed"
+stage "planter-fit: the blind proof on planter-sim recordings (its count is the figure), then its speed"
 scripts/fit-proof.sh "$root/build"
 scripts/fit-bench.sh "$root/build"
-echo "== tests (release build)"
+stage "tests (release build)"
 (cd "$root/build" && ctest -j "$(nproc)" --output-on-failure)
-echo "== package for this machine: build, inspect, install, verify, remove"
+stage "package for this machine: build, inspect, install, verify, remove"
 (cd "$root/build" && cpack -G DEB >/dev/null)
 scripts/package-test.sh "$(ls -t "$root"/build/planter_*_"$(dpkg --print-architecture)".deb | head -1)" \
   "$(dpkg --print-architecture)"
-echo "== cross builds for the boards (aarch64, armhf), unit tests under qemu-user, packages"
+stage "cross builds for the boards (aarch64, armhf), unit tests under qemu-user, packages"
 scripts/cross-test.sh
-echo "== fuzzing (libFuzzer, bounded): CAN frames, command and log lines, board files"
+stage "fuzzing (libFuzzer, bounded): CAN frames, command and log lines, board files"
 scripts/fuzz.sh 60 "$root/build-fuzz"
-echo "== host-in-the-loop on a real kernel (qemu VM: vcan0, gpio-sim)"
+stage "host-in-the-loop on a real kernel (qemu VM: vcan0, gpio-sim)"
 # The emulated machine (TCG, no KVM) stalls when the shared host is busy: lost encoder edges,
 # late loop wake-ups. A failed run is printed in full and the stage runs once more; the
 # second run decides.
 if ! scripts/vm-hil-test.sh "$root/build"; then
-  echo "== host-in-the-loop failed (above); running it once more, and that run decides"
+  stage "host-in-the-loop failed (above); running it once more, and that run decides"
   scripts/vm-hil-test.sh "$root/build"
 fi
+stage "all stages passed"

@@ -29,6 +29,9 @@ expect short-planting-off-stop "p.toml:[0-9]+: 'route.stops\[0\].duration_s': mu
 # texture D497 does not name.
 sed "s|^texture = .*|draft_coeff = 4.8e5|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/d.toml"
 expect old-draft-key "d.toml:[0-9]+: 'soil.draft_coeff': .*ASABE D497" -- "$sim" run "$tmp/d.toml" --out "$tmp/o"
+# The tilt formula's keys are refused with what replaced them.
+sed "s|^carry_angle_deg = .*|kinematic_gain = 0.2|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/k.toml"
+expect old-tilt-key "k.toml:[0-9]+: 'mechanism.kinematic_gain': .*release mechanics.*root_reach_mm" -- "$sim" run "$tmp/k.toml" --out "$tmp/o"
 sed "s|^texture = .*|texture = \"loamy\"|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/x.toml"
 expect bad-texture "x.toml:[0-9]+: 'soil.texture': is 'loamy'; allowed: fine, medium, coarse" -- "$sim" run "$tmp/x.toml" --out "$tmp/o"
 printf '[scenario\n' >"$tmp/broken.toml"

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <bit>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -37,8 +38,8 @@ void print_summary(const Summary& s) {
   std::printf("seedlings planted   %d  (per 3 m plot:", s.seedlings_planted);
   for (int c : s.plot_counts) std::printf(" %d", c);
   std::printf(")\n");
-  std::printf("uprightness         %.2f %%   (paper: 94.8 predicted, 93.86 field)\n",
-              s.uprightness_pct);
+  std::printf("uprightness         %.2f %%, %d lodged   (paper: 94.8 predicted, 93.86 field)\n",
+              s.uprightness_pct, s.seedlings_lodged);
   std::printf("damage rate         %.2f %%   (paper: 3 predicted, 2.76 field)\n", s.damage_pct);
   std::printf("plant spacing       %.1f mm mean, CV %.1f %%   (agronomy: 20-30 mm)\n",
               s.spacing_mean_mm, s.spacing_cv_pct);
@@ -60,13 +61,17 @@ void print_summary(const Summary& s) {
 
 std::string seedlings_csv(const SeedlingProcess& process) {
   std::ostringstream csv;
+  // tilt_deg: + top forward, 90 lodged; sigma_at_release empty when released standing.
   csv << "x_m,release_t,diameter_mm,length_mm,strength_N,peak_force_N,damaged,tilt_deg,sigma_"
-         "at_release\n";
+         "at_release,burial_mm,clamp_turn_deg,lip_drag_deg,lodged\n";
   for (const Seedling& s : process.seedlings()) {
     if (!s.planted) continue;
     csv << s.x_m << ',' << s.release_time_s << ',' << s.diameter_mm << ',' << s.length_mm << ','
         << s.strength_N << ',' << s.peak_force_N << ',' << (s.damaged ? 1 : 0) << ',' << s.tilt_deg
-        << ',' << s.sigma_at_release << '\n';
+        << ',';
+    if (std::isfinite(s.sigma_at_release)) csv << s.sigma_at_release;
+    csv << ',' << s.release.burial_mm << ',' << s.release.clamp_turn_deg << ','
+        << s.release.lip_drag_deg << ',' << (s.release.lodged ? 1 : 0) << '\n';
   }
   return csv.str();
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace planter::sim {
 namespace {
@@ -74,35 +75,25 @@ void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N,
   while (next_release_ < seedlings_.size() &&
          disc_angle_rad >= seedlings_[next_release_].pickup_angle_rad + carry_rad) {
     Seedling& s = seedlings_[next_release_++];
-    const double sigma =
-        now.v_mps > 0.005 ? cfg_.disc_radius_m * now.omega_radps / now.v_mps : mc.optimum_sigma;
     s.planted = true;
     s.release_time_s = now.t_s;
     s.x_m = now.x_m;
-    s.sigma_at_release = sigma;
+    s.sigma_at_release = now.v_mps > 0.005 ? cfg_.disc_radius_m * now.omega_radps / now.v_mps
+                                           : std::numeric_limits<double>::quiet_NaN();
     s.depth_at_release_mm = now.depth_mm;
     std::normal_distribution<double> noise(0.0, 1.0);
-    s.tilt_deg = std::abs(tilt_deg(now, sigma) + sc.tilt_noise_deg * noise(rng_) +
-                          vibration_tilt_deg * noise(rng_) + 0.15 * now.terrain_mm * noise(rng_) +
-                          0.05 * (s.length_mm - 196.7) * noise(rng_));
+    ReleaseInput in;
+    in.length_mm = s.length_mm;
+    in.diameter_mm = s.diameter_mm;
+    in.v_mps = now.v_mps;
+    in.omega_radps = now.omega_radps;
+    in.depth_mm = now.depth_mm;
+    in.clamp_force_N = now.clamp_force_N;
+    // What the release mechanics leave out, and the machine's vibration, as a scatter.
+    in.scatter_deg = sc.tilt_noise_deg * noise(rng_) + vibration_tilt_deg * noise(rng_);
+    s.release = release_seedling(cfg_, in);
+    s.tilt_deg = s.release.tilt_deg;
   }
-}
-
-double SeedlingProcess::tilt_deg(const ReleaseConditions& c, double sigma) {
-  const MechanismConfig& mc = cfg_.mechanism;
-  const double a = mc.release_angle_deg / kDegPerRad;
-  // Horizontal velocity of the clamp point relative to the soil at release, over v:
-  // 1 - sigma cos(a); the soil backflow pushes the root forward in proportion to depth.
-  const double backflow =
-      (mc.optimum_sigma * std::cos(a) - 1.0) * std::max(0.0, c.depth_mm) / 102.0;
-  const double relative = 1.0 - sigma * std::cos(a) + backflow;
-  const double vertical = std::max(0.05, sigma * std::sin(a));
-  const double kinematic =
-      mc.kinematic_gain * std::atan(std::abs(relative) / vertical) * kDegPerRad;
-  // A weak hold lets the seedling deflect at the clamp point.
-  const double hold = std::max(0.0, c.clamp_force_N) * std::sqrt(mc.contact_area_mm2 / 255.0);
-  const double clamp = 12.0 * std::exp(-hold / 45.0);
-  return kinematic + clamp;
 }
 
 }  // namespace planter::sim

@@ -1,12 +1,13 @@
 #pragma once
 // Seedlings from feed to furrow: each is picked up by the disc at the roller nip (where it is
 // compressed and may be damaged), carried through the carry angle and released; its tilt in
-// the furrow comes from the release kinematics, the soil backflow, the clamp hold and noise.
+// the furrow comes from the release mechanics (seedling_release.h).
 #include <cstdint>
 #include <random>
 #include <vector>
 
 #include "sim/plant/plant_config.h"
+#include "sim/plant/seedling_release.h"
 
 namespace planter::sim {
 
@@ -29,9 +30,10 @@ struct Seedling {
   bool damaged = false;
   bool planted = false;
   double release_time_s = 0;
-  double x_m = 0;  // position along the row where it was planted
-  double tilt_deg = 0;
-  double sigma_at_release = 0;
+  double x_m = 0;       // position along the row where it was planted
+  double tilt_deg = 0;  // from vertical, + top forward; 90 lodged
+  ReleaseOutcome release;
+  double sigma_at_release = 0;  // NaN when released standing
   double depth_at_release_mm = 0;
 };
 
@@ -54,8 +56,6 @@ class SeedlingProcess {
   [[nodiscard]] const std::vector<Seedling>& seedlings() const { return seedlings_; }
 
  private:
-  double tilt_deg(const ReleaseConditions& c, double sigma);
-
   PlantConfig cfg_;
   std::mt19937_64 rng_;
   std::vector<Seedling> seedlings_;

@@ -64,14 +64,21 @@ std::vector<std::string> model_assumptions(const Scenario& sc) {
              "values read from it, not mechanics); here A = %.0f mm^2, a factor of %.3f. Thicker "
              "seedlings compress the lips further.",
              m.contact_area_mm2, contact_area_factor(m.contact_area_mm2)),
-      format("Tilt at release is a formula tuned to the paper, not mechanics (3 tuned values): "
-             "a kinematic part (%.2f x the angle of the clamp point's velocity relative to the "
-             "soil at release, %.0f deg before the lowest point, with a soil backflow "
-             "proportional to depth that cancels it at sigma %.2f and 102 mm), a weak-hold "
-             "deflection (12 deg x exp(-hold / 45 N)) and noise (%.1f deg, seedling size, "
-             "micro-terrain, vibration). Uprightness = mean of (1 - |tilt| / 90 deg), the paper's "
-             "definition.",
-             m.kinematic_gain, m.release_angle_deg, m.optimum_sigma, p.seedlings.tilt_noise_deg),
+      format("Tilt from the release mechanics (sim/plant/seedling_release.h): a rigid seedling "
+             "(density %.1f kg/m^3) held radially, root end %.0f mm beyond the rim; the root "
+             "plowed through the soil turns it in the clamp when the soil's moment beats the "
+             "lips' friction moment (mu %.2f, the paper's); released %.1f deg past the lowest "
+             "point, the leaves dragged by the lips with %.3f of the clamp force until the top "
+             "leaves the disc, against the root's anchorage (Broms' short pile, soil %.1f kN/m^3, "
+             "phi %.0f deg, both assumed); lodged when its weight's moment beats the soil's. "
+             "3 values calibrated to the paper's optimum and centre point: the release angle, "
+             "the root reach (%.0f mm below the surface at the lowest point) and the residual "
+             "grip. Posture spread as fed %.1f deg. Uprightness = mean of (1 - |tilt| / 90 deg), "
+             "the paper's definition.",
+             p.seedlings.density_kg_per_m3, m.root_protrusion_mm, m.lip_friction,
+             m.release_after_lowest_deg, m.residual_grip_share,
+             1e-3 * p.soil.ground.unit_weight_N_per_m3, p.soil.ground.friction_angle_deg,
+             m.root_reach_mm, p.seedlings.tilt_noise_deg),
       format("Clamp (the disc lips): F = k (x - x0)^n with k = %.2f, x0 = %.2f mm, n = %.2f "
              "([plant]); load-cell noise %.1f N.",
              dr.clamp_k_N, dr.clamp_x0_mm, dr.clamp_n, dr.force_noise_N),

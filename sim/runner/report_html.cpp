@@ -113,7 +113,9 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
                   0, 140)
       << svg_plot("Furrow depth", "mm", r.t,
                   {{&r.depth, "#06c", "true"}, {&r.depth_cmd, "#d60", "command"}}, 0, 170)
-      << "<h2>Seedling outcomes</h2>" << histogram("tilt from vertical [deg]", tilts, 0, 30, 30)
+      << "<h2>Seedling outcomes</h2>"
+      << histogram("tilt from vertical, + top forward [deg]; lodged (+-90) in the end bins", tilts,
+                   -30, 30, 60)
       << histogram("spacing [mm]", spacing, 0, 80, 40)
       << histogram("peak radial force in the nip [N]", peaks, 60, 140, 40)
       << "<h2>Model assumptions</h2><p>Written from the configuration that ran.</p><ul>";

@@ -104,6 +104,10 @@ Scenario load_scenario(const std::string& path) {
     d.c_N_per_cm_kmh2 =
         t->number("draft_c_N_per_cm_kmh2", d.c_N_per_cm_kmh2, 0.0, 1e4, "N/(cm (km/h)^2)");
     d.depth_exponent = t->number("draft_depth_exponent", d.depth_exponent, 1.0, 2.0);
+    soil::CohesionlessSoil& g = p.soil.ground;
+    g.unit_weight_N_per_m3 = 1e3 * t->number("unit_weight_kN_per_m3", 1e-3 * g.unit_weight_N_per_m3,
+                                             5.0, 25.0, "kN/m^3");
+    g.friction_angle_deg = t->number("friction_angle_deg", g.friction_angle_deg, 10.0, 50.0, "deg");
     t->reject_unknown_keys();
   }
   if (auto t = root.table("seedlings")) {
@@ -118,6 +122,8 @@ Scenario load_scenario(const std::string& path) {
     c.strength_mean_N = t->number("strength_mean_N", c.strength_mean_N, 10.0, 1000.0, "N");
     c.strength_sd_N = t->number("strength_sd_N", c.strength_sd_N, 0.0, 500.0, "N");
     c.tilt_noise_deg = t->number("tilt_noise_deg", c.tilt_noise_deg, 0.0, 45.0, "deg");
+    c.density_kg_per_m3 =
+        t->number("density_kg_per_m3", c.density_kg_per_m3, 100.0, 2000.0, "kg/m^3");
     const std::string model = t->string("force_model", "");
     if (!model.empty()) {
       const auto model_path = std::filesystem::path(path).parent_path() / model;
@@ -131,10 +137,20 @@ Scenario load_scenario(const std::string& path) {
   if (auto t = root.table("mechanism")) {
     MechanismConfig& m = p.mechanism;
     m.contact_area_mm2 = t->number("contact_area_mm2", m.contact_area_mm2, 50.0, 600.0, "mm^2");
-    m.release_angle_deg = t->number("release_angle_deg", m.release_angle_deg, 0.0, 60.0, "deg");
+    for (const char* old_key : {"release_angle_deg", "kinematic_gain", "optimum_sigma"})
+      if (t->has(old_key))
+        t->fail(old_key,
+                "belonged to the tilt formula the release mechanics replaced; the release is "
+                "set by release_after_lowest_deg, root_reach_mm, residual_grip_share, "
+                "root_protrusion_mm and lip_friction");
     m.carry_angle_deg = t->number("carry_angle_deg", m.carry_angle_deg, 30.0, 300.0, "deg");
-    m.kinematic_gain = t->number("kinematic_gain", m.kinematic_gain, 0.0, 1.0);
-    m.optimum_sigma = t->number("optimum_sigma", m.optimum_sigma, 1.0, 3.0);
+    m.release_after_lowest_deg =
+        t->number("release_after_lowest_deg", m.release_after_lowest_deg, -60.0, 60.0, "deg");
+    m.root_reach_mm = t->number("root_reach_mm", m.root_reach_mm, 0.0, 300.0, "mm");
+    m.residual_grip_share = t->number("residual_grip_share", m.residual_grip_share, 0.0, 1.0);
+    m.root_protrusion_mm = t->number("root_protrusion_mm", m.root_protrusion_mm, 10.0, 200.0, "mm");
+    m.lip_friction = t->number("lip_friction", m.lip_friction, 0.0, 2.0);
+    m.backflow_fill = t->number("backflow_fill", m.backflow_fill, 0.0, 1.0);
     t->reject_unknown_keys();
   }
   if (auto t = root.table("plant")) {

@@ -50,9 +50,10 @@ Summary SummaryBuilder::finish(const SeedlingProcess& process, double plot_lengt
   for (const Seedling& sd : process.seedlings()) {
     if (!sd.planted) continue;
     xs.push_back(sd.x_m);
-    upright_sum += std::max(0.0, 1.0 - sd.tilt_deg / 90.0);
+    upright_sum += std::max(0.0, 1.0 - std::abs(sd.tilt_deg) / 90.0);
     peak_sum += sd.peak_force_N;
     if (sd.damaged) ++s.seedlings_damaged;
+    if (sd.release.lodged) ++s.seedlings_lodged;
   }
   s.seedlings_planted = static_cast<int>(xs.size());
   if (!xs.empty()) {
@@ -87,6 +88,7 @@ std::string Summary::to_json() const {
   j["sigma_true_rms_error_pct"] = sigma_true_rms_error_pct;
   j["sigma_ctrl_rms_error_pct"] = sigma_ctrl_rms_error_pct;
   j["uprightness_pct"] = uprightness_pct;
+  j["seedlings_lodged"] = seedlings_lodged;
   j["damage_pct"] = damage_pct;
   j["spacing_mean_mm"] = spacing_mean_mm;
   j["spacing_cv_pct"] = spacing_cv_pct;

@@ -18,6 +18,7 @@ struct Summary {
   double sigma_target = 1.5;
   double sigma_true_mean = 0, sigma_true_rms_error_pct = 0, sigma_ctrl_rms_error_pct = 0;
   double uprightness_pct = 0, damage_pct = 0;
+  int seedlings_lodged = 0;  // lying in the furrow (tilt 90 deg)
   double spacing_mean_mm = 0, spacing_cv_pct = 0;
   double clamp_force_mean_N = 0, clamp_force_max_N = 0, clamp_ceiling_N = 0;
   double seedling_peak_force_mean_N = 0;

@@ -66,12 +66,13 @@ struct MechanismConfig {
   double contact_area_mm2 = 245.0;
   double carry_angle_deg = 150.0;  // pickup to release
   double nip_time_s = 0.3;         // how long a seedling stays in the roller nip
-  // The release (sim/plant/seedling_release.h). Three values are calibrated to the paper's
-  // optimum and centre point (see there); the rest are measured or assumed.
-  double release_after_lowest_deg = 10.0;  // calibrated: where the lips open, past the lowest point
-  double root_reach_mm = 100.0;  // calibrated: the root end's depth below the soil surface at the
-                                 // lowest point (the disc's height on the frame)
-  double residual_grip_share = 0.05;  // calibrated: lip pressure left after release, of the clamp's
+  // The release (sim/plant/seedling_release.h). None of these is tuned: the first three are set
+  // once, before any sweep, as the paper gives no value for them; the rest are the paper's or
+  // assumed. (The one calibrated value of the release is the seedlings' tilt_noise_deg.)
+  double release_after_lowest_deg = 10.0;  // set: where the lips open, past the lowest point
+  double root_reach_mm = 100.0;  // set to the paper's optimum depth: the root end's depth below
+                                 // the surface at the lowest point (the disc's height on the frame)
+  double residual_grip_share = 0.05;  // set: lip pressure left after release, of the clamp's
   double root_protrusion_mm = 70.0;   // assumed: root end beyond the disc rim
   double backflow_fill = 0.5;         // assumed: share of the furrow refilled at the seedling
   double lip_friction = 0.25;         // seedling on silicone rubber, the paper's 0.2-0.3

@@ -71,10 +71,11 @@ std::vector<std::string> model_assumptions(const Scenario& sc) {
              "point, the leaves dragged by the lips with %.3f of the clamp force until the top "
              "leaves the disc, against the root's anchorage (Broms' short pile, soil %.1f kN/m^3, "
              "phi %.0f deg, both assumed); lodged when its weight's moment beats the soil's. "
-             "3 values calibrated to the paper's optimum and centre point: the release angle, "
-             "the root reach (%.0f mm below the surface at the lowest point) and the residual "
-             "grip. Posture spread as fed %.1f deg. Uprightness = mean of (1 - |tilt| / 90 deg), "
-             "the paper's definition.",
+             "Set once, not tuned, as the paper gives none: the release angle, the residual "
+             "grip and the root reach (%.0f mm below the surface at the lowest point, the "
+             "paper's optimum depth). Calibrated to the paper's centre point (1 value): the "
+             "scatter the stages leave out, %.1f deg. Uprightness = mean of (1 - |tilt| / 90 "
+             "deg), the paper's definition.",
              p.seedlings.density_kg_per_m3, m.root_protrusion_mm, m.lip_friction,
              m.release_after_lowest_deg, m.residual_grip_share,
              1e-3 * p.soil.ground.unit_weight_N_per_m3, p.soil.ground.friction_angle_deg,

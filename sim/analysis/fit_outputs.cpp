@@ -9,8 +9,8 @@
 #include "firmware/io/signal_table.h"
 #include "sim/analysis/effect_hooks.h"
 #include "sim/analysis/model_file.h"
+#include "sim/report/chart.h"
 #include "sim/report/html_text.h"
-#include "sim/report/svg_plot.h"
 
 namespace planter::analysis {
 namespace {
@@ -219,11 +219,12 @@ std::string fit_model_toml(const FitReport& r) {
 std::string fit_report_html(const FitReport& r, const Recording& rec) {
   std::ostringstream h;
   h.precision(4);
+  report::ChartPage charts;
   h << "<!doctype html><html><head><meta charset='utf-8'><title>planter-fit</title><style>"
        "body{font-family:sans-serif;max-width:900px;margin:20px auto}td,th{padding:2px 8px}"
-       "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style></head>"
-       "<body><h1>planter-fit: "
-    << report::html_escape(r.file) << "</h1><p>" << r.rows << " rows, " << r.duration_s
+       "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style>"
+    << report::ChartPage::head() << "</head><body><h1>planter-fit: " << report::html_escape(r.file)
+    << "</h1><p>" << r.rows << " rows, " << r.duration_s
     << " s; the last 30 % is held out for the verdict.</p>";
   if (!r.unobservable.empty()) {
     h << "<p>Not observable (columns missing or constant):";
@@ -313,28 +314,17 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
       << c.location.time_correlation << "; spectrum peak " << c.location.dominant_frequency_hz
       << " Hz.";
     for (const auto& g : c.location.regimes) h << " " << g.name << ": " << g.rms_ratio << "x;";
-    // Marks on the time axis, as vertical lines: where the held-out part starts, and when a
-    // parameter changed.
-    const std::vector<double> held_x{r.held_out_from_s, r.held_out_from_s};
-    const std::vector<double> change_x =
-        c.change ? std::vector<double>{c.change->at_s, c.change->at_s} : std::vector<double>{};
-    const std::vector<double> span_y{*lo, *hi}, residual_y{-emax, emax};
-    std::vector<report::PlotLine> lines{{&ys, "#222", "recording"},
-                                        {&nom, "#36c", "nominal"},
-                                        {&aug, "#c33", "augmented"},
-                                        {&span_y, "#999", "held out from here", &held_x}};
-    std::vector<report::PlotLine> residual_lines{{&e0, "#36c", "nominal"},
-                                                 {&e1, "#c33", "augmented"},
-                                                 {&residual_y, "#999", "held out", &held_x}};
-    if (c.change) {
-      lines.push_back({&span_y, "#e80", "changed", &change_x});
-      residual_lines.push_back({&residual_y, "#e80", "changed", &change_x});
-    }
+    // Marks on the time axis: where the held-out part starts, and when a parameter changed.
+    std::vector<report::Marker> marks{{r.held_out_from_s, "#999", "held out from here"}};
+    if (c.change) marks.push_back({c.change->at_s, "#e80", "changed"});
+    const std::string unit = column_unit(c.channel->output());
     h << "</p>"
-      << report::svg_plot(c.channel->output(), column_unit(c.channel->output()), "time [s]", t,
-                          lines, *lo, *hi)
-      << report::svg_plot("residual", column_unit(c.channel->output()), "time [s]", t,
-                          residual_lines, -emax, emax);
+      << charts.lines(
+             {c.channel->output(), unit, "time [s]", *lo, *hi, marks, {}, ""}, t,
+             {{&ys, "#222", "recording"}, {&nom, "#36c", "nominal"}, {&aug, "#c33", "augmented"}})
+      << charts.lines(
+             {"residual of " + c.channel->output(), unit, "time [s]", -emax, emax, marks, {}, ""},
+             t, {{&e0, "#36c", "nominal"}, {&e1, "#c33", "augmented"}});
   }
   h << "</body></html>\n";
   return h.str();

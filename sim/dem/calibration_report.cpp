@@ -8,7 +8,7 @@
 #include "sim/dem/calibration.h"
 #include "sim/dem/dem_params.h"
 #include "sim/doe/doe_report.h"
-#include "sim/report/svg_plot.h"
+#include "sim/report/chart.h"
 
 namespace planter::dem {
 namespace {
@@ -72,10 +72,12 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
 
   std::ostringstream h;
   h.precision(4);
+  report::ChartPage charts;
   h << "<!doctype html><html><head><meta charset='utf-8'><title>planter-dem calibrate</title>"
     << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td,th{padding:2px "
        "8px}table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style>"
-    << "</head><body><h1>Calibration of the seedling model to " << o.target_N << " N</h1>";
+    << report::ChartPage::head() << "</head><body><h1>Calibration of the seedling model to "
+    << o.target_N << " N</h1>";
   if (!r.complete) h << "<p><b>Incomplete</b>: run again with the same --out to resume.</p>";
   h << "<h2>Plackett-Burman screening (12 runs, main effects)</h2>"
     << doe::anova_table_html(r.screening_anova) << "<p>" << r.chosen_reason << ".</p>";
@@ -107,8 +109,15 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
       x.push_back(p.displacement_m * 1e3);
       f.push_back(p.force_N);
     }
-    h << report::svg_plot("Calibrated model: upper platen force", "N", "displacement [mm]", x,
-                          {{&f, "#c33", "DEM, calibrated"}}, 0.0, 3.0 * o.target_N);
+    h << charts.lines({"Calibrated model: upper platen force",
+                       "N",
+                       "displacement [mm]",
+                       0.0,
+                       3.0 * o.target_N,
+                       {},
+                       {{o.target_N, "#36c", "target"}},
+                       ""},
+                      x, {{&f, "#c33", "DEM, calibrated"}});
   }
   h << "</body></html>\n";
   config::write_output_file(o.out_dir + "/report.html", h.str());

@@ -7,7 +7,7 @@
 
 #include "config/durable_file.h"
 #include "sim/dem/dem_params.h"
-#include "sim/report/svg_plot.h"
+#include "sim/report/chart.h"
 
 namespace planter::dem {
 namespace {
@@ -64,13 +64,14 @@ void write_compression_outputs(config::OutputSet& out, const CompressionRun& run
     f_max = std::max(f_max, p.force_N);
     b_max = std::max(b_max, static_cast<double>(p.broken_bonds));
   }
-  std::vector<double> paper_x{kPaperPeakDisplacement_mm, kPaperPeakDisplacement_mm};
-  std::vector<double> paper_y{0.0, kPaperPeak_N};
+  report::ChartPage charts;
   std::ostringstream html;
   html.precision(5);
   html << "<!doctype html><html><head><meta charset='utf-8'><title>planter-dem compress</title>"
        << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td{padding:2px "
-          "10px}</style></head><body><h1>Radial compression of the seedling model</h1><table>"
+          "10px}</style>"
+       << report::ChartPage::head()
+       << "</head><body><h1>Radial compression of the seedling model</h1><table>"
        << "<tr><td>first peak</td><td><b>" << r.peak_force_N << " N</b> at "
        << r.peak_displacement_m * 1e3 << " mm"
        << (r.first_peak_found ? "" : " (no drop within the stroke: this is the maximum)")
@@ -83,11 +84,17 @@ void write_compression_outputs(config::OutputSet& out, const CompressionRun& run
        << r.max_kinetic_to_work << "</td></tr>"
        << "<tr><td>steps</td><td>" << r.steps << " of " << run.setup.time_step_s << " s, in "
        << run.wall_s << " s</td></tr></table>"
-       << report::svg_plot("Upper platen force", "N", "platen displacement [mm]", x,
-                           {{&f, "#c33", "DEM"}, {&paper_y, "#36c", "paper's peak", &paper_x}}, 0.0,
-                           std::min(f_max, 4.0 * std::max(r.peak_force_N, 50.0)))
-       << report::svg_plot("Broken bonds", "-", "platen displacement [mm]", x,
-                           {{&broken, "#555", "broken"}}, 0.0, b_max)
+       << charts.lines({"Upper platen force",
+                        "N",
+                        "platen displacement [mm]",
+                        0.0,
+                        std::min(f_max, 4.0 * std::max(r.peak_force_N, 50.0)),
+                        {{kPaperPeakDisplacement_mm, "#36c", "paper's peak, about 4 mm"}},
+                        {{kPaperPeak_N, "#36c", "paper's 140.6 N"}},
+                        ""},
+                       x, {{&f, "#c33", "DEM"}})
+       << charts.lines({"Broken bonds", "", "platen displacement [mm]", 0.0, b_max, {}, {}, ""}, x,
+                       {{&broken, "#555", "broken"}})
        << "<p>Curve: <code>curve.csv</code>; parameters: <code>params.toml</code>.</p>"
        << "</body></html>\n";
   out.write("report.html", html.str());

@@ -1,5 +1,7 @@
 #include "sim/report/html_text.h"
 
+#include <cstdio>
+
 namespace planter::report {
 
 std::string html_escape(std::string_view text) {
@@ -27,6 +29,12 @@ std::string html_escape(std::string_view text) {
     }
   }
   return out;
+}
+
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
 }
 
 }  // namespace planter::report

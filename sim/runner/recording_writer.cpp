@@ -1,6 +1,7 @@
 #include "sim/runner/recording_writer.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -51,8 +52,9 @@ void ReportSeries::add(const TickRecord& r) {
   t.push_back(static_cast<double>(c.time_ns) * 1e-9);
   v_ground.push_back(p.v_mps);
   v_wheel.push_back(c.v_wheel_mps);
-  sigma_true.push_back(p.v_mps >= kSigmaMinSpeedMps ? p.sigma : 0.0);
-  sigma_ctrl.push_back(c.v_wheel_mps >= kSigmaMinSpeedMps ? c.sigma : 0.0);
+  // Undefined at a stop: NaN, drawn as a gap.
+  sigma_true.push_back(p.v_mps >= kSigmaMinSpeedMps ? p.sigma : std::nan(""));
+  sigma_ctrl.push_back(c.v_wheel_mps >= kSigmaMinSpeedMps ? c.sigma : std::nan(""));
   omega.push_back(c.omega_radps);
   omega_cmd.push_back(c.omega_cmd_radps);
   clamp_force.push_back(p.clamp_force_N);

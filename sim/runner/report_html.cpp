@@ -1,48 +1,20 @@
-// A self-contained HTML report: numbers, assumptions and inline SVG plots; no network.
+// A self-contained HTML report: numbers, assumptions and charts (dygraphs, inlined); no network.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
+#include "sim/report/chart.h"
 #include "sim/report/html_text.h"
-#include "sim/report/svg_plot.h"
 #include "sim/runner/recording_writer.h"
 
 namespace planter::sim {
 namespace {
 
-using report::PlotLine;
-
-std::string svg_plot(const std::string& title, const std::string& unit,
-                     const std::vector<double>& t, const std::vector<PlotLine>& lines, double y_min,
-                     double y_max) {
-  return report::svg_plot(title, unit, "time [s]", t, lines, y_min, y_max);
-}
-
-std::string histogram(const std::string& title, const std::vector<double>& values, double lo,
-                      double hi, int bins) {
-  std::vector<int> counts(static_cast<std::size_t>(bins), 0);
-  for (double v : values) {
-    const int b = std::clamp(static_cast<int>((v - lo) / (hi - lo) * bins), 0, bins - 1);
-    ++counts[static_cast<std::size_t>(b)];
-  }
-  const int top = std::max(1, *std::max_element(counts.begin(), counts.end()));
-  std::ostringstream s;
-  const double w = 420, h = 200, bw = (w - 40) / bins;
-  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << w << "' height='" << h
-    << "'><rect width='100%' height='100%' fill='white'/>"
-    << "<text x='40' y='14' font-size='12' font-family='sans-serif'>" << title << "</text>";
-  for (int b = 0; b < bins; ++b) {
-    const double bh = (h - 50) * counts[static_cast<std::size_t>(b)] / top;
-    s << "<rect x='" << 40 + b * bw << "' y='" << h - 30 - bh << "' width='" << bw - 1
-      << "' height='" << bh << "' fill='#4a7'/>";
-  }
-  s << "<text x='40' y='" << h - 14 << "' font-size='10' font-family='sans-serif'>" << lo
-    << "</text><text x='" << w - 30 << "' y='" << h - 14
-    << "' font-size='10' font-family='sans-serif'>" << hi << "</text></svg>";
-  return s.str();
-}
+using report::ChartSpec;
+using report::Line;
+using report::Marker;
 
 }  // namespace
 
@@ -64,60 +36,122 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
     if (last_x >= 0) spacing.push_back((x - last_x) * 1000);
     last_x = x;
   }
-  const double ceiling = s.clamp_ceiling_N;
-  std::vector<double> ceiling_line(r.t.size(), ceiling);
-  std::vector<double> sigma_line(r.t.size(), s.sigma_target);
+  const double spacing_target_mm = sc.plant.seedlings.feed_pitch_mm / s.sigma_target;
+  report::ChartPage charts;
+  int skips = 0, multiples = 0;
+  for (const double g : spacing) {
+    if (g > 1.5 * spacing_target_mm) ++skips;
+    if (g < 0.5 * spacing_target_mm) ++multiples;
+  }
+  const SeedlingConfig& seeds = sc.plant.seedlings;
+  const double strength_N = seeds.force_model.loaded
+                                ? seeds.force_model.peak_force(seeds.reference_diameter_mm)
+                                : seeds.strength_mean_N;
   out << "<!doctype html><html><head><meta charset='utf-8'><title>planter-sim: "
       << html_escape(s.scenario) << "</title>"
       << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td{padding:2px 10px}"
-      << "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style></"
-         "head><body>"
+      << "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style>"
+      << report::ChartPage::head() << "</head><body>"
       << "<h1>Simulated run: " << html_escape(s.scenario) << "</h1><p>Scenario <code>"
       << html_escape(sc.file) << "</code>, board <code>" << html_escape(sc.board.name)
       << "</code>, seed " << sc.seed << ".</p><h2>Figures</h2><table>";
-  auto row = [&](const char* name, double v, const char* unit, const char* paper) {
-    out << "<tr><td>" << name << "</td><td><b>" << v << "</b> " << unit << "</td><td>" << paper
-        << "</td></tr>";
+  // Each figure rounded for a reader; green or red where it has a goal.
+  enum class Goal { none, met, missed };
+  auto goal = [](bool met) { return met ? Goal::met : Goal::missed; };
+  auto row = [&](const char* name, double v, int decimals, const char* unit, const char* against,
+                 Goal g) {
+    const char* colour = g == Goal::met      ? " style='color:#080'"
+                         : g == Goal::missed ? " style='color:#c00'"
+                                             : "";
+    out << "<tr><td>" << name << "</td><td" << colour << "><b>" << report::fixed(v, decimals)
+        << "</b> " << unit
+        << (g == Goal::met      ? " &#10003;"
+            : g == Goal::missed ? " &#10007;"
+                                : "")
+        << "</td><td>" << against << "</td></tr>";
   };
-  row("uprightness", s.uprightness_pct, "%", "paper: 94.8 % predicted, 93.86 % field");
-  row("damage rate", s.damage_pct, "%", "paper: 3 % predicted, 2.76 % field");
-  row("plant spacing, mean", s.spacing_mean_mm, "mm", "agronomy: 20-30 mm");
-  row("plant spacing, CV", s.spacing_cv_pct, "%", "");
-  row("seedlings planted", s.seedlings_planted, "", "paper: 96-100 per 3 m plot");
-  row("true sigma, mean", s.sigma_true_mean, "", "target 1.5");
-  row("true sigma, RMS error", s.sigma_true_rms_error_pct, "%", "goal < 2 %");
-  row("controller's sigma, RMS error", s.sigma_ctrl_rms_error_pct, "%", "");
-  row("clamp force, mean", s.clamp_force_mean_N, "N", "paper: 90-92 N");
-  row("clamp force, max", s.clamp_force_max_N, "N", "must stay below the ceiling");
-  row("clamp ceiling", s.clamp_ceiling_N, "N", "below 127.2 N, the weakest measured seedling");
-  row("depth, mean", s.depth_mean_mm, "mm", "target 102 mm");
-  row("depth, RMS error", s.depth_rms_error_mm, "mm", "goal within 5 mm");
-  row("CAN bus load", s.can_bus_load_pct, "%", "");
-  row("real-time factor", s.realtime_factor, "x", "");
+  const double ceiling = s.clamp_ceiling_N;
+  row("uprightness", s.uprightness_pct, 2, "%",
+      "paper: 94.8 % predicted, 93.86 % field; goal: within 2 points of the field (the paper's "
+      "own criterion)",
+      goal(std::abs(s.uprightness_pct - 93.86) <= 2.0));
+  row("seedlings lodged", s.seedlings_lodged, 0, "", "lying in the furrow (tilt 90 deg)",
+      Goal::none);
+  row("damage rate", s.damage_pct, 2, "%",
+      "paper: 3 % predicted, 2.76 % field; goal: within 2 points of the field",
+      goal(std::abs(s.damage_pct - 2.76) <= 2.0));
+  row("plant spacing, mean", s.spacing_mean_mm, 1, "mm", "agronomy: 20-30 mm",
+      goal(s.spacing_mean_mm >= 20.0 && s.spacing_mean_mm <= 30.0));
+  row("plant spacing, CV", s.spacing_cv_pct, 1, "%", "", Goal::none);
+  row("seedlings planted", s.seedlings_planted, 0, "", "paper: 96-100 per 3 m plot", Goal::none);
+  row("true sigma, mean", s.sigma_true_mean, 3, "", "target 1.5", Goal::none);
+  row("true sigma, RMS error", s.sigma_true_rms_error_pct, 2, "%", "goal < 2 %",
+      goal(s.sigma_true_rms_error_pct < 2.0));
+  row("controller's sigma, RMS error", s.sigma_ctrl_rms_error_pct, 2, "%", "", Goal::none);
+  row("clamp force, mean", s.clamp_force_mean_N, 1, "N", "paper: 90-92 N", Goal::none);
+  row("clamp force, max", s.clamp_force_max_N, 1, "N", "must stay below the ceiling",
+      goal(s.clamp_force_max_N < ceiling));
+  row("clamp ceiling", ceiling, 1, "N", "below 127.2 N, the weakest measured seedling",
+      goal(ceiling < 127.2));
+  row("depth, mean", s.depth_mean_mm, 1, "mm", "target 102 mm", Goal::none);
+  row("depth, RMS error", s.depth_rms_error_mm, 2, "mm", "goal within 5 mm",
+      goal(s.depth_rms_error_mm <= 5.0));
+  row("CAN bus load", s.can_bus_load_pct, 1, "%", "", Goal::none);
+  row("real-time factor", s.realtime_factor, 0, "x", "", Goal::none);
   out << "</table><p>Seedlings per 3 m plot: ";
   for (int c : s.plot_counts) out << c << ' ';
+  const std::string t = "time [s]";
   out << "</p><h2>Plots</h2>"
-      << svg_plot("Ground speed", "m/s", r.t,
-                  {{&r.v_ground, "#000", "true"}, {&r.v_wheel, "#d60", "soil wheel"}}, 0, 0.1)
-      << svg_plot("Sigma = R*omega/v (v > 0.02 m/s)", "-", r.t,
-                  {{&r.sigma_true, "#06c", "true"},
-                   {&r.sigma_ctrl, "#d60", "controller"},
-                   {&sigma_line, "#999", "target"}},
-                  1.2, 1.8)
-      << svg_plot("Disc speed", "rad/s", r.t,
-                  {{&r.omega, "#06c", "measured"}, {&r.omega_cmd, "#d60", "command"}}, 0, 0.5)
-      << svg_plot("Clamp force", "N", r.t,
-                  {{&r.clamp_force, "#06c", "true"},
-                   {&r.clamp_force_cmd, "#d60", "set-point"},
-                   {&ceiling_line, "#c00", "ceiling"}},
-                  0, 140)
-      << svg_plot("Furrow depth", "mm", r.t,
-                  {{&r.depth, "#06c", "true"}, {&r.depth_cmd, "#d60", "command"}}, 0, 170)
+      << charts.lines({"Ground speed", "m/s", t, 0, 0.1, {}, {}, ""}, r.t,
+                      {{&r.v_ground, "#000", "true"}, {&r.v_wheel, "#d60", "soil wheel"}})
+      << charts.lines({"Sigma = R omega / v",
+                       "",
+                       t,
+                       1.2,
+                       1.8,
+                       {},
+                       {{s.sigma_target, "#999", "target"}},
+                       "Undefined below 0.02 m/s: a gap at the stops."},
+                      r.t, {{&r.sigma_true, "#06c", "true"}, {&r.sigma_ctrl, "#d60", "controller"}})
+      << charts.lines({"Disc speed", "rad/s", t, 0, 0.5, {}, {}, ""}, r.t,
+                      {{&r.omega, "#06c", "measured"}, {&r.omega_cmd, "#d60", "command"}})
+      << charts.lines({"Clamp force", "N", t, 0, 140, {}, {{ceiling, "#c00", "ceiling"}}, ""}, r.t,
+                      {{&r.clamp_force, "#06c", "true"}, {&r.clamp_force_cmd, "#d60", "set-point"}})
+      << charts.lines({"Furrow depth", "mm", t, 0, 170, {}, {}, ""}, r.t,
+                      {{&r.depth, "#06c", "true"}, {&r.depth_cmd, "#d60", "command"}})
       << "<h2>Seedling outcomes</h2>"
-      << histogram("tilt from vertical, + top forward [deg]; lodged (+-90) in the end bins", tilts,
-                   -30, 30, 60)
-      << histogram("spacing [mm]", spacing, 0, 80, 40)
-      << histogram("peak radial force in the nip [N]", peaks, 60, 140, 40)
+      << charts.histogram({"Tilt after covering; lodged seedlings (+-90) in the end bins",
+                           "",
+                           "tilt from vertical, + top forward [deg]",
+                           0,
+                           0,
+                           {{0.0, "#999", "upright"}},
+                           {},
+                           ""},
+                          tilts, -30, 30, 60)
+      << charts.histogram(
+             {"Spacing between planted seedlings",
+              "",
+              "spacing [mm]",
+              0,
+              0,
+              {{0.5 * spacing_target_mm, "#c00", "multiple (< 0.5 x target)"},
+               {spacing_target_mm, "#999", "target"},
+               {1.5 * spacing_target_mm, "#c00", "skip (> 1.5 x target)"}},
+              {},
+              std::to_string(skips) + " skips and " + std::to_string(multiples) +
+                  " multiples against a target of " + report::fixed(spacing_target_mm, 1) + " mm."},
+             spacing, 0, 80, 80)
+      << charts.histogram(
+             {"Peak radial force in the roller nip",
+              "",
+              "force [N]",
+              0,
+              0,
+              {{strength_N, "#c00", "mean strength"}, {ceiling, "#d60", "clamp ceiling"}},
+              {},
+              ""},
+             peaks, 40, 200, 80)
       << "<h2>Model assumptions</h2><p>Written from the configuration that ran.</p><ul>";
   for (const std::string& a : s.assumptions) out << "<li>" << html_escape(a) << "</li>";
   out << "</ul></body></html>";

@@ -47,6 +47,21 @@ nlohmann::json params_json(const std::vector<ParamSpec>& specs, const std::vecto
   return j;
 }
 
+// "relaxation of the clamp: fraction = 0.2987 +- 0.001, tau = 3.023 +- 0.011 s"
+std::string effect_text(const ChannelFit& f, std::size_t e, const ChannelModel& c) {
+  const Effect& eff = f.effects[e];
+  std::string out = eff.spec->name + ":";
+  for (std::size_t k = 0; k < eff.values.size() && k < eff.spec->params.size(); ++k) {
+    const double sd = e < f.effect_sd.size() && k < f.effect_sd[e].size() ? f.effect_sd[e][k] : 0;
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " %.4g +- %.2g", eff.values[k], sd);
+    const std::string unit = concrete_unit(eff.spec->params[k].unit, c);
+    out += (k ? ", " : " ") + eff.spec->params[k].name + " =" + buf +
+           (unit.empty() || unit == "-" || unit == "1" ? "" : " " + unit);
+  }
+  return out;
+}
+
 nlohmann::json effects_json(const ChannelFit& f, const ChannelModel& c) {
   nlohmann::json j = nlohmann::json::array();
   for (std::size_t e = 0; e < f.effects.size(); ++e) {
@@ -238,6 +253,26 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
       h << " " << report::html_escape(g.column) << " = " << g.value << " at " << g.t_s << " s;";
     h << "</p>";
   }
+  // The verdicts first: per channel, what was found and how much better the held-out part got.
+  h << "<h2>Summary</h2><table><tr><th>channel</th><th>verdict</th><th>held-out RMS error: "
+       "nominal &rarr; with the effects</th></tr>";
+  for (const auto& c : r.channels) {
+    const std::string unit = column_unit(c.channel->output());
+    const bool found = !c.final_fit.effects.empty() || c.change;
+    h << "<tr><td>" << c.channel->subsystem() << ": " << c.channel->output() << "</td><td"
+      << (found ? " style='color:#a40'" : "") << "><b>" << report::html_escape(c.verdict) << "</b>";
+    for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
+      h << "<br>" << report::html_escape(effect_text(c.final_fit, e, *c.channel));
+    h << "</td><td>" << c.nominal.rms_held_out << " &rarr; " << c.final_fit.rms_held_out << " "
+      << report::html_escape(unit) << "</td></tr>";
+  }
+  h << "</table><p>A candidate effect is kept when it lowers BIC by more than "
+    << r.options.min_delta_bic << ", explains at least " << 100.0 * r.options.min_explained
+    << " % of the residual beyond the measurement noise, improves a cross-validation fold or the "
+       "held-out part by "
+    << 100.0 * r.options.min_improvement
+    << " %, and does not worsen the held-out part. Each channel's table below says which "
+       "criterion each other candidate failed.</p>";
   const std::size_t n = rec.size();
   const std::size_t stride = std::max<std::size_t>(1, n / 3000);
   std::vector<double> t;
@@ -258,12 +293,9 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
     h << "<h2>" << c.channel->subsystem() << ": " << c.channel->output() << " &mdash; " << c.verdict
       << "</h2><p>Held-out RMS error: nominal " << c.nominal.rms_held_out << ", augmented <b>"
       << c.final_fit.rms_held_out << "</b>; measurement noise about " << c.noise_rms << ".</p>";
-    for (const auto& e : c.final_fit.effects) {
-      h << "<p><b>" << e.spec->name << "</b> (" << e.spec->signature << "):";
-      for (std::size_t k = 0; k < e.values.size(); ++k)
-        h << " " << e.spec->params[k].name << " = " << e.values[k];
-      h << "</p>";
-    }
+    for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
+      h << "<p><b>" << report::html_escape(effect_text(c.final_fit, e, *c.channel)) << "</b> ("
+        << c.final_fit.effects[e].spec->signature << ")</p>";
     if (r.day) {
       const ChannelDay& d = r.day->channels[static_cast<std::size_t>(&c - r.channels.data())];
       h << "<p><b>Across " << r.day->windows << " windows of " << r.day->window_s
@@ -302,11 +334,23 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
         << "</b>: this recording cannot separate them (&Delta;BIC " << tie.delta_bic
         << "). To tell them apart, record " << report::html_escape(tie.experiment) << ".</p>";
     h << "<table><tr><th>candidate</th><th>&Delta;BIC</th><th>explained</th>"
-         "<th>blocked CV</th><th>held-out improvement</th></tr>";
-    for (const auto& cand : c.ranked)
-      h << "<tr><td>" << cand.effect << "</td><td>" << cand.delta_bic << "</td><td>"
-        << 100.0 * cand.explained << " %</td><td>" << 100.0 * cand.cv_improvement << " %</td><td>"
-        << 100.0 * cand.held_out_improvement << " %</td></tr>";
+         "<th>best fold</th><th>held-out</th><th>kept?</th></tr>";
+    // A share far below -100 % is a candidate that made the fit much worse: say so, not -4.8e5 %.
+    auto share = [](double v) {
+      return v < -1.0 ? std::string("worse") : report::fixed(100.0 * v, 1) + " %";
+    };
+    for (const auto& cand : c.ranked) {
+      bool kept = false;
+      for (const auto& e : c.final_fit.effects) kept = kept || e.spec == cand.spec;
+      const std::string why = rejection(cand, r.options);
+      h << "<tr><td>" << cand.effect << "</td><td>" << report::fixed(cand.delta_bic, 1)
+        << "</td><td>" << share(cand.explained) << "</td><td>" << share(cand.cv_improvement)
+        << "</td><td>" << share(cand.held_out_improvement) << "</td><td>"
+        << (kept          ? "<b>kept</b>"
+            : why.empty() ? "earns its place; another explains the same better or is simpler"
+                          : "no: " + report::html_escape(why))
+        << "</td></tr>";
+    }
     h << "</table><p>Where the nominal residual is: whiteness violations "
       << 100.0 * c.location.whiteness_violations << " % of lags; input correlation "
       << c.location.input_correlation << "; worst window at " << c.location.worst_window_start_s

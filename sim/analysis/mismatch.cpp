@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <thread>
 
 #include "sim/analysis/decimation.h"
@@ -182,11 +183,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     std::sort(gains.begin(), gains.end());
     return gains.front() < -0.02 ? gains.front() : gains.back();
   };
-  auto earns = [&](const Candidate& c) {
-    return c.delta_bic < -o.min_delta_bic && c.explained >= o.min_explained &&
-           (c.cv_improvement >= o.min_improvement || c.held_out_improvement >= o.min_improvement) &&
-           c.held_out_improvement > -0.02;
-  };
+  auto earns = [&](const Candidate& c) { return rejection(c, o).empty(); };
   auto try_effects = [&](const ChannelFit& base, std::vector<Effect> start) {
     std::vector<Candidate> out;
     const std::vector<double> base_e = residual_of(base.prediction, y);
@@ -350,8 +347,38 @@ Recording analysed_recording(const Recording& full, const FitOptions& o,
   return decimated(clean, stride, channel_columns());
 }
 
+std::string rejection(const Candidate& c, const FitOptions& o) {
+  char buf[200];
+  if (c.delta_bic >= -o.min_delta_bic) {
+    std::snprintf(buf, sizeof buf, "lowers BIC by %.1f; %.0f is required", -c.delta_bic,
+                  o.min_delta_bic);
+    return buf;
+  }
+  if (c.explained < o.min_explained) {
+    std::snprintf(buf, sizeof buf,
+                  "explains %.0f %% of the residual beyond noise; %.0f %% is required",
+                  100.0 * c.explained, 100.0 * o.min_explained);
+    return buf;
+  }
+  if (c.cv_improvement < o.min_improvement && c.held_out_improvement < o.min_improvement) {
+    std::snprintf(buf, sizeof buf,
+                  "improves the best fold by %.1f %% and the held-out part by %.1f %%; %.0f %% "
+                  "is required of one",
+                  100.0 * c.cv_improvement, 100.0 * c.held_out_improvement,
+                  100.0 * o.min_improvement);
+    return buf;
+  }
+  if (c.held_out_improvement <= -0.02) {
+    std::snprintf(buf, sizeof buf, "worsens the held-out part by %.1f %%",
+                  -100.0 * c.held_out_improvement);
+    return buf;
+  }
+  return "";
+}
+
 FitReport analyse(const Recording& full, const FitOptions& o) {
   FitReport rep;
+  rep.options = o;
   rep.glitches = find_glitches(full, channel_columns());
   const Recording r = analysed_recording(full, o, rep.glitches);
   rep.rate_hz = sample_rate_hz(full);

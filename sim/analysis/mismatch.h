@@ -93,6 +93,7 @@ struct FitOptions {
 
 struct FitReport {
   std::string file;
+  FitOptions options;  // the criteria the candidates were held to
   std::size_t rows = 0;
   std::size_t analysed_rows = 0;   // after decimation
   double rate_hz = 0.0;            // the recording's sample rate
@@ -105,6 +106,10 @@ struct FitReport {
   std::vector<Glitch> glitches;           // samples excluded as single-sample glitches
   std::optional<DayReport> day;           // a recording longer than one window: across it
 };
+
+// Why a candidate does not earn its place, in words (the first criterion it fails), or "" when
+// it does. The analysis decides by this, and the report prints it.
+std::string rejection(const Candidate& c, const FitOptions& o);
 
 // Throws RecordingError when no channel is observable. Glitches are excluded first
 // (glitches.h) and listed in the report.

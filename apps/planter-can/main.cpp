@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -177,6 +178,21 @@ int main(int argc, char** argv) {
     return fail(kExitBadInput, std::string(e.what()) + " (planter-can --help lists the commands)");
   }
 
+  // On sim with neither a board nor a scenario: the host-sim board, where the package installs it
+  // or in this build's source tree.
+  if (iface == "sim" && board_path.empty() && scenario_path.empty()) {
+    for (const std::string& candidate :
+         {std::string("/etc/planter/boards/host-sim/board.toml"),
+          std::string(PLANTER_SOURCE_DIR) + "/boards/host-sim/board.toml"}) {
+      std::error_code ec;
+      if (std::filesystem::exists(candidate, ec)) {
+        board_path = candidate;
+        std::cerr << "planter-can: --iface sim with no --board: the host-sim board (" << candidate
+                  << ")\n";
+        break;
+      }
+    }
+  }
   config::BoardConfig board;
   const bool have_board = !board_path.empty();
   try {
@@ -199,7 +215,9 @@ int main(int argc, char** argv) {
       } else if (scenario_path.empty()) {
         return fail(
             kExitBadInput,
-            "--iface sim needs --board or --sim-scenario (the simulated machine is built from it)");
+            "--iface sim needs --board or --sim-scenario (the simulated machine is built from it); "
+            "no host-sim board at /etc/planter/boards/host-sim/board.toml or " PLANTER_SOURCE_DIR
+            "/boards/host-sim/board.toml");
       } else {
         board = scenario.board;
       }

@@ -3,6 +3,8 @@
 //   calibrate  Plackett-Burman, steepest ascent, Box-Behnken + ANOVA to a target peak force
 //   reduce     the reduced-order force model F(delta, delta_dot) for the plant model
 // Exit codes: 0 done, 1 the run failed (an output could not be written), 2 bad input.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -133,7 +135,14 @@ int reduce(const Common& c, const std::vector<double>& diameters_mm, int jobs) {
   const dem::CompressionSetup base = load_setup(c);
   config::OutputSet out(c.out, "planter-dem reduce", c.force);
   const auto t0 = std::chrono::steady_clock::now();
-  const dem::ReducedOrderFit fit = dem::fit_reduced_order(base, diameters_mm, jobs);
+  // Progress on a terminal only: logs and pipes get the summary alone.
+  std::function<void(std::size_t, std::size_t)> progress;
+  if (isatty(STDERR_FILENO))
+    progress = [](std::size_t done, std::size_t total) {
+      std::fprintf(stderr, "\rplanter-dem reduce: %zu of %zu compressions done\x1b[K%s", done,
+                   total, done == total ? "\n" : "");
+    };
+  const dem::ReducedOrderFit fit = dem::fit_reduced_order(base, diameters_mm, jobs, progress);
   const std::string path = c.out + "/seedling_force.toml";
   const std::string source =
       "from " + (c.params.empty() ? std::string("the paper's parameters") : c.params);

@@ -2,6 +2,8 @@
 // Calibrates the nominal model of every observable subsystem, locates the mismatch, names
 // the missing physics from a library of effects, refits it and shows the held-out error.
 // Exit codes: 0 done (whatever the verdict), 1 an output could not be written, 2 bad input.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -135,6 +137,12 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     FitOptions o;
     o.jobs = jobs;
+    // Progress on a terminal only: logs and pipes get the summary alone.
+    if (isatty(STDERR_FILENO))
+      o.on_channel_done = [](std::size_t done, std::size_t total, const std::string& channel) {
+        std::fprintf(stderr, "\rplanter-fit: %zu of %zu channels analysed (last: %s)\x1b[K%s", done,
+                     total, channel.c_str(), done == total ? "\n" : "");
+      };
     // The first window (the whole of a shorter recording) is read and analysed; the rest of a
     // longer one is read a window at a time and the model tracked across it.
     RecordingReader reader(file);

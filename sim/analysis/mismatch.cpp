@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 #include <thread>
 
 #include "sim/analysis/decimation.h"
@@ -410,9 +411,16 @@ FitReport analyse(const Recording& full, const FitOptions& o) {
                          "depth_cmd_mm and depth_mm (depth), or v_ground and v_wheel (ground)");
   rep.channels.resize(todo.size());
   std::atomic<std::size_t> next{0};
+  std::mutex progress;
+  std::size_t done = 0;
   auto worker = [&] {
-    for (std::size_t k = next++; k < todo.size(); k = next++)
+    for (std::size_t k = next++; k < todo.size(); k = next++) {
       rep.channels[k] = analyse_channel(*todo[k], r, o, rep.split);
+      if (o.on_channel_done) {
+        const std::lock_guard<std::mutex> lock(progress);
+        o.on_channel_done(++done, todo.size(), todo[k]->output());
+      }
+    }
   };
   std::vector<std::thread> pool;
   for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(todo.size())); ++j)

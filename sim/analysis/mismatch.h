@@ -2,6 +2,7 @@
 // planter-fit's analysis of one recording: for every observable channel, calibrate the
 // nominal structure, locate where its residual concentrates, score the named candidate
 // effects (and pairs) by BIC and held-out error, and refit the chosen ones.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,9 @@ struct FitOptions {
   double nested_min_explained = 0.05;
   double min_unexplained_share = 0.005;  // of the output's held-out RMS, to call a residual
   int jobs = 1;
+  // Told as each channel's analysis ends (from any worker, one call at a time): for progress.
+  std::function<void(std::size_t done, std::size_t total, const std::string& channel)>
+      on_channel_done;
   std::size_t max_rows = 12000;  // longer recordings are decimated to this many rows
   // A recording longer than this many rows is analysed on its first window of them and its
   // model tracked across the rest, window by window (day_tracks.h): 10 minutes at 100 Hz.

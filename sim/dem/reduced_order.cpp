@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 
 #include "sim/dem/parallel_for.h"
@@ -48,8 +49,9 @@ void line_fit(const std::vector<double>& x, const std::vector<double>& y, double
 
 }  // namespace
 
-ReducedOrderFit fit_reduced_order(const CompressionSetup& base,
-                                  const std::vector<double>& diameters_mm, int jobs) {
+ReducedOrderFit fit_reduced_order(
+    const CompressionSetup& base, const std::vector<double>& diameters_mm, int jobs,
+    const std::function<void(std::size_t done, std::size_t total)>& on_run_done) {
   ReducedOrderFit fit;
   sim::SeedlingForceModel& m = fit.model;
   m.reference_diameter_mm = base.seedling.diameter_m * 1e3;
@@ -73,8 +75,15 @@ ReducedOrderFit fit_reduced_order(const CompressionSetup& base,
   setups.push_back(slow);
   setups.push_back(fast);
   std::vector<CompressionResult> results(setups.size());
-  parallel_for(setups.size(), jobs,
-               [&](std::size_t k) { results[k] = run_compression(setups[k]); });
+  std::mutex progress;
+  std::size_t done = 0;
+  parallel_for(setups.size(), jobs, [&](std::size_t k) {
+    results[k] = run_compression(setups[k]);
+    if (on_run_done) {
+      const std::lock_guard<std::mutex> lock(progress);
+      on_run_done(++done, setups.size());
+    }
+  });
 
   // Exponent: log F = log k + n log delta on each curve's elastic branch; n is their mean.
   std::vector<double> exponents;

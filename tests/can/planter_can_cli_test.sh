@@ -24,12 +24,14 @@ expect 2 "token 3 '0x1g00'" -- --iface sim --board "$board" sdo 2 r 0x1g00 0
 expect 2 "token 2 'rd'" -- --iface sim --board "$board" sdo 2 rd 0x1000 0
 expect 2 "token 6 'abc'" -- --iface sim --board "$board" sdo 2 w 0x1017 0 u16 abc
 expect 1 "no answer from node 77 in 100 ms" -- --iface sim --board "$board" sdo 77 r 0x1000 0
+# On sim with no board the host-sim board is taken, and the tool says so.
+expect 0 "the host-sim board (.*boards/host-sim/board.toml)" -- --iface sim scan
+expect 0 "4 node(s) on sim" -- --iface sim scan
 # An index typed as tables print it, without 0x, is decimal in CiA 309-3: the error says so.
 expect 1 "the index 1018 was read as decimal (0x03FA): write 0x1018" -- --iface sim --board "$board" sdo 2 r 1018 1
 expect 2 "is not an NMT command" -- --iface sim --board "$board" nmt begin 2
 expect 2 "is not a node-ID" -- --iface sim --board "$board" info plough
 expect 2 "--iface is required" -- --board "$board" scan
-expect 2 "needs --board or --sim-scenario" -- --iface sim scan
 expect 2 "nosuch0" -- --iface nosuch0 scan
 expect 2 "missing.txt: no such file" -- --iface sim --board "$board" sdo -f "$work/missing.txt"
 expect 2 "missing.log: no such file" -- --board "$board" decode "$work/missing.log"

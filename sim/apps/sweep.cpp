@@ -151,7 +151,7 @@ std::string surface_map(const std::string& title, const std::string& unit, const
   const double lo = *std::min_element(z.begin(), z.end());
   const double hi = *std::max_element(z.begin(), z.end());
   std::ostringstream s;
-  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << kLeft + kSize + 140 << "' height='"
+  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << kLeft + kSize + 220 << "' height='"
     << kTop + kSize + 50 << "' font-family='sans-serif' font-size='11'>"
     << "<text x='" << kLeft << "' y='16' font-size='12'>" << report::html_escape(title) << " ["
     << unit << "], " << kFactors[3 - fx - fy].name << " at "

@@ -66,7 +66,7 @@ void write_compression_outputs(config::OutputSet& out, const CompressionRun& run
   }
   report::ChartPage charts;
   std::ostringstream html;
-  html.precision(5);
+  html.precision(4);
   html << "<!doctype html><html><head><meta charset='utf-8'><title>planter-dem compress</title>"
        << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td{padding:2px "
           "10px}</style>"
@@ -84,15 +84,17 @@ void write_compression_outputs(config::OutputSet& out, const CompressionRun& run
        << r.max_kinetic_to_work << "</td></tr>"
        << "<tr><td>steps</td><td>" << r.steps << " of " << run.setup.time_step_s << " s, in "
        << run.wall_s << " s</td></tr></table>"
-       << charts.lines({"Upper platen force",
-                        "N",
-                        "platen displacement [mm]",
-                        0.0,
-                        std::min(f_max, 4.0 * std::max(r.peak_force_N, 50.0)),
-                        {{kPaperPeakDisplacement_mm, "#36c", "paper's peak, about 4 mm"}},
-                        {{kPaperPeak_N, "#36c", "paper's 140.6 N"}},
-                        ""},
-                       x, {{&f, "#c33", "DEM"}})
+       << charts.lines(
+              {"Upper platen force",
+               "N",
+               "platen displacement [mm]",
+               0.0,
+               // The paper's peak always in view; a curve far above it zooms out.
+               std::max(std::min(f_max, 4.0 * std::max(r.peak_force_N, 50.0)), 1.15 * kPaperPeak_N),
+               {{kPaperPeakDisplacement_mm, "#36c", "paper's peak, about 4 mm"}},
+               {{kPaperPeak_N, "#36c", "paper's 140.6 N"}},
+               ""},
+              x, {{&f, "#c33", "DEM"}})
        << charts.lines({"Broken bonds", "", "platen displacement [mm]", 0.0, b_max, {}, {}, ""}, x,
                        {{&broken, "#555", "broken"}})
        << "<p>Curve: <code>curve.csv</code>; parameters: <code>params.toml</code>.</p>"

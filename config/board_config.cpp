@@ -207,17 +207,28 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     b.gpio.estop = static_cast<int>(gpio->integer("estop_line", 2, 0, 511));
     b.gpio.status = static_cast<int>(gpio->integer("status_line", 3, 0, 511));
     c.estop_active_low = gpio->boolean("estop_active_low", true);
+    // The seedling photo-eye is optional: without it the planting monitor has nothing to count.
+    if (gpio->has("seedling_sensor_line")) {
+      b.gpio.seedling_sensor = static_cast<int>(gpio->integer("seedling_sensor_line", -1, 0, 511));
+      b.gpio.seedling_sensor_active_low = gpio->boolean("seedling_sensor_active_low", false);
+      c.monitor.sensor_fitted = true;
+      c.monitor.sensor_filter_ns = gpio->integer("seedling_sensor_filter_ms",
+                                                 c.monitor.sensor_filter_ns / 1'000'000, 0, 1000) *
+                                   1'000'000;
+    }
     // Each line does one job: name the key that reuses an earlier one.
     const std::pair<const char*, int> lines[] = {{"encoder_a_line", b.gpio.encoder_a},
                                                  {"encoder_b_line", b.gpio.encoder_b},
                                                  {"estop_line", b.gpio.estop},
-                                                 {"status_line", b.gpio.status}};
+                                                 {"status_line", b.gpio.status},
+                                                 {"seedling_sensor_line", b.gpio.seedling_sensor}};
     for (std::size_t i = 1; i < std::size(lines); ++i) {
       for (std::size_t k = 0; k < i; ++k) {
-        if (lines[i].second == lines[k].second)
+        if (lines[i].second >= 0 && lines[i].second == lines[k].second)
           gpio->fail(lines[i].first,
                      "line " + std::to_string(lines[i].second) + " is already " + lines[k].first +
-                         " (encoder A, encoder B, e-stop and status need four lines)");
+                         " (encoder A, encoder B, e-stop, status and the seedling photo-eye need "
+                         "a line each)");
       }
     }
     gpio->reject_unknown_keys();
@@ -285,6 +296,18 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
       ctl->fail("depth_mm", "must not be beyond depth_max_mm (the actuator's travel)" + from_cal);
     ctl->reject_unknown_keys();
   }
+  // [planting_monitor]: the clamp pitch is the machine's; the skip and multiple limits follow
+  // Kachman and Smith (1995) unless the machine file says otherwise.
+  if (auto mon = mroot->table("planting_monitor")) {
+    c.monitor.clamp_pitch_mm =
+        mon->number("clamp_pitch_mm", c.monitor.clamp_pitch_mm, 5.0, 500.0, "mm");
+    c.monitor.skip_ratio = mon->number("skip_ratio", c.monitor.skip_ratio, 1.1, 3.0);
+    c.monitor.multiple_ratio = mon->number("multiple_ratio", c.monitor.multiple_ratio, 0.1, 0.9);
+    c.monitor.empty_clamps_to_warn = static_cast<std::uint32_t>(
+        mon->integer("empty_clamps_to_warn", c.monitor.empty_clamps_to_warn, 1, 1000));
+    mon->reject_unknown_keys();
+  }
+  c.monitor.target_spacing_mm = c.monitor.clamp_pitch_mm / c.sigma.sigma;
   // [supervisor]: the loop's timing is the board's; the plausibility limits are the machine's.
   {
     auto board_sup = root.table("supervisor");

@@ -18,6 +18,8 @@ struct GpioLines {
   int encoder_b = 1;
   int estop = 2;
   int status = 3;
+  int seedling_sensor = -1;  // the photo-eye; -1: none fitted
+  bool seedling_sensor_active_low = false;
 };
 
 // [realtime]: how planterd's control loop is scheduled on the board.

@@ -29,6 +29,10 @@ int format_controller_columns(char* out, std::size_t size, double t_s, const Tel
       n = std::snprintf(at, room, "%s%.*f", sep, s.decimals, t_s);
     } else if (s.source == SignalSource::kSupervisor) {
       n = std::snprintf(at, room, "%s%s", sep, supervisor_state_name(c.state));
+    } else if (s.source == SignalSource::kWarnings) {
+      n = std::snprintf(at, room, "%s%u", sep, static_cast<unsigned>(c.warnings));
+    } else if (s.monitored != nullptr) {
+      n = std::snprintf(at, room, "%s%.*f", sep, s.decimals, c.planting.*s.monitored);
     } else if (s.measured != nullptr) {
       n = std::snprintf(at, room, "%s%.*f", sep, s.decimals, c.*s.measured);
     } else if (s.commanded != nullptr) {

@@ -32,6 +32,9 @@ expect old-draft-key "d.toml:[0-9]+: 'soil.draft_coeff': .*ASABE D497" -- "$sim"
 # The tilt formula's keys are refused with what replaced them.
 sed "s|^carry_angle_deg = .*|kinematic_gain = 0.2|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/k.toml"
 expect old-tilt-key "k.toml:[0-9]+: 'mechanism.kinematic_gain': .*release mechanics.*root_reach_mm" -- "$sim" run "$tmp/k.toml" --out "$tmp/o"
+# The clamp pitch is the machine's now: a scenario that still sets it is told where it went.
+sed "s|^feed_miss_pct = .*|feed_pitch_mm = 44.25|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/p.toml"
+expect old-pitch-key "p.toml:[0-9]+: 'seedlings.feed_pitch_mm': is the machine's: \[planting_monitor\] clamp_pitch_mm" -- "$sim" run "$tmp/p.toml" --out "$tmp/o"
 sed "s|^texture = .*|texture = \"loamy\"|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/x.toml"
 expect bad-texture "x.toml:[0-9]+: 'soil.texture': is 'loamy'; allowed: fine, medium, coarse" -- "$sim" run "$tmp/x.toml" --out "$tmp/o"
 printf '[scenario\n' >"$tmp/broken.toml"

@@ -361,3 +361,72 @@ TEST(SoilDraft, TwoForwardSpeedsChangeItByTheStandardsAmountNotTwofold) {
   EXPECT_LT(fast / slow, 1.05);
   EXPECT_GT(fast / slow, 1.0);
 }
+
+// The planting monitor against the simulator's ground truth: the field trial with feed misses
+// and doubles injected. The photo-eye's edges come from the seedlings the plant releases; the
+// controller places them by its soil wheel, which slips (3 +- 1 %) under a calibrated radius.
+TEST(PlantingMonitorOnTheField, MatchesTheSeedlingsThePlantReleased) {
+  Scenario s = field();
+  s.plant.seedlings.feed_miss_pct = 4.0;
+  s.plant.seedlings.feed_double_pct = 3.0;
+  LockstepRunner runner(s);
+  std::vector<double> seen_m;
+  runner.set_observer([&](const TickRecord& row) {
+    for (std::uint32_t i = 0; i < row.controller.seedlings_this_tick; ++i)
+      seen_m.push_back(row.controller.seedling_at_m[i]);
+  });
+  const Summary sum = runner.run();
+  std::vector<double> truth_m;
+  int doubles = 0;
+  for (const Seedling& sd : runner.plant().seedlings().seedlings()) {
+    if (!sd.planted) continue;
+    truth_m.push_back(sd.x_m);
+    doubles += sd.doubled ? 1 : 0;
+  }
+  ASSERT_GT(doubles, 10);  // the injection took
+  ASSERT_EQ(seen_m.size(), truth_m.size());
+  EXPECT_EQ(sum.monitor.seedlings, static_cast<double>(truth_m.size()));
+  EXPECT_EQ(sum.monitor.skips, sum.truth_skips);
+  EXPECT_EQ(sum.monitor.multiples, sum.truth_multiples);
+  EXPECT_GT(sum.truth_skips, 10);
+  EXPECT_GE(sum.truth_multiples, doubles);
+  // Every spacing, one by one, within 1 mm of the truth's.
+  double worst_mm = 0.0;
+  for (std::size_t i = 1; i < truth_m.size(); ++i) {
+    const double truth_mm = (truth_m[i] - truth_m[i - 1]) * 1e3;
+    const double seen_mm = (seen_m[i] - seen_m[i - 1]) * 1e3;
+    worst_mm = std::max(worst_mm, std::abs(seen_mm - truth_mm));
+  }
+  std::printf(
+      "planting monitor: %zu seedlings, worst spacing error %.3f mm, mean %.2f mm "
+      "(truth %.2f), CV %.4f (truth %.4f)\n",
+      truth_m.size(), worst_mm, sum.monitor.spacing_mean_mm, sum.spacing_mean_mm,
+      sum.monitor.spacing_cv, sum.spacing_cv_pct / 100.0);
+  EXPECT_LT(worst_mm, 1.0);
+  EXPECT_NEAR(sum.monitor.spacing_mean_mm, sum.spacing_mean_mm, 1.0);
+  EXPECT_NEAR(sum.monitor.spacing_cv, sum.spacing_cv_pct / 100.0, 0.01);
+  EXPECT_FALSE(sum.warnings_seen & warning::kEmptyBelt);  // 4 % misses: never 5 in a row
+}
+
+// An empty belt: the feed stops delivering (every clamp missed) after a while; the monitor
+// warns and the machine keeps running (a warning, not a fault).
+TEST(PlantingMonitorOnTheField, AnEmptyBeltIsAWarningNotAFault) {
+  Scenario s = short_run(2.0);
+  LockstepRunner runner(s);
+  bool warned = false;
+  SupervisorState state_when_warned = SupervisorState::kBoot;
+  runner.set_observer([&](const TickRecord& row) {
+    if (!warned && (row.controller.warnings & warning::kEmptyBelt) != 0) {
+      warned = true;
+      state_when_warned = row.controller.state;
+    }
+  });
+  // Let it plant for a while, then empty the belt.
+  while (runner.plant().seedlings().released() < 10 && runner.time_s() < 120.0) runner.step();
+  ASSERT_GE(runner.plant().seedlings().released(), 10u);
+  runner.plant().set_feed_miss_pct(100.0);
+  while (!warned && runner.time_s() < 200.0) runner.step();
+  EXPECT_TRUE(warned);
+  EXPECT_EQ(state_when_warned, SupervisorState::kRunning);
+  EXPECT_EQ(runner.controller().faults(), 0u);
+}

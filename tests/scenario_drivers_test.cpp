@@ -37,7 +37,7 @@ std::vector<TimelineEvent> lockstep_timeline(const Scenario& s, double until_s) 
 // The controller's board lines, in process: what the driver drives, the controller reads.
 class InProcessLines final : public MachineLines {
  public:
-  void encoder_edge(const hal::GpioEdge& e) override { encoder.push(e); }
+  void line_edge(const hal::GpioEdge& e) override { encoder.push(e); }
   void set_estop(bool asserted) override { estop.set(asserted); }
   bool lamp() override { return status.on(); }
 

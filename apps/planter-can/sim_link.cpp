@@ -71,7 +71,7 @@ void SimLink::advance() {
   clock_.advance_ns(kStepNs);
 }
 
-void SimLink::encoder_edge(const hal::GpioEdge& edge) {
+void SimLink::line_edge(const hal::GpioEdge& edge) {
   hal::GpioEdge e = edge;
   if (options_.encoder_wires_swapped && e.line <= 1) e.line = static_cast<std::uint8_t>(1 - e.line);
   tool_edges_.push(e);

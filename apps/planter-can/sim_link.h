@@ -71,7 +71,7 @@ class SimLink final : public ToolLink, public SimFixture, private sim::MachineLi
   bool moving_ = false;
 
   // The machine's lines, as the driver drives them: to the tool's and the controller's inputs.
-  void encoder_edge(const hal::GpioEdge& edge) override;
+  void line_edge(const hal::GpioEdge& edge) override;
   void set_estop(bool asserted) override { estop_.set(asserted); }
   bool lamp() override { return lamp_.on(); }
 };

@@ -19,10 +19,11 @@ const std::string& checked_interface(const config::BoardConfig& board) {
 BoardHardware::BoardHardware(const config::BoardConfig& board)
     : can_(checked_interface(board)),
       chip_(board.gpio.chip),
-      encoder_(chip_, board.gpio.encoder_a, board.gpio.encoder_b),
+      edges_(chip_, board.gpio.encoder_a, board.gpio.encoder_b, board.gpio.seedling_sensor,
+             board.gpio.seedling_sensor_active_low),
       estop_(chip_, board.gpio.estop, board.controller.estop_active_low, "gpio.estop_line"),
       status_(chip_, board.gpio.status, "gpio.status_line"),
-      probe_(encoder_),
+      probe_(edges_),
       hal_{can_, probe_, estop_, status_} {}
 
 }  // namespace planter::daemon

@@ -1,6 +1,7 @@
 #pragma once
 // The Linux hardware a board file names, opened and checked at start: the CAN interface and
-// the GPIO chip with the encoder, e-stop and status lines. Throws HalError with one message.
+// the GPIO chip with the encoder, photo-eye, e-stop and status lines. Throws HalError with one
+// message.
 #include <memory>
 
 #include "apps/planterd/edge_latency_probe.h"
@@ -21,7 +22,7 @@ class BoardHardware {
  private:
   hal::linux_backend::SocketCanBus can_;
   hal::linux_backend::GpiodChip chip_;
-  hal::linux_backend::GpiodEdgeSource encoder_;
+  hal::linux_backend::GpiodEdgeSource edges_;  // encoder A/B and the photo-eye
   hal::linux_backend::GpiodInput estop_;
   hal::linux_backend::GpiodOutput status_;
   EdgeLatencyProbe probe_;

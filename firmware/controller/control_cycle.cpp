@@ -9,6 +9,7 @@ MachineIoConfig machine_io_config(const ControllerConfig& c) {
   io.encoder = c.encoder;
   io.pdo_stale_ns = c.supervisor.pdo_stale_ns;
   io.boot_timeout_ns = c.supervisor.boot_timeout_ns;
+  io.seedling_filter_ns = c.monitor.sensor_filter_ns;
   return io;
 }
 
@@ -29,6 +30,8 @@ void ControlCycle::tick(std::int64_t now_ns, std::int64_t dt_ns) {
   telemetry_.state = controller_.state();
   telemetry_.faults = controller_.faults_seen();
   telemetry_.overruns = controller_.overruns();
+  telemetry_.warnings = controller_.warnings();
+  telemetry_.planting = controller_.planting();
 }
 
 }  // namespace planter

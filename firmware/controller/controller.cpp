@@ -9,7 +9,8 @@ Controller::Controller(const ControllerConfig& config)
       sigma_loop_(config.sigma),
       clamp_loop_(config.clamp),
       depth_loop_(config.depth),
-      link_recovery_(config.link_recovery) {}
+      link_recovery_(config.link_recovery),
+      monitor_(config.monitor) {}
 
 const MachineCommand& Controller::update(const MachineState& in, std::int64_t now_ns,
                                          std::int64_t dt_ns) {
@@ -39,6 +40,8 @@ const MachineCommand& Controller::update(const MachineState& in, std::int64_t no
     previous_state_ = state;
   }
   decide_outputs(in, state, static_cast<double>(dt_ns) * 1e-9);
+  monitor_.update(in, state == SupervisorState::kRunning || state == SupervisorState::kStopping);
+  warnings_ = monitor_.figures().empty_belt ? warning::kEmptyBelt : 0u;
   faults_seen_ = supervisor_.latched_faults() | sv.faults;
   return command_;
 }

@@ -10,6 +10,7 @@
 #include "firmware/control/sigma_loop.h"
 #include "firmware/controller/controller_config.h"
 #include "firmware/io/process_image.h"
+#include "firmware/sensing/planting_monitor.h"
 #include "firmware/supervisor/link_recovery.h"
 #include "firmware/supervisor/supervisor.h"
 
@@ -32,6 +33,9 @@ class Controller {
   // Latched faults and those seen in the last update.
   [[nodiscard]] std::uint32_t faults_seen() const { return faults_seen_; }
   [[nodiscard]] std::uint32_t overruns() const { return overruns_; }
+  [[nodiscard]] const PlantingFigures& planting() const { return monitor_.figures(); }
+  // warning:: bits that hold now (they never stop the machine).
+  [[nodiscard]] std::uint32_t warnings() const { return warnings_; }
   // Fault resets the link recovery has requested.
   [[nodiscard]] std::uint32_t link_resets() const { return link_recovery_.resets(); }
 
@@ -45,7 +49,9 @@ class Controller {
   FurrowDepthLoop depth_loop_;
   Supervisor supervisor_;
   LinkRecovery link_recovery_;
+  PlantingMonitor monitor_;
   MachineCommand command_;
+  std::uint32_t warnings_ = 0;
 
   bool run_requested_ = false;
   bool stop_requested_ = false;

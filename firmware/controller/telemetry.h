@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "firmware/io/process_image.h"
+#include "firmware/sensing/planting_monitor.h"
 #include "firmware/supervisor/supervisor.h"
 
 namespace planter {
@@ -14,6 +15,8 @@ struct Telemetry : MachineState, MachineCommand {
   SupervisorState state = SupervisorState::kBoot;
   std::uint32_t faults = 0;  // latched, and seen this tick
   std::uint32_t overruns = 0;
+  std::uint32_t warnings = 0;  // warning:: bits
+  PlantingFigures planting;    // the planting monitor (zeros when no photo-eye is fitted)
 };
 
 }  // namespace planter

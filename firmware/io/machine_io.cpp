@@ -70,7 +70,24 @@ void MachineIo::read_bus(std::int64_t now_ns) {
 
 void MachineIo::read_encoder(std::int64_t now_ns) {
   hal::GpioEdge e;
-  while (hal_.encoder.next_edge(e)) decoder_.on_edge(e);
+  state_.seedlings_this_tick = 0;
+  const double m_per_count = metres_per_count(cfg_.encoder);
+  while (hal_.edges.next_edge(e)) {
+    if (e.line != hal::edge_line::kSeedlingSensor) {
+      decoder_.on_edge(e);
+      continue;
+    }
+    // The edges come in time order, so the decoder's count is the wheel's at the beam break.
+    // A break within the filter time of the last one is the same seedling's flicker.
+    if (!e.rising || e.time_ns - last_seedling_ns_ < cfg_.seedling_filter_ns) continue;
+    last_seedling_ns_ = e.time_ns;
+    if (state_.seedlings_this_tick < MachineState::kMaxSeedlingsPerTick) {
+      state_.seedling_at_m[state_.seedlings_this_tick++] =
+          static_cast<double>(decoder_.count()) * m_per_count;
+    } else {
+      ++state_.seedlings_dropped;
+    }
+  }
   ground_speed_.update(decoder_.count(), decoder_.last_count_time_ns(), now_ns);
   state_.wheel_counts = decoder_.count();
   state_.distance_m = ground_speed_.distance_m();

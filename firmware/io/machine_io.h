@@ -24,6 +24,9 @@ struct MachineIoConfig {
   EncoderConfig encoder;
   std::int64_t pdo_stale_ns = 100'000'000;  // no fresh TPDO for this long: kPdoStale
   std::int64_t boot_timeout_ns = 5'000'000'000;
+  // Photo-eye beam breaks closer than this to the last one are one seedling (leaves flicker);
+  // the board's value comes from PlantingMonitorConfig.
+  std::int64_t seedling_filter_ns = 0;
 };
 
 class MachineIo {
@@ -58,6 +61,7 @@ class MachineIo {
   // Process-image slots of the bus signals, found once (kSignals order; -1 when not mapped).
   std::array<int, kSignals.size()> slots_{};
 
+  std::int64_t last_seedling_ns_ = -1'000'000'000'000;
   bool commissioning_ = false;  // the last command asked for commissioning
   bool commissioning_started_ = false;
   std::int64_t commissioning_start_ns_ = 0;

@@ -2,6 +2,7 @@
 // The process image: what the I/O layer read from the machine this tick, in SI units (mm where
 // named), and what the controller commands back. The controller sees only these two structs;
 // CANopen, counts and scales stay in the I/O layer (signal_table.h says which object is which).
+#include <array>
 #include <cstdint>
 
 namespace planter {
@@ -21,6 +22,13 @@ struct MachineState {
   double clamp_force_N = 0.0;
   double depth_mm = 0.0;
   double depth_force_N = 0.0;
+
+  // Seedling photo-eye: the seedlings that broke its beam since the last tick, each at the
+  // distance travelled (distance_m's scale) when it did. More than fit are counted as dropped.
+  static constexpr std::uint32_t kMaxSeedlingsPerTick = 8;
+  std::array<double, kMaxSeedlingsPerTick> seedling_at_m{};
+  std::uint32_t seedlings_this_tick = 0;
+  std::uint32_t seedlings_dropped = 0;  // since start
 
   // Lines.
   bool estop = false;

@@ -10,6 +10,7 @@
 #include "firmware/canopen/cia402.h"
 #include "firmware/io/io_config.h"
 #include "firmware/io/process_image.h"
+#include "firmware/sensing/planting_monitor.h"
 
 namespace planter {
 
@@ -30,6 +31,8 @@ enum class SignalSource : std::uint8_t {
   kNode,        // a node measures it and sends it in a TPDO
   kController,  // the controller decides it; a bus signal goes out in an RPDO
   kSupervisor,  // the supervisor's state name
+  kWarnings,    // the supervisor's warning:: bits, as a number
+  kMonitor,     // the planting monitor, from the seedling photo-eye
 };
 
 struct SignalDecl {
@@ -42,6 +45,7 @@ struct SignalDecl {
   // Where it lives in the process image (one of the two, or neither for t, counts, state).
   double MachineState::*measured = nullptr;
   double MachineCommand::*commanded = nullptr;
+  double PlantingFigures::*monitored = nullptr;
   // The bus object (source kNode, or kController with an RPDO).
   NodeRole role = NodeRole::kDiscDrive;
   std::uint16_t index = 0;
@@ -64,9 +68,10 @@ constexpr SignalDecl measured(std::string_view column, std::string_view unit,
                               NodeRole role = NodeRole::kDiscDrive, std::uint16_t index = 0,
                               std::uint8_t sub = 0, BusScale scale = BusScale::kNone) {
   return SignalDecl{
-      column,   unit,  meaning, index == 0 ? SignalSource::kEncoder : SignalSource::kNode,
-      decimals, true,  field,   nullptr,
-      role,     index, sub,     scale};
+      column,   unit, meaning, index == 0 ? SignalSource::kEncoder : SignalSource::kNode,
+      decimals, true, field,   nullptr,
+      nullptr,  role, index,   sub,
+      scale};
 }
 constexpr SignalDecl commanded(std::string_view column, std::string_view unit,
                                std::string_view meaning, int decimals, double MC::*field,
@@ -74,7 +79,14 @@ constexpr SignalDecl commanded(std::string_view column, std::string_view unit,
                                BusScale scale = BusScale::kNone, bool recorded = true) {
   return SignalDecl{column,   unit,     meaning, SignalSource::kController,
                     decimals, recorded, nullptr, field,
-                    role,     index,    0,       scale};
+                    nullptr,  role,     index,   0,
+                    scale};
+}
+constexpr SignalDecl monitored(std::string_view column, std::string_view unit,
+                               std::string_view meaning, int decimals,
+                               double PlantingFigures::*field) {
+  return SignalDecl{column,  unit,    meaning, SignalSource::kMonitor, decimals, true,
+                    nullptr, nullptr, field};
 }
 }  // namespace signal_decl
 
@@ -117,6 +129,25 @@ inline constexpr std::array kSignals = {
                           &MachineState::depth_force_N, NodeRole::kDepthActuator,
                           signal_decl::c402::kTorqueActual, 0, BusScale::kPerMilleRated),
     signal_decl::at("state", "-", "supervisor state name", SignalSource::kSupervisor, 0),
+    // The planting monitor (firmware/sensing/planting_monitor.h): new columns after PRODUCT.md's.
+    signal_decl::at("warnings", "bits", "warnings holding (1 = empty belt)",
+                    SignalSource::kWarnings, 0),
+    signal_decl::monitored("seedlings", "count", "seedlings the photo-eye saw since start", 0,
+                           &PlantingFigures::seedlings),
+    signal_decl::monitored("seedlings_per_m", "1/m", "seedlings in the last metre travelled", 0,
+                           &PlantingFigures::per_m),
+    signal_decl::monitored("spacing_mm", "mm", "the last spacing, by the soil wheel", 1,
+                           &PlantingFigures::spacing_mm),
+    signal_decl::monitored("spacing_mean_mm", "mm", "mean spacing since start", 2,
+                           &PlantingFigures::spacing_mean_mm),
+    signal_decl::monitored("spacing_cv", "1", "spacing SD / mean since start", 4,
+                           &PlantingFigures::spacing_cv),
+    signal_decl::monitored("skips", "count", "spacings over 1.5x the target since start", 0,
+                           &PlantingFigures::skips),
+    signal_decl::monitored("multiples", "count", "spacings at most 0.5x the target since start", 0,
+                           &PlantingFigures::multiples),
+    signal_decl::monitored("singulation_pct", "%", "100 - skips - multiples, in % of spacings", 2,
+                           &PlantingFigures::singulation_pct),
     // In the process image, not a recording column.
     signal_decl::commanded("clamp_pos_cmd_mm", "mm", "roller position command", 4,
                            &MachineCommand::clamp_pos_cmd_mm, NodeRole::kRollerActuator,

@@ -9,6 +9,11 @@ const char* fault::name(int bit) {
   return bit >= 0 && bit < kCount ? kNames[bit] : "";
 }
 
+const char* warning::name(int bit) {
+  static constexpr const char* kNames[kCount] = {"empty belt: clamps passing with no seedling"};
+  return bit >= 0 && bit < kCount ? kNames[bit] : "";
+}
+
 const char* supervisor_state_name(SupervisorState s) {
   switch (s) {
     case SupervisorState::kBoot:

@@ -33,6 +33,14 @@ constexpr std::uint32_t kLinkLoss = kHeartbeatLost | kPdoStale | kBusOff;
 const char* name(int bit);
 }  // namespace fault
 
+// What the operator should see but the machine may go on with (bit set).
+namespace warning {
+constexpr std::uint32_t kEmptyBelt = 1u << 0;  // the photo-eye saw N clamps pass empty in a row
+constexpr int kCount = 1;
+// The name of warning bit `bit` (0-based), in the operator's words; "" past the last.
+const char* name(int bit);
+}  // namespace warning
+
 struct SupervisorConfig {
   std::int64_t overrun_threshold_ns = 15'000'000;  // a tick later than this is an overrun
   std::uint32_t overruns_to_fault = 3;             // consecutive overruns before a fault

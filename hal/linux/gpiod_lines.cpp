@@ -43,17 +43,21 @@ gpiod_line* GpiodChip::line(int offset, const std::string& what) {
   return l;
 }
 
-GpiodEdgeSource::GpiodEdgeSource(GpiodChip& chip, int line_a, int line_b) {
-  const int offsets[2] = {line_a, line_b};
-  const char* names[2] = {"gpio.encoder_a_line", "gpio.encoder_b_line"};
-  for (std::size_t i = 0; i < 2; ++i) {
+GpiodEdgeSource::GpiodEdgeSource(GpiodChip& chip, int line_a, int line_b, int seedling_line,
+                                 bool seedling_active_low) {
+  const int offsets[3] = {line_a, line_b, seedling_line};
+  const char* names[3] = {"gpio.encoder_a_line", "gpio.encoder_b_line",
+                          "gpio.seedling_sensor_line"};
+  line_count_ = seedling_line >= 0 ? 3 : 2;
+  for (std::size_t i = 0; i < line_count_; ++i) {
     lines_[i] = chip.line(offsets[i], names[i]);
-    if (gpiod_line_request_both_edges_events(lines_[i], kConsumer) != 0)
+    const int flags = i == 2 && seedling_active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0;
+    if (gpiod_line_request_both_edges_events_flags(lines_[i], kConsumer, flags) != 0)
       throw HalError("gpio: cannot request edge events on " + std::string(names[i]) + " line " +
                      std::to_string(offsets[i]) + " of '" + chip.name() + "': " + errno_text());
     fds_[i] = gpiod_line_event_get_fd(lines_[i]);
-    const int flags = fcntl(fds_[i], F_GETFL);
-    fcntl(fds_[i], F_SETFL, flags | O_NONBLOCK);
+    const int fl = fcntl(fds_[i], F_GETFL);
+    fcntl(fds_[i], F_SETFL, fl | O_NONBLOCK);
   }
 }
 
@@ -72,11 +76,11 @@ void GpiodEdgeSource::refill() {
             pending_.begin() + static_cast<std::ptrdiff_t>(pending_count_), pending_.begin());
   pending_count_ -= pending_next_;
   pending_next_ = 0;
-  // A and B come from two queues read one after the other: an A edge can arrive after A was
-  // read but before a later B edge is read. Only edges stamped before both reads began are
+  // The lines come from queues read one after the other: an A edge can arrive after A was
+  // read but before a later B edge is read. Only edges stamped before the reads began are
   // handed out now; later ones wait for the next refill, so the order is always right.
   const std::int64_t cut_ns = monotonic_now_ns();
-  for (std::size_t i = 0; i < 2; ++i) {
+  for (std::size_t i = 0; i < line_count_; ++i) {
     gpiod_line_event events[16];
     const std::size_t room = std::min<std::size_t>(16, pending_.size() - pending_count_);
     if (room == 0) break;
@@ -88,7 +92,7 @@ void GpiodEdgeSource::refill() {
       e.time_ns = timespec_ns(events[k].ts);
     }
   }
-  // A and B come from two queues; the decoder needs them in the order they happened.
+  // The decoder, and the photo-eye's distance, need the edges in the order they happened.
   std::stable_sort(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(pending_count_),
                    [](const GpioEdge& x, const GpioEdge& y) { return x.time_ns < y.time_ns; });
   ready_count_ = 0;

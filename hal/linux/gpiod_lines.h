@@ -32,10 +32,13 @@ class GpiodChip {
   gpiod_chip* chip_;
 };
 
-// Both edges of two lines (0 = A, 1 = B), merged in kernel-timestamp order (CLOCK_MONOTONIC).
+// Both edges of the encoder's two lines and, where fitted, the seedling photo-eye's (indices
+// as edge_line::), merged in kernel-timestamp order (CLOCK_MONOTONIC).
 class GpiodEdgeSource final : public GpioEdgeSource {
  public:
-  GpiodEdgeSource(GpiodChip& chip, int line_a, int line_b);
+  // `seedling_line` -1: no photo-eye. An active-low photo-eye's beam break reads as rising.
+  GpiodEdgeSource(GpiodChip& chip, int line_a, int line_b, int seedling_line = -1,
+                  bool seedling_active_low = false);
   ~GpiodEdgeSource() override;
   bool next_edge(GpioEdge& edge) override;
   // The v1 uAPI of libgpiod 1.6 drops events silently when its per-line FIFO is full; the
@@ -48,8 +51,9 @@ class GpiodEdgeSource final : public GpioEdgeSource {
  private:
   void refill();
 
-  std::array<gpiod_line*, 2> lines_{};
-  std::array<int, 2> fds_{-1, -1};
+  std::array<gpiod_line*, 3> lines_{};
+  std::array<int, 3> fds_{-1, -1, -1};
+  std::size_t line_count_ = 2;
   std::array<GpioEdge, 64> pending_{};
   std::size_t pending_count_ = 0;
   std::size_t pending_next_ = 0;

@@ -43,6 +43,18 @@ void print_summary(const Summary& s) {
   std::printf("damage rate         %.2f %%   (paper: 3 predicted, 2.76 field)\n", s.damage_pct);
   std::printf("plant spacing       %.1f mm mean, CV %.1f %%   (agronomy: 20-30 mm)\n",
               s.spacing_mean_mm, s.spacing_cv_pct);
+  if (s.monitor_fitted) {
+    const PlantingFigures& m = s.monitor;
+    std::printf(
+        "planting monitor    %.0f seen, spacing %.1f mm CV %.3f, singulation %.2f %% (%.0f skips, "
+        "%.0f multiples)%s\n",
+        m.seedlings, m.spacing_mean_mm, m.spacing_cv, m.singulation_pct, m.skips, m.multiples,
+        (s.warnings_seen & warning::kEmptyBelt) != 0 ? ", empty belt warned" : "");
+    std::printf("                    truth: %d planted, %d skips, %d multiples\n",
+                s.seedlings_planted, s.truth_skips, s.truth_multiples);
+  } else {
+    std::printf("planting monitor    none: the board has no seedling photo-eye\n");
+  }
   std::printf("sigma (true)        mean %.4f, RMS error %.2f %%   (controller's view: %.2f %%)\n",
               s.sigma_true_mean, s.sigma_true_rms_error_pct, s.sigma_ctrl_rms_error_pct);
   std::printf("clamp force         mean %.1f N, max %.1f N, ceiling %.1f N\n", s.clamp_force_mean_N,

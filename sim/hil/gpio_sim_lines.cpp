@@ -10,7 +10,8 @@ namespace planter::sim {
 
 using hal::linux_backend::HalError;
 
-GpioSimLines::GpioSimLines(const std::string& chip, std::array<int, 4> offsets) {
+GpioSimLines::GpioSimLines(const std::string& chip, const std::vector<int>& offsets) {
+  if (offsets.size() > kMaxLines) throw HalError("gpio-sim: more lines than a board has");
   hal::linux_backend::GpiodChip gpio(chip);
   const std::string dir = "/sys/bus/gpio/devices/" + gpio.kernel_name();
   for (std::size_t i = 0; i < offsets.size(); ++i) {

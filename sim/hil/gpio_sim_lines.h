@@ -4,6 +4,7 @@
 // "pull-down" a falling one. This is how the simulated soil wheel reaches a real GPIO chip.
 #include <array>
 #include <string>
+#include <vector>
 
 namespace planter::sim {
 
@@ -11,7 +12,9 @@ class GpioSimLines {
  public:
   // `chip` as libgpiod names it (gpiochipN, path or label). Throws HalError when the chip
   // does not exist, is not a gpio-sim chip, or lacks a line.
-  GpioSimLines(const std::string& chip, std::array<int, 4> offsets);
+  // At most kMaxLines offsets: encoder A, B, e-stop, status and the seedling photo-eye.
+  static constexpr std::size_t kMaxLines = 5;
+  GpioSimLines(const std::string& chip, const std::vector<int>& offsets);
   ~GpioSimLines();
   GpioSimLines(const GpioSimLines&) = delete;
   GpioSimLines& operator=(const GpioSimLines&) = delete;
@@ -22,9 +25,9 @@ class GpioSimLines {
   [[nodiscard]] unsigned writes() const { return writes_; }
 
  private:
-  std::array<int, 4> fds_{-1, -1, -1, -1};
-  std::array<int, 4> value_fds_{-1, -1, -1, -1};
-  std::array<int, 4> level_{-1, -1, -1, -1};
+  std::array<int, kMaxLines> fds_{-1, -1, -1, -1, -1};
+  std::array<int, kMaxLines> value_fds_{-1, -1, -1, -1, -1};
+  std::array<int, kMaxLines> level_{-1, -1, -1, -1, -1};
   unsigned writes_ = 0;
 };
 

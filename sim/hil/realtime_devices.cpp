@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 #include "hal/linux/epoll_timer.h"
 #include "hal/linux/monotonic_clock.h"
@@ -20,19 +21,32 @@ namespace {
 // is read back from what the controller drives.
 class GpioSimMachineLines final : public MachineLines {
  public:
-  GpioSimMachineLines(GpioSimLines& gpio, bool estop_active_low)
-      : gpio_(gpio), estop_active_low_(estop_active_low) {
+  GpioSimMachineLines(GpioSimLines& gpio, bool estop_active_low, bool photo_eye,
+                      bool photo_eye_active_low)
+      : gpio_(gpio),
+        estop_active_low_(estop_active_low),
+        photo_eye_(photo_eye),
+        photo_eye_active_low_(photo_eye_active_low) {
     gpio_.set(0, false);
     gpio_.set(1, false);
+    if (photo_eye_) gpio_.set(4, photo_eye_active_low_);  // beam clear
   }
   // gpio-sim stamps the edge itself, when the pull changes.
-  void encoder_edge(const hal::GpioEdge& e) override { gpio_.set(e.line == 0 ? 0 : 1, e.rising); }
+  void line_edge(const hal::GpioEdge& e) override {
+    if (e.line == hal::edge_line::kSeedlingSensor) {
+      if (photo_eye_) gpio_.set(4, photo_eye_active_low_ ? !e.rising : e.rising);
+      return;
+    }
+    gpio_.set(e.line == hal::edge_line::kEncoderA ? 0 : 1, e.rising);
+  }
   void set_estop(bool asserted) override { gpio_.set(2, estop_active_low_ ? !asserted : asserted); }
   bool lamp() override { return gpio_.output_level(3); }
 
  private:
   GpioSimLines& gpio_;
   bool estop_active_low_;
+  bool photo_eye_;
+  bool photo_eye_active_low_;
 };
 
 double wall_s() { return static_cast<double>(hal::linux_backend::realtime_now_ns()) * 1e-9; }
@@ -45,8 +59,9 @@ RealtimeDevicesResult run_realtime_devices(const Scenario& scenario,
   using hal::linux_backend::monotonic_now_ns;
   const config::GpioLines& lines = scenario.board.gpio;
   hal::linux_backend::SocketCanBus socket(options.can_interface);
-  GpioSimLines gpio(options.gpio_chip,
-                    {lines.encoder_a, lines.encoder_b, lines.estop, lines.status});
+  std::vector<int> offsets{lines.encoder_a, lines.encoder_b, lines.estop, lines.status};
+  if (lines.seedling_sensor >= 0) offsets.push_back(lines.seedling_sensor);
+  GpioSimLines gpio(options.gpio_chip, offsets);
   std::fprintf(stderr, "planter-sim devices: nodes %d %d %d %d on %s, encoder on %s\n",
                scenario.board.controller.node(NodeRole::kDiscDrive).node_id,
                scenario.board.controller.node(NodeRole::kRollerActuator).node_id,
@@ -56,7 +71,8 @@ RealtimeDevicesResult run_realtime_devices(const Scenario& scenario,
   hal::sim::VirtualCanBus bus(scenario.board.controller.can.bitrate_bps);
   SimulatedMachine machine(scenario, bus);
   CanBridge bridge(socket, bus);
-  GpioSimMachineLines machine_lines(gpio, scenario.board.controller.estop_active_low);
+  GpioSimMachineLines machine_lines(gpio, scenario.board.controller.estop_active_low,
+                                    lines.seedling_sensor >= 0, lines.seedling_sensor_active_low);
   RealtimeDriver driver(scenario, machine, machine_lines);
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> truth(nullptr, &std::fclose);
   if (!options.truth_path.empty()) {

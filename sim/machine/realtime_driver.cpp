@@ -27,7 +27,7 @@ OperatorPresses RealtimeDriver::catch_up(std::int64_t wall_ns, const ControllerV
     machine_.process_devices(sim_ns_);  // after a late wake-up, devices act at every step too
     machine_.step_plant(sim_ns_, kStepNs, edges_);
     hal::GpioEdge edge;
-    while (edges_.next_edge(edge)) lines_.encoder_edge(edge);
+    while (edges_.next_edge(edge)) lines_.line_edge(edge);
     sim_ns_ += kStepNs;
     if (script_.moving() && finished_at_s_ < 0.0 && machine_.plant().ground().finished())
       finished_at_s_ = static_cast<double>(sim_ns_) * 1e-9;

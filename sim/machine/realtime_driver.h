@@ -16,8 +16,9 @@ namespace planter::sim {
 class MachineLines {
  public:
   virtual ~MachineLines() = default;
-  // An edge of the soil-wheel encoder (line 0 = A, 1 = B), with the plant's time of it.
-  virtual void encoder_edge(const hal::GpioEdge& edge) = 0;
+  // An edge of an input line (hal::edge_line::: encoder A, B, the seedling photo-eye), with
+  // the plant's time of it.
+  virtual void line_edge(const hal::GpioEdge& edge) = 0;
   virtual void set_estop(bool asserted) = 0;
   [[nodiscard]] virtual bool lamp() = 0;  // the controller's status lamp: on while planting
 };

@@ -26,17 +26,23 @@ double profile_velocity_of(const NodeConfig& node, double raw) {
 std::int16_t per_mille(double raw) {
   return static_cast<std::int16_t>(std::lround(std::clamp(raw, -32768.0, 32767.0)));
 }
+
+// The machine's own values, as the board's machine file declares them.
+PlantConfig with_machine(PlantConfig config, const ControllerConfig& board) {
+  config.seedlings.feed_pitch_mm = board.monitor.clamp_pitch_mm;
+  return config;
+}
 }  // namespace
 
 Plant::Plant(const PlantConfig& config, const ControllerConfig& board, std::uint64_t seed)
-    : cfg_(config),
+    : cfg_(with_machine(config, board)),
       board_(board),
       ground_(config.route, config.terrain),
       wheel_(config.soil.wheel_radius_m, board.encoder.counts_per_rev),
       disc_(config.drive, config.effects),
       roller_(config.drive.actuator_time_constant_s),
       depth_(config.drive.actuator_time_constant_s, 0.0, config.drive.depth_travel_max_mm),
-      seedlings_(config, seed ^ 0x5eed11u),
+      seedlings_(cfg_, seed ^ 0x5eed11u),
       noise_rng_(seed) {}
 
 void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
@@ -109,6 +115,7 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   const ReleaseConditions now{t,          ground_.x_m(), ground_.v_mps(),     disc_.disc_omega(),
                               depth_true, clamp_force,   ground_.terrain_mm()};
   seedlings_.step(disc_.disc_angle(), clamp_force, now, fx.vibration_tilt_deg);
+  if (board_.monitor.sensor_fitted) photo_eye(t_ns + dt_ns, edges);
 
   truth_.x_m = ground_.x_m();
   truth_.v_mps = ground_.v_mps();
@@ -121,6 +128,25 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   truth_.depth_mm = depth_true;
   truth_.draft_N = draft;
   truth_.terrain_mm = ground_.terrain_mm();
+}
+
+void Plant::photo_eye(std::int64_t end_ns, hal::sim::SimEdgeSource& edges) {
+  // Stamped at the step's end, after the step's encoder edges, so the queue stays in time
+  // order and the wheel's count at the break is the one at the seedling's release.
+  if (beam_broken_ && end_ns >= beam_clear_ns_) {
+    edges.push({hal::edge_line::kSeedlingSensor, false, end_ns});
+    beam_broken_ = false;
+  }
+  const std::vector<Seedling>& all = seedlings_.seedlings();
+  while (photo_eye_seen_ < seedlings_.released()) {
+    const Seedling& s = all[photo_eye_seen_++];
+    if (beam_broken_) edges.push({hal::edge_line::kSeedlingSensor, false, end_ns});
+    edges.push({hal::edge_line::kSeedlingSensor, true, end_ns});
+    // The beam stays broken while the disc carries the stem's diameter past it.
+    const double rim_mps = std::max(1e-3, std::abs(disc_.disc_omega()) * cfg_.disc_radius_m);
+    beam_broken_ = true;
+    beam_clear_ns_ = end_ns + static_cast<std::int64_t>(s.diameter_mm * 1e-3 / rim_mps * 1e9);
+  }
 }
 
 }  // namespace planter::sim

@@ -38,6 +38,8 @@ class Plant {
   void start_moving() { ground_.start(); }
   // A known weight hung on the load cell (commissioning), in newtons.
   void set_fixture_load_N(double load_N) { fixture_load_N_ = load_N; }
+  // The feed from now on (a belt that runs empty is 100 %).
+  void set_feed_miss_pct(double pct) { seedlings_.set_feed_miss_pct(pct); }
   void step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& devices,
             hal::sim::SimEdgeSource& edges);
 
@@ -60,6 +62,11 @@ class Plant {
   double relaxation2_N_ = 0.0;
   double fixture_load_N_ = 0.0;
   PlantTruth truth_;
+  // The seedling photo-eye where seedlings leave the disc (hal::edge_line::kSeedlingSensor).
+  void photo_eye(std::int64_t end_ns, hal::sim::SimEdgeSource& edges);
+  std::size_t photo_eye_seen_ = 0;
+  bool beam_broken_ = false;
+  std::int64_t beam_clear_ns_ = 0;
 };
 
 }  // namespace planter::sim

@@ -47,8 +47,11 @@ struct SeedlingConfig {
   double length_min_mm = 182.6, length_max_mm = 210.8;
   double diameter_min_mm = 8.3, diameter_max_mm = 11.4;
   double reference_diameter_mm = 10.0;
-  double feed_pitch_mm = 44.25;  // along the disc rim; planted spacing = pitch / sigma
-  double feed_miss_pct = 1.0;
+  // Along the disc rim; planted spacing = pitch / sigma. The machine's clamp pitch
+  // (machines/*.toml [planting_monitor] clamp_pitch_mm): the Plant sets it from the board.
+  double feed_pitch_mm = 0.0;
+  double feed_miss_pct = 1.0;    // clamps the feed leaves empty
+  double feed_double_pct = 0.0;  // clamps the feed fills with two seedlings
   // Strength: the paper's text mean (140.6 N) with the spread of its six measured peaks.
   double strength_mean_N = 140.6;
   double strength_sd_N = 24.9;

@@ -26,6 +26,26 @@ double SeedlingProcess::nip_thickness_mm(double t_s) const {
                            cfg_.drive.seedling_thickness_gain);
 }
 
+Seedling SeedlingProcess::sample(double t_s) {
+  const SeedlingConfig& sc = cfg_.seedlings;
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  Seedling s;
+  s.diameter_mm = sc.diameter_min_mm + (sc.diameter_max_mm - sc.diameter_min_mm) * u01(rng_);
+  s.length_mm = sc.length_min_mm + (sc.length_max_mm - sc.length_min_mm) * u01(rng_);
+  std::normal_distribution<double> strength(sc.strength_mean_N, sc.strength_sd_N);
+  s.strength_N = std::max(40.0, strength(rng_));
+  if (sc.force_model.loaded) {
+    // The DEM's first peak for this diameter, spread as the measured peaks are.
+    const double cv = sc.strength_sd_N / sc.strength_mean_N;
+    s.strength_N = sc.force_model.peak_force(s.diameter_mm) *
+                   std::max(0.3, 1.0 + cv * (s.strength_N - sc.strength_mean_N) /
+                                           std::max(1e-9, sc.strength_sd_N));
+  }
+  s.pickup_angle_rad = next_pickup_angle_rad_;
+  s.pickup_time_s = t_s;
+  return s;
+}
+
 void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N,
                            const ReleaseConditions& now, double vibration_tilt_deg) {
   const SeedlingConfig& sc = cfg_.seedlings;
@@ -35,25 +55,28 @@ void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N,
     started_ = true;
   }
   const double pitch_rad = sc.feed_pitch_mm * 1e-3 / cfg_.disc_radius_m;
+  if (!(pitch_rad > 0.0)) return;  // no clamps to fill (the Plant sets the machine's pitch)
   while (disc_angle_rad >= next_pickup_angle_rad_) {
     std::uniform_real_distribution<double> u01(0.0, 1.0);
     const bool missed = u01(rng_) * 100.0 < sc.feed_miss_pct;
-    Seedling s;
-    s.diameter_mm = sc.diameter_min_mm + (sc.diameter_max_mm - sc.diameter_min_mm) * u01(rng_);
-    s.length_mm = sc.length_min_mm + (sc.length_max_mm - sc.length_min_mm) * u01(rng_);
-    std::normal_distribution<double> strength(sc.strength_mean_N, sc.strength_sd_N);
-    s.strength_N = std::max(40.0, strength(rng_));
-    if (sc.force_model.loaded) {
-      // The DEM's first peak for this diameter, spread as the measured peaks are.
-      const double cv = sc.strength_sd_N / sc.strength_mean_N;
-      s.strength_N = sc.force_model.peak_force(s.diameter_mm) *
-                     std::max(0.3, 1.0 + cv * (s.strength_N - sc.strength_mean_N) /
-                                             std::max(1e-9, sc.strength_sd_N));
-    }
-    s.pickup_angle_rad = next_pickup_angle_rad_;
-    s.pickup_time_s = now.t_s;
+    // Drawn only when doubles are on, so a scenario without them keeps its random stream.
+    const bool doubled =
+        !missed && sc.feed_double_pct > 0.0 && u01(rng_) * 100.0 < sc.feed_double_pct;
+    Seedling s = sample(now.t_s);
     next_pickup_angle_rad_ += pitch_rad;
-    if (!missed) seedlings_.push_back(s);
+    if (missed) continue;
+    seedlings_.push_back(s);
+    if (doubled) {
+      // A second seedling in the same clamp, beside the first along the rim: from 1.5 of its
+      // diameter to half a pitch behind it (closer and the two would be one stem).
+      Seedling second = sample(now.t_s);
+      const double offset_mm = 1.5 * second.diameter_mm +
+                               (0.5 * sc.feed_pitch_mm - 1.5 * second.diameter_mm) * u01(rng_);
+      second.pickup_angle_rad =
+          s.pickup_angle_rad + std::max(0.0, offset_mm) * 1e-3 / cfg_.disc_radius_m;
+      second.doubled = true;
+      seedlings_.push_back(second);
+    }
   }
   // Compression while in the nip: the clamp force times the local contact factor.
   if (!seedlings_.empty()) {

@@ -29,6 +29,7 @@ struct Seedling {
   double peak_compression_mm = 0;  // its radial compression then (with a DEM force model)
   bool damaged = false;
   bool planted = false;
+  bool doubled = false;  // the second seedling the feed put into one clamp
   double release_time_s = 0;
   double x_m = 0;       // position along the row where it was planted
   double tilt_deg = 0;  // from vertical, + top forward; 90 lodged
@@ -54,8 +55,14 @@ class SeedlingProcess {
   [[nodiscard]] double contact_area_factor() const;
 
   [[nodiscard]] const std::vector<Seedling>& seedlings() const { return seedlings_; }
+  void set_feed_miss_pct(double pct) { cfg_.seedlings.feed_miss_pct = pct; }
+  // How many have been released so far (seedlings()[0, released()) are planted).
+  [[nodiscard]] std::size_t released() const { return next_release_; }
 
  private:
+  // A seedling as the feed delivers it to the clamp now, drawn from the configured spread.
+  Seedling sample(double t_s);
+
   PlantConfig cfg_;
   std::mt19937_64 rng_;
   std::vector<Seedling> seedlings_;

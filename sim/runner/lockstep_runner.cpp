@@ -12,10 +12,10 @@ LockstepRunner::LockstepRunner(const Scenario& scenario)
   const ControllerConfig& cfg = scenario_.board.controller;
   controller_endpoint_ = &bus_.add_endpoint(512);
   hal_ = std::make_unique<hal::ControllerHal>(
-      hal::ControllerHal{*controller_endpoint_, encoder_, estop_, lamp_});
+      hal::ControllerHal{*controller_endpoint_, edges_, estop_, lamp_});
   controller_ = std::make_unique<ControlCycle>(cfg, *hal_);
   machine_ = std::make_unique<SimulatedMachine>(scenario_, bus_);
-  summary_.configure(cfg.sigma.sigma, cfg.depth.target_mm, cfg.clamp.ceiling_N, 8.0);
+  summary_.configure(cfg.sigma.sigma, cfg.depth.target_mm, cfg.clamp.ceiling_N, 8.0, cfg.monitor);
 }
 
 LockstepRunner::~LockstepRunner() = default;
@@ -27,6 +27,7 @@ hal::sim::VirtualCanEndpoint& LockstepRunner::device_endpoint(NodeRole role) {
 Cia402DriveDevice& LockstepRunner::drive(NodeRole role) { return machine_->drive(role); }
 
 const Plant& LockstepRunner::plant() const { return machine_->plant(); }
+Plant& LockstepRunner::plant() { return machine_->plant(); }
 
 // The scenario's script decides; the runner delivers: the e-stop line, a silent node, the
 // operator's buttons, and the start along the route.
@@ -50,7 +51,7 @@ void LockstepRunner::step() {
   controller_->tick(now, period_ns_);
   machine_->process_devices(now);
   for (std::int64_t t = 0; t < period_ns_; t += substep_ns_) {
-    machine_->step_plant(now + t, substep_ns_, encoder_);
+    machine_->step_plant(now + t, substep_ns_, edges_);
   }
   clock_.advance_ns(period_ns_);
   const bool running = controller_->state() == SupervisorState::kRunning;

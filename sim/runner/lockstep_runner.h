@@ -49,6 +49,7 @@ class LockstepRunner {
   hal::sim::VirtualCanEndpoint& controller_endpoint() { return *controller_endpoint_; }
   Cia402DriveDevice& drive(NodeRole role);
   [[nodiscard]] const Plant& plant() const;
+  Plant& plant();
   [[nodiscard]] double time_s() const { return static_cast<double>(clock_.now_ns()) * 1e-9; }
   [[nodiscard]] const Scenario& scenario() const { return scenario_; }
   // What happened when (the script's timeline), for comparing drivers.
@@ -61,7 +62,7 @@ class LockstepRunner {
   ScenarioScript script_;
   hal::sim::VirtualCanBus bus_;
   hal::sim::SimClock clock_;
-  hal::sim::SimEdgeSource encoder_;
+  hal::sim::SimEdgeSource edges_;  // encoder A/B and the photo-eye
   hal::sim::SimDigitalInput estop_;
   hal::sim::SimDigitalOutput lamp_;
   hal::sim::VirtualCanEndpoint* controller_endpoint_;

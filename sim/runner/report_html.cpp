@@ -36,7 +36,7 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
     if (last_x >= 0) spacing.push_back((x - last_x) * 1000);
     last_x = x;
   }
-  const double spacing_target_mm = sc.plant.seedlings.feed_pitch_mm / s.sigma_target;
+  const double spacing_target_mm = sc.board.controller.monitor.target_spacing_mm;
   report::ChartPage charts;
   int skips = 0, multiples = 0;
   for (const double g : spacing) {

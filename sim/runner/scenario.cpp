@@ -117,8 +117,13 @@ Scenario load_scenario(const std::string& path) {
     c.diameter_min_mm = t->number("diameter_min_mm", c.diameter_min_mm, 2.0, 30.0, "mm");
     c.diameter_max_mm =
         t->number("diameter_max_mm", c.diameter_max_mm, c.diameter_min_mm, 30.0, "mm");
-    c.feed_pitch_mm = t->number("feed_pitch_mm", c.feed_pitch_mm, 5.0, 500.0, "mm");
+    if (t->has("feed_pitch_mm"))
+      t->fail("feed_pitch_mm",
+              "is the machine's: [planting_monitor] clamp_pitch_mm in machines/<machine>.toml "
+              "(the planting monitor's target spacing comes from it too)");
     c.feed_miss_pct = t->number("feed_miss_pct", c.feed_miss_pct, 0.0, 100.0, "%");
+    c.feed_double_pct =
+        t->number("feed_double_pct", c.feed_double_pct, 0.0, 100.0 - c.feed_miss_pct, "%");
     c.strength_mean_N = t->number("strength_mean_N", c.strength_mean_N, 10.0, 1000.0, "N");
     c.strength_sd_N = t->number("strength_sd_N", c.strength_sd_N, 0.0, 500.0, "N");
     c.tilt_noise_deg = t->number("tilt_noise_deg", c.tilt_noise_deg, 0.0, 45.0, "deg");

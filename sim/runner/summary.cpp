@@ -8,6 +8,8 @@ namespace planter::sim {
 
 void SummaryBuilder::add(const Telemetry& c, const PlantTruth& t, bool running,
                          double running_for_s) {
+  monitor_ = c.planting;
+  warnings_seen_ |= c.warnings;
   if (!running) return;
   if (t.v_mps >= kSigmaMinSpeedMps) {
     sigma_true_sum_ += t.sigma;
@@ -72,6 +74,13 @@ Summary SummaryBuilder::finish(const SeedlingProcess& process, double plot_lengt
     s.spacing_cv_pct =
         100.0 * std::sqrt(sum2 / static_cast<double>(gaps.size())) / s.spacing_mean_mm;
   }
+  s.monitor_fitted = monitor_cfg_.sensor_fitted;
+  s.monitor = monitor_;
+  s.warnings_seen = warnings_seen_;
+  for (double g : gaps) {
+    if (g > monitor_cfg_.skip_ratio * monitor_cfg_.target_spacing_mm) ++s.truth_skips;
+    if (g <= monitor_cfg_.multiple_ratio * monitor_cfg_.target_spacing_mm) ++s.truth_multiples;
+  }
   s.plot_counts.assign(static_cast<std::size_t>(plots), 0);
   for (double x : xs) {
     const auto plot = static_cast<int>(x / plot_length_m);
@@ -92,6 +101,19 @@ std::string Summary::to_json() const {
   j["damage_pct"] = damage_pct;
   j["spacing_mean_mm"] = spacing_mean_mm;
   j["spacing_cv_pct"] = spacing_cv_pct;
+  if (monitor_fitted) {
+    // What the controller's planting monitor counted through the photo-eye, and the truth.
+    j["monitor"] = {{"seedlings", monitor.seedlings},
+                    {"spacings", monitor.spacings},
+                    {"spacing_mean_mm", monitor.spacing_mean_mm},
+                    {"spacing_cv", monitor.spacing_cv},
+                    {"skips", monitor.skips},
+                    {"multiples", monitor.multiples},
+                    {"singulation_pct", monitor.singulation_pct},
+                    {"empty_belt_warned", (warnings_seen & warning::kEmptyBelt) != 0},
+                    {"truth_skips", truth_skips},
+                    {"truth_multiples", truth_multiples}};
+  }
   j["clamp_force_mean_N"] = clamp_force_mean_N;
   j["clamp_force_max_N"] = clamp_force_max_N;
   j["clamp_ceiling_N"] = clamp_ceiling_N;

@@ -25,6 +25,12 @@ struct Summary {
   double depth_mean_mm = 0, depth_rms_error_mm = 0, depth_target_mm = 0;
   int seedlings_planted = 0, seedlings_damaged = 0;
   std::vector<int> plot_counts;
+  // The planting monitor as the controller saw it through the photo-eye (when one is fitted),
+  // and its rules applied to the seedlings the simulator planted: the ground truth.
+  bool monitor_fitted = false;
+  PlantingFigures monitor;
+  int truth_skips = 0, truth_multiples = 0;
+  std::uint32_t warnings_seen = 0;  // warning:: bits that held at some tick
   double distance_m = 0;
   double sim_seconds = 0, wall_seconds = 0, realtime_factor = 0;
   double can_bus_load_pct = 0;
@@ -42,7 +48,9 @@ struct Summary {
 
 class SummaryBuilder {
  public:
-  void configure(double sigma, double depth_target_mm, double ceiling_N, double settle_s) {
+  void configure(double sigma, double depth_target_mm, double ceiling_N, double settle_s,
+                 const PlantingMonitorConfig& monitor) {
+    monitor_cfg_ = monitor;
     sigma_ = sigma;
     depth_target_ = depth_target_mm;
     ceiling_ = ceiling_N;
@@ -59,6 +67,9 @@ class SummaryBuilder {
   std::uint64_t force_n_ = 0;
   double depth_sum_ = 0, depth_err2_ = 0;
   std::uint64_t depth_n_ = 0;
+  PlantingMonitorConfig monitor_cfg_;
+  PlantingFigures monitor_;
+  std::uint32_t warnings_seen_ = 0;
 };
 
 }  // namespace planter::sim

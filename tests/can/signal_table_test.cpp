@@ -20,9 +20,9 @@ using namespace planter;
 
 namespace {
 
-// PRODUCT.md's recording table: name -> unit.
-std::map<std::string, std::string> product_columns() {
-  std::ifstream in(std::string(PLANTER_SOURCE_DIR) + "/../shared/PRODUCT.md");
+// The first `| name | unit | meaning |` table of a markdown file: name -> unit.
+std::map<std::string, std::string> columns_table(const std::string& file) {
+  std::ifstream in(file);
   std::map<std::string, std::string> cols;
   std::string line;
   bool in_table = false;
@@ -47,6 +47,14 @@ std::map<std::string, std::string> product_columns() {
   }
   return cols;
 }
+// PRODUCT.md's recording table.
+std::map<std::string, std::string> product_columns() {
+  return columns_table(std::string(PLANTER_SOURCE_DIR) + "/../shared/PRODUCT.md");
+}
+// The planting monitor's columns, which the README documents after PRODUCT.md's.
+std::map<std::string, std::string> readme_monitor_columns() {
+  return columns_table(std::string(PLANTER_SOURCE_DIR) + "/README.md");
+}
 
 }  // namespace
 
@@ -55,13 +63,22 @@ TEST(SignalTable, EveryColumnIsDeclaredOnceWithProductsUnit) {
   ASSERT_GE(product.size(), 15u) << "PRODUCT.md's recording table was not found";
   std::multiset<std::string_view> declared;
   for (const SignalDecl& s : kSignals) declared.insert(s.column);
+  const auto monitor = readme_monitor_columns();
+  ASSERT_GE(monitor.size(), 9u) << "the README's planting-monitor table was not found";
   for (const SignalDecl& s : kSignals) {
     EXPECT_EQ(declared.count(s.column), 1u) << s.column;
     if (!s.recorded) continue;
-    const auto it = product.find(std::string(s.column));
-    ASSERT_NE(it, product.end()) << s.column << " is recorded but not in PRODUCT.md";
+    // The planting monitor's columns are this project's, documented in the README; the rest
+    // are PRODUCT.md's and keep its meaning.
+    const bool ours = s.source == SignalSource::kMonitor || s.source == SignalSource::kWarnings;
+    const auto& table = ours ? monitor : product;
+    const auto it = table.find(std::string(s.column));
+    ASSERT_NE(it, table.end()) << s.column << " is recorded but not in "
+                               << (ours ? "the README's planting-monitor table" : "PRODUCT.md");
     EXPECT_EQ(it->second, s.unit) << s.column;
+    EXPECT_FALSE(ours && product.count(std::string(s.column))) << s.column << " is PRODUCT.md's";
   }
+  for (const auto& [name, unit] : monitor) EXPECT_NE(find_signal(name), nullptr) << name;
   // Every PRODUCT.md column is declared, except v_ground: an independent speed sensor the
   // controller does not have (the simulator writes its truth under that name).
   for (const auto& [name, unit] : product) {

@@ -8,7 +8,7 @@ namespace planter::hal {
 
 struct ControllerHal {
   CanBus& can;
-  GpioEdgeSource& encoder;  // soil-wheel quadrature encoder: line 0 = A, line 1 = B
+  GpioEdgeSource& edges;  // encoder A/B and the seedling photo-eye (edge_line::), in time order
   DigitalInput& estop;
   DigitalOutput& status_lamp;
   TickProbe* tick_probe = nullptr;  // optional: told when each phase of a tick ends

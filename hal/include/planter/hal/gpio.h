@@ -3,13 +3,21 @@
 
 namespace planter::hal {
 
+// The controller's edge lines, by their index in its GpioEdgeSource.
+namespace edge_line {
+constexpr std::uint8_t kEncoderA = 0;        // soil-wheel encoder, channel A
+constexpr std::uint8_t kEncoderB = 1;        // soil-wheel encoder, channel B
+constexpr std::uint8_t kSeedlingSensor = 2;  // the photo-eye where seedlings leave the disc
+}  // namespace edge_line
+
 struct GpioEdge {
-  std::uint8_t line = 0;  // index into the source's lines, e.g. 0 = encoder A, 1 = encoder B
-  bool rising = false;
+  std::uint8_t line = 0;     // index into the source's lines (edge_line::)
+  bool rising = false;       // the line became asserted (after the board's active-low setting)
   std::int64_t time_ns = 0;  // when the edge happened (kernel or simulated timestamp)
 };
 
-// A set of input lines that report edge events (the soil-wheel encoder A/B lines).
+// A set of input lines that report edge events, merged in time order: the soil-wheel encoder's
+// A/B lines and, where fitted, the seedling photo-eye.
 class GpioEdgeSource {
  public:
   virtual ~GpioEdgeSource() = default;

@@ -7,6 +7,7 @@
 
 #include "config/board_checks.h"
 #include "config/toml_section.h"
+#include "firmware/controller/setpoint_rules.h"
 
 namespace planter::config {
 namespace {
@@ -265,7 +266,8 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
   if (auto ctl = mroot->table("control")) {
     c.sigma.sigma = ctl->number("sigma", 1.5, 0.5, 3.0);
     c.sigma.angle_gain_per_s = ctl->number("sigma_angle_gain_per_s", 3.0, 0.0, 50.0, "1/s");
-    c.clamp.setpoint_N = ctl->number("clamp_force_N", 90.0, 0.0, 200.0, "N");
+    c.clamp.setpoint_N = ctl->number("clamp_force_N", 90.0, kClampForceFileRangeN.min,
+                                     kClampForceFileRangeN.max, "N");
     c.clamp.ceiling_N = ctl->number("clamp_ceiling_N", 120.0, 10.0, 1000.0, "N");
     if (c.clamp.ceiling_N >= kSeedlingDamageThresholdN) {
       ctl->fail("clamp_ceiling_N",
@@ -281,7 +283,8 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     c.clamp.model_n = ctl->number("clamp_model_n", c.clamp.model_n, 1.0, 3.0);
     c.clamp.position_max_mm =
         ctl->number("clamp_position_max_mm", c.clamp.position_max_mm, 1.0, 100.0, "mm");
-    c.depth.target_mm = ctl->number("depth_mm", 102.0, 40.0, 160.0, "mm");
+    c.depth.target_mm =
+        ctl->number("depth_mm", 102.0, kDepthFileRangeMm.min, kDepthFileRangeMm.max, "mm");
     c.depth.rate_mm_per_s = ctl->number("depth_rate_mm_per_s", 20.0, 1.0, 500.0, "mm/s");
     c.depth.ki_per_s = ctl->number("depth_ki_per_s", 0.5, 0.0, 20.0, "1/s");
     c.depth.min_mm = ctl->number("depth_min_mm", c.depth.min_mm, -50.0, 500.0, "mm");

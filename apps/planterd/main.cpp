@@ -115,6 +115,8 @@ class LoopTick {
       controller_.request_run();
       run_requested_ = true;
     }
+    // The commissioning gate: an operator's run is refused while the stamp does not match.
+    controller_.set_run_gate(shared_.commissioned.load(std::memory_order_relaxed));
     controller_.tick(now, dt);
     hw_.edge_latency().tick_done(monotonic_now_ns());
     const Telemetry& t = controller_.telemetry();

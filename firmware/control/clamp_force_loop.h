@@ -29,6 +29,9 @@ class ClampForceLoop {
   double update(double force_measured_N, double dt_s, bool enabled);
 
   [[nodiscard]] double setpoint_N() const { return ramped_setpoint_N_; }
+  // The force to clamp at (an increase ramps, a decrease is taken at once).
+  void set_target_N(double target_N) { cfg_.setpoint_N = target_N; }
+  [[nodiscard]] double target_N() const { return cfg_.setpoint_N; }
   [[nodiscard]] double trim_mm() const { return integral_mm_; }
   [[nodiscard]] bool ceiling_active() const { return ceiling_active_; }
   // Position at which the nominal model gives `force_N`.

@@ -22,6 +22,9 @@ class FurrowDepthLoop {
   // Returns the depth actuator position command in mm; `engaged` false ramps up to raised.
   double update(double measured_depth_mm, double dt_s, bool engaged);
   [[nodiscard]] double setpoint_mm() const { return ramped_mm_; }
+  // The depth to plant at; the opener ramps to a new one at the rate limit.
+  void set_target_mm(double target_mm) { cfg_.target_mm = target_mm; }
+  [[nodiscard]] double target_mm() const { return cfg_.target_mm; }
 
  private:
   DepthLoopConfig cfg_;

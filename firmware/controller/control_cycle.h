@@ -23,6 +23,8 @@ class ControlCycle {
   // One control period at `now_ns`; `dt_ns` is the time since the previous tick.
   void tick(std::int64_t now_ns, std::int64_t dt_ns);
 
+  CommandOutcome command(const OperatorCommand& c) { return controller_.command(c); }
+  void set_run_gate(bool open) { controller_.set_run_gate(open); }
   void request_run() { controller_.request_run(); }
   void request_stop() { controller_.request_stop(); }
   void request_fault_reset() { controller_.request_fault_reset(); }

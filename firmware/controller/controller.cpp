@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "firmware/controller/setpoint_rules.h"
+
 namespace planter {
 
 Controller::Controller(const ControllerConfig& config)
@@ -22,6 +24,7 @@ const MachineCommand& Controller::update(const MachineState& in, std::int64_t no
 
   SupervisorInputs sv;
   sv.estop = in.estop;
+  estop_held_ = in.estop;
   sv.faults = check_faults(in, dt_ns);
   sv.nodes_ready = in.nodes_ready;
   sv.disc_stopped = std::abs(in.omega_radps) < cfg_.supervisor.stopped_omega_radps;
@@ -44,6 +47,42 @@ const MachineCommand& Controller::update(const MachineState& in, std::int64_t no
   warnings_ = monitor_.figures().empty_belt ? warning::kEmptyBelt : 0u;
   faults_seen_ = supervisor_.latched_faults() | sv.faults;
   return command_;
+}
+
+CommandOutcome Controller::command(const OperatorCommand& c) {
+  const SupervisorState s = supervisor_.state();
+  const bool estop = estop_held_ || s == SupervisorState::kEStop;
+  switch (c.kind) {
+    case CommandKind::kStop:
+      request_stop();  // stopping is never unsafe; in e-stop or fault the drives are off already
+      return CommandOutcome::kAccepted;
+    case CommandKind::kFaultReset:
+      if (estop_held_) return CommandOutcome::kRefusedEStop;
+      request_fault_reset();
+      return CommandOutcome::kAccepted;
+    case CommandKind::kRun:
+      if (estop) return CommandOutcome::kRefusedEStop;
+      if (s == SupervisorState::kFault) return CommandOutcome::kRefusedFault;
+      if (!run_gate_open_) return CommandOutcome::kRefusedGate;
+      if (s != SupervisorState::kReady && s != SupervisorState::kRunning)
+        return CommandOutcome::kRefusedNotReady;
+      request_run();
+      return CommandOutcome::kAccepted;
+    case CommandKind::kSetDepth:
+    case CommandKind::kSetClampForce:
+      // Nothing changes while the e-stop or a fault holds.
+      if (estop) return CommandOutcome::kRefusedEStop;
+      if (s == SupervisorState::kFault) return CommandOutcome::kRefusedFault;
+      if (c.kind == CommandKind::kSetDepth) {
+        if (!depth_range_mm(cfg_).allows(c.value)) return CommandOutcome::kOutOfRange;
+        depth_loop_.set_target_mm(c.value);
+      } else {
+        if (!clamp_force_range_N(cfg_).allows(c.value)) return CommandOutcome::kOutOfRange;
+        clamp_loop_.set_target_N(c.value);
+      }
+      return CommandOutcome::kAccepted;
+  }
+  return CommandOutcome::kOutOfRange;
 }
 
 std::uint32_t Controller::check_faults(const MachineState& in, std::int64_t dt_ns) {
@@ -100,6 +139,8 @@ void Controller::decide_outputs(const MachineState& in, SupervisorState state, d
           ? clamp_loop_.setpoint_N()
           : 0.0;
   command_.depth_cmd_mm = depth_cmd;
+  command_.depth_target_mm = depth_loop_.target_mm();
+  command_.clamp_force_target_N = clamp_loop_.target_N();
   command_.drives_enabled = operating;
   command_.commissioning = state == SupervisorState::kCommissioning;
   command_.status_lamp = state == SupervisorState::kRunning;

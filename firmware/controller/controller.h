@@ -9,6 +9,7 @@
 #include "firmware/control/furrow_depth_loop.h"
 #include "firmware/control/sigma_loop.h"
 #include "firmware/controller/controller_config.h"
+#include "firmware/controller/operator_command.h"
 #include "firmware/io/process_image.h"
 #include "firmware/sensing/planting_monitor.h"
 #include "firmware/supervisor/link_recovery.h"
@@ -23,7 +24,13 @@ class Controller {
   // One control period. `dt_ns` is the time since the previous tick.
   const MachineCommand& update(const MachineState& in, std::int64_t now_ns, std::int64_t dt_ns);
 
-  // Operator commands; taken on the next update.
+  // An operator's command, checked against the supervisor and the set-point rules
+  // (setpoint_rules.h) and taken on the next update when accepted. No allocation.
+  CommandOutcome command(const OperatorCommand& command);
+  // The commissioning gate: while closed, an operator's run is refused.
+  void set_run_gate(bool open) { run_gate_open_ = open; }
+
+  // The daemon's own requests (its --run, signals and link recovery); taken on the next update.
   void request_run() { run_requested_ = true; }
   void request_stop() { stop_requested_ = true; }
   void request_fault_reset() { reset_requested_ = true; }
@@ -53,6 +60,8 @@ class Controller {
   MachineCommand command_;
   std::uint32_t warnings_ = 0;
 
+  bool run_gate_open_ = true;
+  bool estop_held_ = false;  // at the last update
   bool run_requested_ = false;
   bool stop_requested_ = false;
   bool reset_requested_ = false;

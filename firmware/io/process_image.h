@@ -51,8 +51,10 @@ struct MachineCommand {
   bool status_lamp = false;
 
   // What the controller reports with its command (not sent to a node).
-  double clamp_force_cmd_N = 0.0;  // the set-point the roller position is trimmed towards
-  double sigma = 0.0;              // R*omega / v as the controller sees it
+  double clamp_force_cmd_N = 0.0;     // the set-point the roller position is trimmed towards
+  double clamp_force_target_N = 0.0;  // the operator's clamp force (the ramp's end)
+  double depth_target_mm = 0.0;       // the operator's furrow depth
+  double sigma = 0.0;                 // R*omega / v as the controller sees it
 };
 
 }  // namespace planter

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The house's layers, from the ground up: each may include only itself and the layers below.
-#   hal/include <- hal/sim, hal/linux <- firmware <- config <- sim <- apps
+#   hal/include <- hal/sim, hal/linux <- firmware <- config <- console <- sim <- apps
 # firmware/ also sees no OS header: only the C++ standard library. The build enforces the same
 # through each target's own include tree (cmake/layers.cmake); this check names the file.
 set -u
@@ -14,8 +14,9 @@ rules=(
   "hal/linux|planter/hal/|hal/linux/"
   "firmware|planter/hal/|firmware/"
   "config|planter/hal/|firmware/|config/"
-  "sim|planter/hal/|hal/sim/|hal/linux/|firmware/|config/|sim/"
-  "apps|planter/hal/|hal/sim/|hal/linux/|firmware/|config/|sim/|apps/"
+  "console|planter/hal/|firmware/|config/|console/"
+  "sim|planter/hal/|hal/sim/|hal/linux/|firmware/|config/|console/|sim/"
+  "apps|planter/hal/|hal/sim/|hal/linux/|firmware/|config/|console/|sim/|apps/"
 )
 for rule in "${rules[@]}"; do
   layer=${rule%%|*}

@@ -16,9 +16,9 @@
 #include "apps/planterd/board_hardware.h"
 #include "apps/planterd/crash_safe_recording.h"
 #include "apps/planterd/service_notify.h"
-#include "apps/planterd/spsc_queue.h"
 #include "config/commissioning.h"
 #include "config/config_error.h"
+#include "console/spsc_queue.h"
 #include "firmware/controller/control_cycle.h"
 #include "hal/linux/hal_error.h"
 #include "hal/linux/rt_loop.h"
@@ -81,7 +81,7 @@ void log_status(const Telemetry& t, const hal::CanBusCounters& can) {
 class LoopTick {
  public:
   LoopTick(const Options& opt, ControlCycle& controller, Shared& shared,
-           daemon::SpscQueue<Row>* rows, hal::linux_backend::TickTrace& trace,
+           console::SpscQueue<Row>* rows, hal::linux_backend::TickTrace& trace,
            daemon::BoardHardware& hw, std::int64_t start_ns, std::int64_t overrun_threshold_ns,
            std::int64_t period_ns)
       : opt_(opt),
@@ -142,7 +142,7 @@ class LoopTick {
   const Options& opt_;
   ControlCycle& controller_;
   Shared& shared_;
-  daemon::SpscQueue<Row>* rows_;
+  console::SpscQueue<Row>* rows_;
   hal::linux_backend::TickTrace& trace_;
   daemon::BoardHardware& hw_;
   std::int64_t start_ns_, loop_start_ns_, duration_ns_, overrun_threshold_ns_, period_ns_;
@@ -157,7 +157,7 @@ class LoopTick {
 class MainThread {
  public:
   MainThread(const Options& opt, Shared& shared, daemon::ServiceNotifier& service,
-             daemon::CrashSafeRecording* recording, daemon::SpscQueue<Row>& rows,
+             daemon::CrashSafeRecording* recording, console::SpscQueue<Row>& rows,
              hal::linux_backend::TickTrace& trace, daemon::BoardHardware& hw)
       : opt_(opt),
         shared_(shared),
@@ -253,7 +253,7 @@ class MainThread {
   Shared& shared_;
   daemon::ServiceNotifier& service_;
   daemon::CrashSafeRecording* recording_;
-  daemon::SpscQueue<Row>& rows_;
+  console::SpscQueue<Row>& rows_;
   hal::linux_backend::TickTrace& trace_;
   daemon::BoardHardware& hw_;
   std::uint64_t watchdog_us_ = 0;
@@ -343,7 +343,7 @@ int main(int argc, char** argv) {
   controller_config.link_recovery.enabled = opt.resume_after_link_loss;
   controller_config.link_recovery.resume_running = opt.run;
   ControlCycle controller(controller_config, hw->controller_hal());
-  daemon::SpscQueue<Row> rows(4096);
+  console::SpscQueue<Row> rows(4096);
   Shared shared;
   if (!opt.commissioned_stamp.empty()) {
     std::string why;

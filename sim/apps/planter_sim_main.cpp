@@ -15,6 +15,9 @@
 #include "config/output_set.h"
 #include "hal/linux/hal_error.h"
 #include "sim/apps/replay.h"
+#ifdef PLANTER_WITH_CONSOLE
+#include "sim/apps/live.h"
+#endif
 #include "sim/apps/sweep.h"
 #include "sim/hil/realtime_devices.h"
 #ifdef PLANTER_WITH_REPLAY
@@ -215,6 +218,24 @@ int main(int argc, char** argv) {
   devices->add_option("--truth", devices_options.truth_path, "write ground truth CSV here");
   devices->add_option("--duration", devices_options.duration_s, "seconds (0 = whole route)")
       ->check(CLI::Range(0.0, 1e6));
+#ifdef PLANTER_WITH_CONSOLE
+  LiveOptions live_options;
+  auto* live = app.add_subcommand(
+      "live", "the simulated machine in real time, with the operator's console in a browser");
+  live->add_option("scenario", scenario, "scenario file (TOML)")->required();
+  live->add_option("--port", live_options.console.port, "TCP port of the console (0: any free)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 65535));
+  live->add_option("--bind", live_options.console.bind,
+                   "address to serve on (0.0.0.0: every network of this machine)")
+      ->capture_default_str();
+  live->add_option("--duration", live_options.duration_s, "simulated seconds (0: until Ctrl-C)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
+  live->add_option("--speed", live_options.speed, "simulated seconds per wall-clock second")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 100.0));
+#endif
 #ifdef PLANTER_WITH_REPLAY
   std::string model, recording;
   auto* replay = app.add_subcommand(
@@ -242,6 +263,9 @@ int main(int argc, char** argv) {
 #endif
     if (*effects) return print_effect_keys();
     if (*devices) return run_devices(scenario, devices_board, devices_options);
+#ifdef PLANTER_WITH_CONSOLE
+    if (*live) return run_live(scenario, live_options);
+#endif
 #ifdef PLANTER_WITH_REPLAY
     if (*replay) return run_replay(model, recording, out, force);
   } catch (const analysis::RecordingError& e) {

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <memory>
 
-namespace planter::daemon {
+namespace planter::console {
 
 template <typename T>
 class SpscQueue {
@@ -37,4 +37,4 @@ class SpscQueue {
   alignas(64) std::atomic<std::size_t> tail_{0};
 };
 
-}  // namespace planter::daemon
+}  // namespace planter::console

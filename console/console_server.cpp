@@ -1,0 +1,135 @@
+#include "console/console_server.h"
+
+#include <httplib.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+namespace planter::console {
+
+std::string console_page();      // console_page.html, embedded at build time
+std::string console_dygraphs();  // Debian's libjs-dygraphs, embedded at build time
+
+namespace {
+// Requests carry no body the console needs: anything larger is refused unread.
+constexpr std::size_t kMaxBodyBytes = 4096;
+// What the page may load and do: only its own inline script and style, and this server.
+constexpr const char* kContentSecurityPolicy =
+    "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; "
+    "connect-src 'self'; img-src data:; base-uri 'none'; form-action 'none'; "
+    "frame-ancestors 'none'";
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
+}  // namespace
+
+ConsoleServer::ConsoleServer(const ConsoleOptions& options, const ConsoleInfo& info)
+    : options_(options), info_(info), queue_(1024) {
+  page_ = console_page();
+  const std::string marker = "/*DYGRAPHS*/";
+  const auto at = page_.find(marker);
+  if (at == std::string::npos) throw std::logic_error("console page has no dygraphs marker");
+  page_.replace(at, marker.size(), console_dygraphs());
+}
+
+ConsoleServer::~ConsoleServer() { stop(); }
+
+bool ConsoleServer::publish(const LiveSample& sample) {
+  if (queue_.push(sample)) return true;
+  dropped_.fetch_add(1, std::memory_order_relaxed);
+  return false;
+}
+
+void ConsoleServer::drain() {
+  LiveSample s;
+  while (queue_.pop(s)) {
+    history_.push_back(s);
+    if (history_.size() > options_.history) history_.pop_front();
+  }
+}
+
+std::string ConsoleServer::state_json() {
+  std::lock_guard<std::mutex> lock(history_mutex_);
+  drain();
+  if (history_.empty()) return "{\"t_s\":null,\"state\":\"no data yet\"}";
+  return to_json(history_.back());
+}
+
+std::string ConsoleServer::history_json() {
+  std::lock_guard<std::mutex> lock(history_mutex_);
+  drain();
+  // Columns, not rows: the page hands them to the charts as they are.
+  nlohmann::json t = nlohmann::json::array(), v = nlohmann::json::array(),
+                 sigma_seen = nlohmann::json::array(), sigma_true = nlohmann::json::array(),
+                 force = nlohmann::json::array(), force_target = nlohmann::json::array(),
+                 depth = nlohmann::json::array(), depth_target = nlohmann::json::array();
+  for (const LiveSample& s : history_) {
+    t.push_back(s.t_s);
+    v.push_back(number(s.v_mps));
+    sigma_seen.push_back(number(s.sigma_seen));
+    sigma_true.push_back(number(s.sigma_true));
+    force.push_back(number(s.clamp_force_N));
+    force_target.push_back(number(s.clamp_force_target_N));
+    depth.push_back(number(s.depth_mm));
+    depth_target.push_back(number(s.depth_target_mm));
+  }
+  return nlohmann::json{{"t_s", t},
+                        {"v_mps", v},
+                        {"sigma_seen", sigma_seen},
+                        {"sigma_true", sigma_true},
+                        {"clamp_force_N", force},
+                        {"clamp_force_target_N", force_target},
+                        {"depth_mm", depth},
+                        {"depth_target_mm", depth_target}}
+      .dump();
+}
+
+void ConsoleServer::start() {
+  server_ = std::make_unique<httplib::Server>();
+  httplib::Server& srv = *server_;
+  srv.set_payload_max_length(kMaxBodyBytes);
+  srv.set_default_headers({{"Content-Security-Policy", kContentSecurityPolicy},
+                           {"X-Content-Type-Options", "nosniff"},
+                           {"Referrer-Policy", "no-referrer"},
+                           {"Cache-Control", "no-store"}});
+  const nlohmann::json info = {{"title", info_.title},
+                               {"clamp_ceiling_N", info_.clamp_ceiling_N},
+                               {"target_spacing_mm", info_.target_spacing_mm},
+                               {"photo_eye", info_.photo_eye},
+                               {"simulated", info_.simulated},
+                               {"can_command", false}};
+  const std::string info_text = info.dump();
+  srv.Get("/", [this](const httplib::Request&, httplib::Response& res) {
+    res.set_content(page_, "text/html; charset=utf-8");
+  });
+  srv.Get("/api/info", [info_text](const httplib::Request&, httplib::Response& res) {
+    res.set_content(info_text, "application/json");
+  });
+  srv.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {
+    res.set_content(state_json(), "application/json");
+  });
+  srv.Get("/api/history", [this](const httplib::Request&, httplib::Response& res) {
+    res.set_content(history_json(), "application/json");
+  });
+  // Viewing only: every other method and path is refused, said in words.
+  srv.set_error_handler([](const httplib::Request&, httplib::Response& res) {
+    if (res.status == 404) res.set_content("no such page\n", "text/plain");
+  });
+  if (options_.port == 0) {
+    port_ = srv.bind_to_any_port(options_.bind);
+  } else {
+    port_ = srv.bind_to_port(options_.bind, options_.port) ? options_.port : -1;
+  }
+  if (port_ <= 0)
+    throw std::runtime_error("console: cannot listen on " + options_.bind + ":" +
+                             std::to_string(options_.port) +
+                             " (in use, or not an address of this machine; --port, --bind)");
+  thread_ = std::thread([&srv] { srv.listen_after_bind(); });
+}
+
+void ConsoleServer::stop() {
+  if (server_) server_->stop();
+  if (thread_.joinable()) thread_.join();
+}
+
+}  // namespace planter::console

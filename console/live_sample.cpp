@@ -1,0 +1,70 @@
+#include "console/live_sample.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+namespace planter::console {
+namespace {
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
+
+// Faults and warnings in the operator's words, with what to do.
+nlohmann::json fault_list(std::uint32_t faults) {
+  nlohmann::json list = nlohmann::json::array();
+  for (int bit = 0; bit < fault::kCount; ++bit)
+    if ((faults >> bit) & 1u) list.push_back(fault::name(bit));
+  return list;
+}
+nlohmann::json warning_list(std::uint32_t warnings) {
+  nlohmann::json list = nlohmann::json::array();
+  for (int bit = 0; bit < warning::kCount; ++bit)
+    if ((warnings >> bit) & 1u) list.push_back(warning::name(bit));
+  return list;
+}
+}  // namespace
+
+LiveSample live_sample(double t_s, const Telemetry& t) {
+  LiveSample s;
+  s.t_s = t_s;
+  s.state = t.state;
+  s.faults = t.faults;
+  s.warnings = t.warnings;
+  s.v_mps = t.v_wheel_mps;
+  s.sigma_seen = t.sigma;
+  s.omega_radps = t.omega_radps;
+  s.clamp_force_N = t.clamp_force_N;
+  s.clamp_force_target_N = t.clamp_force_target_N;
+  s.depth_mm = t.depth_mm;
+  s.depth_target_mm = t.depth_target_mm;
+  s.planting = t.planting;
+  return s;
+}
+
+std::string to_json(const LiveSample& s) {
+  const PlantingFigures& p = s.planting;
+  const bool spaced = p.spacings > 0.0;
+  nlohmann::json j = {{"t_s", s.t_s},
+                      {"state", supervisor_state_name(s.state)},
+                      {"faults", fault_list(s.faults)},
+                      {"warnings", warning_list(s.warnings)},
+                      {"v_mps", number(s.v_mps)},
+                      {"sigma_seen", number(s.sigma_seen)},
+                      {"sigma_true", number(s.sigma_true)},
+                      {"omega_radps", number(s.omega_radps)},
+                      {"clamp_force_N", number(s.clamp_force_N)},
+                      {"clamp_force_target_N", number(s.clamp_force_target_N)},
+                      {"depth_mm", number(s.depth_mm)},
+                      {"depth_target_mm", number(s.depth_target_mm)},
+                      {"planting",
+                       {{"seedlings", p.seedlings},
+                        {"per_m", p.per_m},
+                        {"spacings", p.spacings},
+                        {"spacing_mean_mm", spaced ? number(p.spacing_mean_mm) : nullptr},
+                        {"spacing_cv", spaced ? number(p.spacing_cv) : nullptr},
+                        {"skips", p.skips},
+                        {"multiples", p.multiples},
+                        {"singulation_pct", spaced ? number(p.singulation_pct) : nullptr},
+                        {"empty_clamps_in_row", p.empty_clamps_in_row}}}};
+  return j.dump();
+}
+
+}  // namespace planter::console

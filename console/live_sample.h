@@ -1,0 +1,34 @@
+#pragma once
+// One sample of the machine for the console: what the operator sees, in SI units (mm where
+// named). Taken from the controller's telemetry in the loop (a plain copy, no allocation) and
+// turned into JSON by the server's threads.
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include "firmware/controller/telemetry.h"
+
+namespace planter::console {
+
+struct LiveSample {
+  double t_s = 0.0;
+  SupervisorState state = SupervisorState::kBoot;
+  std::uint32_t faults = 0;
+  std::uint32_t warnings = 0;
+  double v_mps = 0.0;
+  double sigma_seen = 0.0;  // R*omega / v as the controller sees it
+  double sigma_true = std::numeric_limits<double>::quiet_NaN();  // where known (simulation)
+  double omega_radps = 0.0;
+  double clamp_force_N = 0.0;
+  double clamp_force_target_N = 0.0;
+  double depth_mm = 0.0;
+  double depth_target_mm = 0.0;
+  PlantingFigures planting;
+};
+
+// The sample a tick's telemetry gives (sigma_true left unknown).
+LiveSample live_sample(double t_s, const Telemetry& t);
+// The sample as one JSON object (NaN as null: the page shows "unknown").
+std::string to_json(const LiveSample& s);
+
+}  // namespace planter::console

@@ -1,6 +1,7 @@
 #include "console/console_server.h"
 
 #include <httplib.h>
+#include <sys/socket.h>
 
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -88,6 +89,12 @@ void ConsoleServer::start() {
   server_ = std::make_unique<httplib::Server>();
   httplib::Server& srv = *server_;
   srv.set_payload_max_length(kMaxBodyBytes);
+  // SO_REUSEADDR only: cpp-httplib's default adds SO_REUSEPORT, with which a second console
+  // on the same port would start without a word and share the connections.
+  srv.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   srv.set_default_headers({{"Content-Security-Policy", kContentSecurityPolicy},
                            {"X-Content-Type-Options", "nosniff"},
                            {"Referrer-Policy", "no-referrer"},

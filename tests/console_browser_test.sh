@@ -5,6 +5,7 @@
 # - live values change: two loads seconds apart show different times and states;
 # - the charts are drawn;
 # - a request that is not a page of the console is refused, and a large body is refused;
+# - a second console on the same port says it cannot listen and exits non-zero;
 # - a screenshot of the console is kept in SHOTS (the build directory).
 # Usage: console_browser_test.sh PLANTER_SIM SOURCE_DIR SHOTS
 set -u
@@ -39,10 +40,15 @@ post=$(curl -s -o /dev/null -w '%{http_code}' -X POST --data 'x=1' "$url/api/sta
 big=$(head -c 100000 /dev/zero | tr '\0' 'a' | curl -s -o /dev/null -w '%{http_code}' -X POST \
   --data-binary @- "$url/api/state")
 csp=$(curl -s -D - -o /dev/null "$url" | grep -i '^content-security-policy' || true)
+# A second console on the same port must say so and stop, not share the port.
+port=${url##*:}; port=${port%/}
+second=0
+"$sim" live "$src/scenarios/zhangqiu-field.toml" --port "$port" --duration 1 >"$work/second.out" 2>&1 || second=$?
+grep -q "cannot listen on 127.0.0.1:$port" "$work/second.out" || second=0
 
-/usr/bin/python3 - "$work" "$shots/console.png" "$not_found" "$post" "$big" "$csp" <<'PY'
+/usr/bin/python3 - "$work" "$shots/console.png" "$not_found" "$post" "$big" "$csp" "$second" <<'PY'
 import os, re, sys
-work, shot, not_found, post, big, csp = sys.argv[1:]
+work, shot, not_found, post, big, csp, second = sys.argv[1:]
 page = open(os.path.join(work, "page.html")).read()
 fail = []
 def dom(name):
@@ -82,9 +88,12 @@ if "default-src 'none'" not in csp:
     fail.append("no content security policy: %r" % csp)
 if not os.path.exists(shot) or os.path.getsize(shot) < 10000:
     fail.append("no screenshot")
+if second == "0":
+    fail.append("a second console on the same port did not refuse with its message")
 print("\n".join("FAIL " + f for f in fail) or
       "ok   console: live values at t %.1f then %.1f s, charts drawn, no script error, nothing "
-      "fetched from outside, unknown paths 404, POST %s, 100 kB body %s; %s"
+      "fetched from outside, unknown paths 404, POST %s, 100 kB body %s, a second console on "
+      "the port refused; %s"
       % (times[0], times[1], post, big, shot))
 sys.exit(1 if fail else 0)
 PY

@@ -1,5 +1,6 @@
 #include "config/board_config.h"
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -341,6 +342,19 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     b.realtime.cpu = static_cast<int>(rt->integer("cpu", -1, -1, 1023));
     b.realtime.require = rt->boolean("require", false);
     rt->reject_unknown_keys();
+  }
+  if (auto con = root.table("console")) {
+    b.console.port = static_cast<int>(con->integer("port", 0, 0, 65535));
+    b.console.bind = con->string("bind", "0.0.0.0");
+    con->reject_control_characters("bind", b.console.bind);
+    b.console.viewer_secret = con->string("viewer_secret", "");
+    std::size_t letters = 0;
+    for (char ch : b.console.viewer_secret)
+      letters += std::isalnum(static_cast<unsigned char>(ch)) ? 1 : 0;
+    if (!b.console.viewer_secret.empty() && letters < 12)
+      con->fail("viewer_secret",
+                "needs at least 12 letters or digits (leave it out: viewing is open)");
+    con->reject_unknown_keys();
   }
   auto nodes = mroot->table("nodes");
   if (!nodes)

@@ -29,6 +29,13 @@ struct RealtimeConfig {
   bool require = false;  // refuse to start when SCHED_FIFO or mlockall is refused
 };
 
+// [console]: the operator's web console that planterd serves (console/console_server.h).
+struct ConsoleConfig {
+  int port = 0;                  // 0: no console
+  std::string bind = "0.0.0.0";  // the machine's networks (its Wi-Fi)
+  std::string viewer_secret;     // "": viewing is open on the machine's network
+};
+
 // A board file (boards/<board>/board.toml) is the board's wiring: its bus, lines, encoder and
 // loop timing. It names the machine it runs (machines/<machine>.toml: mechanism, limits,
 // control gains, nodes) and this unit's calibration (a file beside it, which `planter-can
@@ -43,6 +50,7 @@ struct BoardConfig {
   std::string can_interface = "sim";
   GpioLines gpio;
   RealtimeConfig realtime;
+  ConsoleConfig console;
   ControllerConfig controller;
   double planned_bus_load_pct = 0;    // config/board_checks.h
   std::vector<std::string> warnings;  // in range but doubtful; tools print them at start

@@ -3,6 +3,7 @@
 #include <httplib.h>
 #include <sys/socket.h>
 
+#include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -25,7 +26,17 @@ nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : 
 }  // namespace
 
 ConsoleServer::ConsoleServer(const ConsoleOptions& options, const ConsoleInfo& info)
-    : options_(options), info_(info), queue_(1024) {
+    : options_(options),
+      info_(info),
+      queue_(1024),
+      sessions_(std::make_unique<OperatorSessions>(options.secrets, options.policy, [] {
+        return std::chrono::duration_cast<std::chrono::nanoseconds>(
+                   std::chrono::steady_clock::now().time_since_epoch())
+            .count();
+      })) {
+  if (options_.commands != nullptr &&
+      OperatorSessions::normalise(options_.secrets.pairing).size() < 12)
+    throw std::runtime_error("console: commands need a pairing secret of at least 12 letters");
   page_ = console_page();
   const std::string marker = "/*DYGRAPHS*/";
   const auto at = page_.find(marker);
@@ -86,6 +97,7 @@ std::string ConsoleServer::history_json() {
 }
 
 void ConsoleServer::start() {
+  if (options_.commands != nullptr) audit_ = std::make_unique<AuditLog>(options_.audit_log);
   server_ = std::make_unique<httplib::Server>();
   httplib::Server& srv = *server_;
   srv.set_payload_max_length(kMaxBodyBytes);
@@ -99,12 +111,21 @@ void ConsoleServer::start() {
                            {"X-Content-Type-Options", "nosniff"},
                            {"Referrer-Policy", "no-referrer"},
                            {"Cache-Control", "no-store"}});
-  const nlohmann::json info = {{"title", info_.title},
-                               {"clamp_ceiling_N", info_.clamp_ceiling_N},
-                               {"target_spacing_mm", info_.target_spacing_mm},
-                               {"photo_eye", info_.photo_eye},
-                               {"simulated", info_.simulated},
-                               {"can_command", false}};
+  const nlohmann::json info = {
+      {"title", info_.title},
+      {"clamp_ceiling_N", info_.clamp_ceiling_N},
+      {"target_spacing_mm", info_.target_spacing_mm},
+      {"photo_eye", info_.photo_eye},
+      {"simulated", info_.simulated},
+      {"can_command", options_.commands != nullptr},
+      {"can_record", info_.can_record && options_.commands != nullptr},
+      {"recordings", !options_.recordings_dir.empty()},
+      {"viewing_open", sessions_->viewing_open()},
+      {"depth_min_mm", info_.depth_range_mm.min},
+      {"depth_max_mm", info_.depth_range_mm.max},
+      {"clamp_force_min_N", info_.clamp_force_range_N.min},
+      {"clamp_force_max_N", info_.clamp_force_range_N.max},
+      {"clamp_force_max_exclusive", info_.clamp_force_range_N.max_exclusive}};
   const std::string info_text = info.dump();
   srv.Get("/", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(page_, "text/html; charset=utf-8");
@@ -112,13 +133,15 @@ void ConsoleServer::start() {
   srv.Get("/api/info", [info_text](const httplib::Request&, httplib::Response& res) {
     res.set_content(info_text, "application/json");
   });
-  srv.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {
-    res.set_content(state_json(), "application/json");
+  srv.Get("/api/state", [this](const httplib::Request& req, httplib::Response& res) {
+    if (may_view(req, res)) res.set_content(state_json(), "application/json");
   });
-  srv.Get("/api/history", [this](const httplib::Request&, httplib::Response& res) {
-    res.set_content(history_json(), "application/json");
+  srv.Get("/api/history", [this](const httplib::Request& req, httplib::Response& res) {
+    if (may_view(req, res)) res.set_content(history_json(), "application/json");
   });
-  // Viewing only: every other method and path is refused, said in words.
+  install_command_routes(srv);
+  if (!options_.recordings_dir.empty()) install_recording_routes(srv);
+  // Every other method and path is refused, said in words.
   srv.set_error_handler([](const httplib::Request&, httplib::Response& res) {
     if (res.status == 404) res.set_content("no such page\n", "text/plain");
   });

@@ -2,7 +2,9 @@
 // The operator's console over HTTP, served from its own threads (cpp-httplib's pool), never
 // from the control loop: the loop publishes a LiveSample into a lock-free queue of fixed size
 // (no lock, no allocation, a full queue drops the sample and counts it); the server's threads
-// drain it into the history the page plots. Viewing only, for now: it takes no command.
+// drain it into the history the page plots. Commands go the other way through a
+// CommandChannel, which the loop serves once a tick; who may give them is OperatorSessions'
+// rule (operator_sessions.h), and each one is written to the AuditLog.
 #include <atomic>
 #include <cstddef>
 #include <deque>
@@ -11,12 +13,18 @@
 #include <string>
 #include <thread>
 
+#include "console/audit_log.h"
+#include "console/command_channel.h"
 #include "console/live_sample.h"
+#include "console/operator_sessions.h"
 #include "console/spsc_queue.h"
+#include "firmware/controller/setpoint_rules.h"
 
 namespace httplib {
 class Server;
-}
+struct Request;
+struct Response;
+}  // namespace httplib
 
 namespace planter::console {
 
@@ -24,6 +32,12 @@ struct ConsoleOptions {
   std::string bind = "127.0.0.1";  // the machine's network: 0.0.0.0
   int port = 8080;                 // 0: any free port (port() says which)
   std::size_t history = 3000;      // samples kept for the plots (5 min at 10 Hz)
+  // Commands: all three are needed, or the console is for viewing only.
+  CommandChannel* commands = nullptr;
+  std::string audit_log;  // path
+  Secrets secrets;
+  SessionPolicy policy;
+  std::string recordings_dir;  // recordings offered for download; empty: none
 };
 
 // What the page shows beside the live values: the machine and its limits.
@@ -33,6 +47,9 @@ struct ConsoleInfo {
   double target_spacing_mm = 0.0;
   bool photo_eye = false;
   bool simulated = false;  // sigma_true is known
+  SetpointRange depth_range_mm;
+  SetpointRange clamp_force_range_N;
+  bool can_record = false;  // record_start and record_stop are understood
 };
 
 class ConsoleServer {
@@ -42,10 +59,12 @@ class ConsoleServer {
   ConsoleServer(const ConsoleServer&) = delete;
   ConsoleServer& operator=(const ConsoleServer&) = delete;
 
-  // Binds and starts serving; throws std::runtime_error naming the address when it cannot.
+  // Binds and starts serving; throws std::runtime_error naming the address or the file when it
+  // cannot.
   void start();
   void stop();
   [[nodiscard]] int port() const { return port_; }
+  [[nodiscard]] bool takes_commands() const { return options_.commands != nullptr; }
 
   // The loop's side: no lock, no allocation. False (and counted) when the queue is full.
   bool publish(const LiveSample& sample);
@@ -55,6 +74,12 @@ class ConsoleServer {
   void drain();  // the server's threads: queue -> history
   std::string state_json();
   std::string history_json();
+  void install_command_routes(httplib::Server& srv);
+  void install_recording_routes(httplib::Server& srv);
+  // The caller's session, or an answer (401) already written into res.
+  bool may_view(const httplib::Request& req, httplib::Response& res);
+  void command(const httplib::Request& req, httplib::Response& res);
+  void login(const httplib::Request& req, httplib::Response& res);
 
   ConsoleOptions options_;
   ConsoleInfo info_;
@@ -63,6 +88,8 @@ class ConsoleServer {
   std::atomic<std::uint64_t> dropped_{0};
   std::mutex history_mutex_;  // the one consumer of queue_, and the history
   std::deque<LiveSample> history_;
+  std::unique_ptr<OperatorSessions> sessions_;
+  std::unique_ptr<AuditLog> audit_;
   std::unique_ptr<httplib::Server> server_;
   std::thread thread_;
   int port_ = 0;

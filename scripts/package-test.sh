@@ -45,7 +45,7 @@ sudo_cmd=""
 if dpkg-query -W -f='${Status}' planter 2>/dev/null | grep -q "install ok installed"; then
   fail "a planter package is already installed here; not touching it"
 fi
-$sudo_cmd dpkg -i "$deb" >/dev/null
+$sudo_cmd dpkg -i "$deb" >"$work/install.out"
 trap '$sudo_cmd dpkg -P planter >/dev/null 2>&1 || true; rm -rf "$work"' EXIT
 /usr/bin/planterd --help >/dev/null || fail "installed planterd does not run"
 # The installed board finds its machine (/etc/planter/machines) and its calibration.
@@ -53,6 +53,11 @@ trap '$sudo_cmd dpkg -P planter >/dev/null 2>&1 || true; rm -rf "$work"' EXIT
 /usr/bin/planter-can --iface sim --board /etc/planter/boards/rpi4-canhat/board.toml scan >/dev/null ||
   fail "the installed rpi4-canhat board does not load"
 systemd-analyze verify /lib/systemd/system/planterd.service || fail "systemd-analyze verify"
+# The console's pairing secret: made at installation, root's only, said once for the label.
+secret=/var/lib/planterd/pairing-secret
+[ "$(stat -c %a "$secret" 2>/dev/null)" = 600 ] || fail "$secret missing or not mode 600"
+grep -Eq '^[2-9a-hjkmnp-z]{5}(-[2-9a-hjkmnp-z]{5}){3}$' "$secret" || fail "$secret: not a secret: $(cat "$secret")"
+grep -q "pairing secret is $(cat "$secret")" "$work/install.out" || fail "the installation did not show the secret"
 conf=$(dpkg-query -W -f='${Conffiles}' planter)
 for f in /etc/planter/board.toml /etc/planter/calibration.toml \
          /etc/planter/machines/scallion-transplanter.toml /etc/default/planterd; do
@@ -63,4 +68,4 @@ $sudo_cmd dpkg -r planter >/dev/null
 [ -e /etc/planter/board.toml ] || fail "remove dropped the admin's board file (it should stay until purge)"
 $sudo_cmd dpkg -P planter >/dev/null
 [ ! -e /etc/planter ] && [ ! -e /etc/default/planterd ] || fail "purge left /etc files"
-echo "package: installed, verified (systemd-analyze), removed and purged cleanly"
+echo "package: installed, verified (systemd-analyze, the console's pairing secret made), removed and purged cleanly"

@@ -1,7 +1,9 @@
 // planterd: the controller daemon flashed onto the board. Opens the board's CAN interface and
 // GPIO lines, boots the CANopen nodes, runs the control loop in a SCHED_FIFO thread, records
 // telemetry crash-safely, keeps the systemd watchdog fed while the loop is alive, and stops
-// the machine safely on SIGTERM/SIGINT. SIGUSR1 is the operator's fault reset.
+// the machine safely on SIGTERM/SIGINT. SIGUSR1 is the operator's fault reset. Where the board
+// sets a [console] port (and the host build has cpp-httplib), it serves the operator's console:
+// the loop publishes samples and answers commands through lock-free queues, never waiting.
 #include <pthread.h>
 #include <signal.h>
 #include <string.h>
@@ -9,6 +11,7 @@
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -18,7 +21,13 @@
 #include "apps/planterd/service_notify.h"
 #include "config/commissioning.h"
 #include "config/config_error.h"
+#include "config/input_file.h"
+#include "console/command_channel.h"
 #include "console/spsc_queue.h"
+#ifdef PLANTERD_WITH_CONSOLE
+#include "console/console_server.h"
+#include "firmware/controller/setpoint_rules.h"
+#endif
 #include "firmware/controller/control_cycle.h"
 #include "hal/linux/hal_error.h"
 #include "hal/linux/rt_loop.h"
@@ -38,6 +47,8 @@ struct Options {
   double log_period_s = 5.0;
   bool resume_after_link_loss = false;
   std::string commissioned_stamp;  // drives stay off until this stamp matches the board
+  std::string pairing_secret_file = "/var/lib/planterd/pairing-secret";
+  std::string console_audit_log = "/var/lib/planterd/console-audit.log";
 };
 
 struct Row {
@@ -83,7 +94,8 @@ class LoopTick {
   LoopTick(const Options& opt, ControlCycle& controller, Shared& shared,
            console::SpscQueue<Row>* rows, hal::linux_backend::TickTrace& trace,
            daemon::BoardHardware& hw, std::int64_t start_ns, std::int64_t overrun_threshold_ns,
-           std::int64_t period_ns)
+           std::int64_t period_ns, console::CommandChannel* commands,
+           console::SpscQueue<Row>* console_rows)
       : opt_(opt),
         controller_(controller),
         shared_(shared),
@@ -94,7 +106,10 @@ class LoopTick {
         loop_start_ns_(monotonic_now_ns()),
         duration_ns_(static_cast<std::int64_t>(opt.duration_s * 1e9)),
         overrun_threshold_ns_(overrun_threshold_ns),
-        period_ns_(period_ns) {}
+        period_ns_(period_ns),
+        commands_(commands),
+        console_rows_(console_rows),
+        console_every_(std::max<std::int64_t>(1, 100'000'000 / period_ns)) {}
 
   bool operator()(std::int64_t now, std::int64_t dt, std::int64_t late_ns) {
     trace_.begin(now, late_ns, dt);
@@ -117,11 +132,29 @@ class LoopTick {
     }
     // The commissioning gate: an operator's run is refused while the stamp does not match.
     controller_.set_run_gate(shared_.commissioned.load(std::memory_order_relaxed));
+    // The console's commands, answered by the supervisor's rules (no allocation, no wait).
+    if (commands_ != nullptr) {
+      commands_->serve([&](const console::ConsoleRequest& request, console::ConsoleReply& reply) {
+        reply.t_s = static_cast<double>(now - start_ns_) * 1e-9;
+        OperatorCommand c;
+        if (!console::controller_command(request.kind, c, request.value)) {
+          reply.result = console::ConsoleResult::kRefused;
+          reply.say("refused: planterd records always (--record); download the recording");
+          return;
+        }
+        const CommandOutcome outcome = controller_.command(c);
+        reply.result = console::console_result(outcome);
+        reply.say(command_outcome_text(outcome));
+      });
+    }
     controller_.tick(now, dt);
     hw_.edge_latency().tick_done(monotonic_now_ns());
     const Telemetry& t = controller_.telemetry();
     if (rows_ != nullptr && !rows_->push(Row{static_cast<double>(now - start_ns_) * 1e-9, t}))
       shared_.rows_dropped.fetch_add(1, std::memory_order_relaxed);
+    // Ten samples a second to the console's threads; a full queue drops one.
+    if (console_rows_ != nullptr && ++console_tick_ % console_every_ == 0)
+      console_rows_->push(Row{static_cast<double>(now - start_ns_) * 1e-9, t});
     if (shared_.status_mutex.try_lock()) {
       shared_.status = t;
       shared_.status_mutex.unlock();
@@ -146,6 +179,10 @@ class LoopTick {
   hal::linux_backend::TickTrace& trace_;
   daemon::BoardHardware& hw_;
   std::int64_t start_ns_, loop_start_ns_, duration_ns_, overrun_threshold_ns_, period_ns_;
+  console::CommandChannel* commands_;
+  console::SpscQueue<Row>* console_rows_;
+  std::int64_t console_every_;
+  std::int64_t console_tick_ = 0;
   std::int64_t stop_at_ns_ = -1;
   bool run_requested_ = false;
   std::uint32_t link_resets_seen_ = 0;
@@ -267,6 +304,70 @@ class MainThread {
   bool recording_ok_ = true;
 };
 
+// The operator's console on the board's [console] port, served from its own threads. Without
+// the pairing secret's file it is for viewing only, and says so.
+class OperatorConsole {
+ public:
+#ifdef PLANTERD_WITH_CONSOLE
+  OperatorConsole(const config::BoardConfig& board, const Options& opt,
+                  console::CommandChannel& commands) {
+    console::ConsoleOptions o;
+    o.bind = board.console.bind;
+    o.port = board.console.port;
+    o.secrets.viewer = board.console.viewer_secret;
+    std::string secret;
+    try {
+      secret = config::read_input_file(opt.pairing_secret_file, 4096);
+      secret = secret.substr(0, secret.find('\n'));
+    } catch (const config::ConfigError& e) {
+      std::fprintf(stderr, "planterd: console: viewing only: no pairing secret (%s)\n", e.what());
+    }
+    if (!secret.empty()) {
+      o.secrets.pairing = secret;
+      o.commands = &commands;
+      o.audit_log = opt.console_audit_log;
+    }
+    if (!opt.record.empty())
+      o.recordings_dir = std::filesystem::path(opt.record).parent_path().string();
+    if (o.recordings_dir.empty() && !opt.record.empty()) o.recordings_dir = ".";
+    console::ConsoleInfo info;
+    const ControllerConfig& c = board.controller;
+    info.title = board.name;
+    info.clamp_ceiling_N = c.clamp.ceiling_N;
+    info.target_spacing_mm = c.monitor.target_spacing_mm;
+    info.photo_eye = c.monitor.sensor_fitted;
+    info.depth_range_mm = depth_range_mm(c);
+    info.clamp_force_range_N = clamp_force_range_N(c);
+    server_ = std::make_unique<console::ConsoleServer>(o, info);
+    server_->start();
+    std::fprintf(stderr, "planterd: console on http://%s:%d/ (%s; audit log %s)\n", o.bind.c_str(),
+                 server_->port(),
+                 o.commands != nullptr ? "commands with the pairing secret" : "viewing only",
+                 o.commands != nullptr ? o.audit_log.c_str() : "none");
+  }
+  // The main thread: the loop's samples since the last call, to the console.
+  void publish(console::SpscQueue<Row>& rows) {
+    Row row{};
+    while (rows.pop(row)) server_->publish(console::live_sample(row.t_s, row.telemetry));
+  }
+
+ private:
+  std::unique_ptr<console::ConsoleServer> server_;
+#else
+  OperatorConsole(const config::BoardConfig& board, const Options&, console::CommandChannel&) {
+    std::fprintf(stderr,
+                 "planterd: warning: %s sets a console port, but this build has no console "
+                 "(built without cpp-httplib)\n",
+                 board.file.c_str());
+  }
+  void publish(console::SpscQueue<Row>& rows) {
+    Row row{};
+    while (rows.pop(row)) {
+    }
+  }
+#endif
+};
+
 // The command line; -1 to go on, else the exit code (--help: 0, a bad option: 2).
 int parse_options(int argc, char** argv, Options& opt) {
   CLI::App app{"planterd: the scallion transplanter's controller daemon"};
@@ -285,6 +386,12 @@ int parse_options(int argc, char** argv, Options& opt) {
   app.add_option("--commissioned-stamp", opt.commissioned_stamp,
                  "start the drives (--run) only while this stamp from `planter-can check "
                  "--mark-commissioned` matches the board file");
+  app.add_option("--pairing-secret-file", opt.pairing_secret_file,
+                 "the console's operator pairing secret (the package makes it at installation)")
+      ->capture_default_str();
+  app.add_option("--console-audit-log", opt.console_audit_log,
+                 "every console login and command is appended here")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -349,6 +456,16 @@ int main(int argc, char** argv) {
     std::string why;
     shared.commissioned = config::commissioned(opt.commissioned_stamp, opt.board, why);
   }
+  console::CommandChannel commands;
+  console::SpscQueue<Row> console_rows(64);
+  std::unique_ptr<OperatorConsole> operator_console;
+  if (board.console.port > 0) {
+    try {
+      operator_console = std::make_unique<OperatorConsole>(board, opt, commands);
+    } catch (const std::exception& e) {
+      return fail(2, e.what());
+    }
+  }
   hal::linux_backend::RtLoopConfig rt_config;
   rt_config.period_ns = board.controller.can.sync_period_ns;
   rt_config.priority = board.realtime.priority;
@@ -370,7 +487,9 @@ int main(int argc, char** argv) {
     }
     setup_done = true;
     LoopTick tick(opt, controller, shared, recording ? &rows : nullptr, trace, *hw, start_ns,
-                  board.controller.supervisor.overrun_threshold_ns, rt_config.period_ns);
+                  board.controller.supervisor.overrun_threshold_ns, rt_config.period_ns,
+                  operator_console ? &commands : nullptr,
+                  operator_console ? &console_rows : nullptr);
     loop.run([&](std::int64_t now, std::int64_t dt) { return tick(now, dt, loop.last_late_ns()); });
     shared.finished = true;
   });
@@ -390,7 +509,11 @@ int main(int argc, char** argv) {
   service.notify("READY=1\nSTATUS=booting CANopen nodes");
 
   MainThread main_thread(opt, shared, service, recording.get(), rows, trace, *hw);
-  while (!shared.finished) main_thread.wake(signals);
+  while (!shared.finished) {
+    main_thread.wake(signals);
+    if (operator_console) operator_console->publish(console_rows);
+  }
+  operator_console.reset();
   loop_thread.join();
   const bool recording_ok = main_thread.drain();
   const auto& lat = loop.latency();

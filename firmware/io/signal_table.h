@@ -148,6 +148,10 @@ inline constexpr std::array kSignals = {
                            &PlantingFigures::multiples),
     signal_decl::monitored("singulation_pct", "%", "100 - skips - multiples, in % of spacings", 2,
                            &PlantingFigures::singulation_pct),
+    // The operator's set-point, which the depth command ramps to (firmware/control/
+    // furrow_depth_loop.h): a change from the console shows here on the next tick.
+    signal_decl::commanded("depth_target_mm", "mm", "furrow depth target (operator's set-point)", 1,
+                           &MachineCommand::depth_target_mm),
     // In the process image, not a recording column.
     signal_decl::commanded("clamp_pos_cmd_mm", "mm", "roller position command", 4,
                            &MachineCommand::clamp_pos_cmd_mm, NodeRole::kRollerActuator,

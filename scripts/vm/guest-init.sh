@@ -41,6 +41,7 @@ mount -t devpts devpts /host/dev/pts
 mount -t tmpfs shm /host/dev/shm
 
 in_host() { chroot /host /bin/sh -c "$*"; }
+in_host "ip link set lo up" || say "loopback setup failed"  # planterd's console in the tests
 in_host "ip link add dev vcan0 type vcan && ip link set vcan0 txqueuelen 100 && ip link set up vcan0" ||
   { say "vcan0 setup failed"; finish 90; }
 C=/host/sys/kernel/config/gpio-sim/planter

@@ -5,16 +5,102 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <ctime>
+#include <filesystem>
 #include <limits>
+#include <memory>
+#include <optional>
+#include <stdexcept>
 #include <thread>
 
+#include "config/input_file.h"
+#include "console/operator_sessions.h"
+#include "firmware/controller/setpoint_rules.h"
 #include "sim/runner/lockstep_runner.h"
+#include "sim/runner/recording_writer.h"
 #include "sim/runner/summary.h"
 
 namespace planter::sim {
 namespace {
 std::atomic<bool> g_stop{false};  // set by SIGINT/SIGTERM: the only way a signal can talk
 extern "C" void on_signal(int) { g_stop.store(true); }
+
+// A secret from its file: the first line, which must not be empty.
+std::string read_secret(const std::string& path) {
+  std::string text = config::read_input_file(path, 4096);
+  text = text.substr(0, text.find('\n'));
+  if (console::OperatorSessions::normalise(text).size() < 12)
+    throw std::runtime_error(path + ": a secret needs at least 12 letters or digits");
+  return text;
+}
+
+// The console's recordings: started and stopped by the operator, one file each, flushed five
+// times a second so a download or a reader sees the last 0.2 s.
+class LiveRecorder {
+ public:
+  LiveRecorder(std::string dir, const Scenario& scenario)
+      : dir_(std::move(dir)), scenario_(scenario) {}
+
+  void start(console::ConsoleReply& reply) {
+    if (writer_) return refuse(reply, "already recording to " + name_);
+    std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char name[64];
+    std::strftime(name, sizeof name, "live-%Y%m%dT%H%M%SZ.csv", &utc);
+    name_ = name;
+    const std::string path = dir_ + "/" + name_;
+    try {
+      writer_ = std::make_unique<RecordingWriter>(
+          path, path,
+          std::vector<std::pair<std::string, std::string>>{{"source", "planter-sim live"},
+                                                           {"scenario", scenario_.name},
+                                                           {"board", scenario_.board.name},
+                                                           {"units", "1"}});
+    } catch (const std::exception& e) {
+      reply.result = console::ConsoleResult::kFailed;
+      return reply.say(e.what());
+    }
+    reply.result = console::ConsoleResult::kAccepted;
+    reply.say(("recording to " + name_).c_str());
+  }
+
+  void stop(console::ConsoleReply& reply) {
+    if (!writer_) return refuse(reply, "not recording");
+    try {
+      auto writer = std::move(writer_);
+      writer->close();
+    } catch (const std::exception& e) {
+      reply.result = console::ConsoleResult::kFailed;
+      return reply.say(e.what());
+    }
+    reply.result = console::ConsoleResult::kAccepted;
+    reply.say(("recording " + name_ + " closed").c_str());
+  }
+
+  void write(const TickRecord& r) {
+    if (writer_) writer_->write(r);
+  }
+
+  // A recording that can no longer be written stops, and says so.
+  void flush() {
+    if (writer_ && !writer_->flush()) {
+      std::fprintf(stderr, "planter-sim live: %s/%s: cannot be written; recording stopped\n",
+                   dir_.c_str(), name_.c_str());
+      writer_.reset();
+    }
+  }
+
+ private:
+  static void refuse(console::ConsoleReply& reply, const std::string& words) {
+    reply.result = console::ConsoleResult::kRefused;
+    reply.say(words.c_str());
+  }
+  std::string dir_;
+  const Scenario& scenario_;
+  std::unique_ptr<RecordingWriter> writer_;
+  std::string name_;
+};
 }  // namespace
 
 int run_live(const std::string& scenario_path, const LiveOptions& options) {
@@ -26,19 +112,47 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
   info.target_spacing_mm = cfg.monitor.target_spacing_mm;
   info.photo_eye = cfg.monitor.sensor_fitted;
   info.simulated = true;
-  console::ConsoleServer server(options.console, info);
+  info.depth_range_mm = depth_range_mm(cfg);
+  info.clamp_force_range_N = clamp_force_range_N(cfg);
+  info.can_record = true;
+
+  console::ConsoleOptions console_options = options.console;
+  console::CommandChannel commands;
+  const std::string recordings = options.dir + "/recordings";
+  std::string pairing;
+  if (!options.view_only) {
+    std::filesystem::create_directories(recordings);
+    pairing = options.pairing_secret_file.empty() ? console::OperatorSessions::new_secret()
+                                                  : read_secret(options.pairing_secret_file);
+    console_options.commands = &commands;
+    console_options.audit_log = options.dir + "/audit.log";
+    console_options.secrets.pairing = pairing;
+    console_options.recordings_dir = recordings;
+  }
+  if (!options.viewer_secret_file.empty())
+    console_options.secrets.viewer = read_secret(options.viewer_secret_file);
+  console::ConsoleServer server(console_options, info);
   server.start();
   std::printf("console: http://%s:%d/  (%s; Ctrl-C to stop)\n", options.console.bind.c_str(),
               server.port(), scenario.name.c_str());
+  if (!options.view_only) {
+    // The terminal is this machine's screen: the secret is shown here, and nowhere else.
+    if (options.pairing_secret_file.empty())
+      std::printf("console: operator pairing secret %s (new for this run)\n", pairing.c_str());
+    std::printf("console: recordings in %s, audit log %s\n", recordings.c_str(),
+                console_options.audit_log.c_str());
+  }
   std::fflush(stdout);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
   LockstepRunner runner(scenario);
+  LiveRecorder recorder(recordings, scenario);
   // Ten samples a second to the console (the page polls five times a second).
   const std::int64_t every = std::max<std::int64_t>(1, 100'000'000 / cfg.can.sync_period_ns);
   std::int64_t tick = 0;
   runner.set_observer([&](const TickRecord& r) {
+    recorder.write(r);
     if (++tick % every != 0) return;
     console::LiveSample s =
         console::live_sample(static_cast<double>(r.controller.time_ns) * 1e-9, r.controller);
@@ -48,14 +162,40 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
     server.publish(s);
   });
   const auto start = std::chrono::steady_clock::now();
+  auto next_flush = start;
   while (!g_stop.load()) {
+    // The operator's commands, between two ticks, as planterd's loop takes them.
+    commands.serve([&](const console::ConsoleRequest& request, console::ConsoleReply& reply) {
+      reply.t_s = runner.time_s();
+      OperatorCommand c;
+      if (console::controller_command(request.kind, c, request.value)) {
+        const CommandOutcome outcome = runner.controller().command(c);
+        reply.result = console::console_result(outcome);
+        reply.say(command_outcome_text(outcome));
+      } else if (request.kind == console::ConsoleCommandKind::kRecordStart) {
+        recorder.start(reply);
+      } else {
+        recorder.stop(reply);
+      }
+    });
     runner.step();
     const double t = runner.time_s();
     if (options.duration_s > 0.0 && t >= options.duration_s) break;
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= next_flush) {
+      recorder.flush();
+      next_flush = now + std::chrono::milliseconds(200);
+    }
     std::this_thread::sleep_until(start + std::chrono::duration_cast<std::chrono::nanoseconds>(
                                               std::chrono::duration<double>(t / options.speed)));
   }
   server.stop();
+  console::ConsoleReply closing;
+  recorder.stop(closing);
+  if (closing.result == console::ConsoleResult::kFailed) {
+    std::fprintf(stderr, "planter-sim live: %s\n", closing.text);
+    return 1;
+  }
   std::printf("console: stopped at %.1f s simulated\n", runner.time_s());
   return 0;
 }

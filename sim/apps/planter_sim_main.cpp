@@ -235,6 +235,14 @@ int main(int argc, char** argv) {
   live->add_option("--speed", live_options.speed, "simulated seconds per wall-clock second")
       ->capture_default_str()
       ->check(CLI::Range(0.1, 100.0));
+  live->add_option("--dir", live_options.dir,
+                   "where the console's recordings (recordings/) and audit.log go")
+      ->capture_default_str();
+  live->add_option("--pairing-secret-file", live_options.pairing_secret_file,
+                   "the operator's pairing secret (default: a new one, shown on the terminal)");
+  live->add_option("--viewer-secret-file", live_options.viewer_secret_file,
+                   "viewing needs this secret (default: viewing is open)");
+  live->add_flag("--view-only", live_options.view_only, "the console takes no command");
 #endif
 #ifdef PLANTER_WITH_REPLAY
   std::string model, recording;

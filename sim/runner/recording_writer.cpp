@@ -35,6 +35,10 @@ void RecordingWriter::write(const TickRecord& r) {
                p.disc_omega_radps, p.clamp_force_N, p.depth_mm, p.slip);
 }
 
+bool RecordingWriter::flush() {
+  return file_ != nullptr && std::fflush(file_) == 0 && std::ferror(file_) == 0;
+}
+
 void RecordingWriter::close() {
   if (file_ == nullptr) return;
   const bool failed = std::fflush(file_) != 0 || std::ferror(file_) != 0;

@@ -20,6 +20,8 @@ class RecordingWriter {
   RecordingWriter(const RecordingWriter&) = delete;
   RecordingWriter& operator=(const RecordingWriter&) = delete;
   void write(const TickRecord& row);
+  // Hands what was written to the kernel; false when a write or the flush failed (a full disk).
+  bool flush();
   // Flushes and closes; throws if anything failed to reach the disk.
   void close();
 

@@ -84,6 +84,19 @@ echo $? > c-restart.rc
 
 python3 "$R/tests/hil/check_hil.py" "$BOARD" . || fail=1
 
-# 5. planter-can over vcan0: scan, configure, calibrate, check, record, replay.
+# 5. planterd's console on the board's port, on the real kernel, with a phone's requests.
+rm -f d.* d-*
+echo "test1-pairing-secret-$$" > d-secret
+"$SIM" devices "$R/scenarios/hil-field-short.toml" --board "$BOARD" --can vcan0 --gpio planter-sim \
+  --duration 32 > d-devices.out 2> d-devices.log & DEV=$!
+sleep 1
+"$PLANTERD" --board "$BOARD" --record d.csv --run --duration 30 --log-period 0 \
+  --pairing-secret-file d-secret --console-audit-log d-audit.log 2> d-planterd.log & PD=$!
+python3 "$R/tests/hil/console_client.py" http://127.0.0.1:8080 d-secret d-audit.log d.csv || fail=1
+wait $PD; rc=$?
+[ $rc -eq 0 ] && note "console: planterd exit 0" || { note "FAIL console: planterd exit $rc"; cat d-planterd.log; fail=1; }
+wait $DEV
+
+# 6. planter-can over vcan0: scan, configure, calibrate, check, record, replay.
 sh "$R/tests/hil/guest_can_test.sh" "$R" "$B" || fail=1
 exit $fail

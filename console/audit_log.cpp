@@ -1,0 +1,76 @@
+#include "console/audit_log.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <stdexcept>
+
+#include "config/durable_file.h"
+
+namespace planter::console {
+namespace {
+// Values come from the network: keep a line one line, and printable.
+std::string clean(const std::string& s) {
+  std::string out;
+  for (char c : s.substr(0, 80)) {
+    const auto u = static_cast<unsigned char>(c);
+    out.push_back(u >= 0x21 && u < 0x7f && c != '"' ? c : '_');
+  }
+  return out.empty() ? "-" : out;
+}
+// The result is in words: spaces stay, quotes and control characters do not.
+std::string words(const std::string& s) {
+  std::string out;
+  for (char c : s.substr(0, 200)) {
+    const auto u = static_cast<unsigned char>(c);
+    out.push_back(u >= 0x20 && u < 0x7f && c != '"' ? c : '_');
+  }
+  return out;
+}
+}  // namespace
+
+AuditLog::AuditLog(const std::string& path)
+    : path_(path), fd_(::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0640)) {
+  if (fd_ < 0)
+    throw std::runtime_error(path +
+                             ": the console's audit log cannot be opened: " + std::strerror(errno));
+}
+
+AuditLog::~AuditLog() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+bool AuditLog::append(const std::string& address, const std::string& session,
+                      const std::string& what, const std::string& value,
+                      const std::string& result) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!ok_) return false;
+  timespec now{};
+  clock_gettime(CLOCK_REALTIME, &now);
+  std::tm utc{};
+  gmtime_r(&now.tv_sec, &utc);
+  char when[40];
+  std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%S", &utc);
+  char ms[24];
+  std::snprintf(ms, sizeof ms, ".%03ldZ", now.tv_nsec / 1'000'000);
+  const std::string line = std::string(when) + ms + " from=" + clean(address) +
+                           " session=" + clean(session) + " " + clean(what) +
+                           " value=" + clean(value) + " result=\"" + words(result) + "\"\n";
+  if (!config::write_all(fd_, line.data(), line.size()) || ::fdatasync(fd_) != 0) {
+    std::fprintf(stderr, "console: %s: cannot be written (%s): commands are refused from now\n",
+                 path_.c_str(), std::strerror(errno));
+    ok_ = false;
+  }
+  return ok_;
+}
+
+bool AuditLog::ok() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return ok_;
+}
+
+}  // namespace planter::console

@@ -1,0 +1,236 @@
+// The console's routes that change something or open a session: login, logout, commands, and
+// the recordings' downloads. What a security reviewer checks is all here, in order:
+// origin, content type, session, CSRF token, role, audit log, body, rate, then the loop.
+#include <httplib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "console/console_server.h"
+
+namespace planter::console {
+namespace {
+constexpr const char* kCookie = "planter_session";
+constexpr auto kAnswerTimeout = std::chrono::milliseconds(1000);
+
+void answer(httplib::Response& res, int status, const nlohmann::json& body) {
+  res.status = status;
+  res.set_content(body.dump(), "application/json");
+}
+void error(httplib::Response& res, int status, const std::string& words) {
+  answer(res, status, {{"error", words}});
+}
+
+std::string cookie_token(const httplib::Request& req) {
+  const std::string cookies = req.get_header_value("Cookie");
+  const std::string key = std::string(kCookie) + "=";
+  for (std::size_t at = 0; at < cookies.size();) {
+    std::size_t end = cookies.find(';', at);
+    if (end == std::string::npos) end = cookies.size();
+    std::size_t start = at;
+    while (start < end && cookies[start] == ' ') ++start;
+    if (cookies.compare(start, key.size(), key) == 0)
+      return cookies.substr(start + key.size(), end - start - key.size());
+    at = end + 1;
+  }
+  return {};
+}
+
+// A request that changes something must come from this console's own page: a browser names
+// the page's origin, and it must be this server's; a cross-site fetch is refused before any
+// secret or session is looked at. Clients that are not browsers send no Origin: the CSRF
+// token still binds them to a session.
+bool same_origin(const httplib::Request& req, httplib::Response& res) {
+  const std::string origin = req.get_header_value("Origin");
+  const std::string site = req.get_header_value("Sec-Fetch-Site");
+  if ((!origin.empty() && origin != "http://" + req.get_header_value("Host")) ||
+      (!site.empty() && site != "same-origin" && site != "none")) {
+    error(res, 403,
+          "refused: the request came from another site (" + (origin.empty() ? site : origin) + ")");
+    return false;
+  }
+  // A JSON body cannot be sent across sites without the browser asking first.
+  if (req.get_header_value("Content-Type").rfind("application/json", 0) != 0) {
+    error(res, 415, "send the command as application/json");
+    return false;
+  }
+  return true;
+}
+
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+std::string range_text(const SetpointRange& r, const char* unit) {
+  return number_text(r.min) + " to " + (r.max_exclusive ? "below " : "") + number_text(r.max) +
+         " " + unit;
+}
+
+int http_status(ConsoleResult r) {
+  switch (r) {
+    case ConsoleResult::kAccepted:
+      return 200;
+    case ConsoleResult::kOutOfRange:
+      return 422;
+    case ConsoleResult::kRefused:
+      return 409;
+    case ConsoleResult::kFailed:
+      return 500;
+    case ConsoleResult::kNoAnswer:
+      return 504;
+  }
+  return 500;
+}
+}  // namespace
+
+bool ConsoleServer::may_view(const httplib::Request& req, httplib::Response& res) {
+  if (sessions_->viewing_open() || sessions_->find(cookie_token(req))) return true;
+  error(res, 401, "log in with the viewer secret to see this machine");
+  return false;
+}
+
+void ConsoleServer::login(const httplib::Request& req, httplib::Response& res) {
+  const auto body = nlohmann::json::parse(req.body, nullptr, false);
+  if (!body.is_object() || !body.contains("secret") || !body["secret"].is_string())
+    return error(res, 400, "send {\"secret\": \"...\"}");
+  const LoginResult r = sessions_->login(req.remote_addr, body["secret"].get<std::string>());
+  std::string said;
+  if (r.status == LoginResult::Status::kRateLimited) {
+    const long wait = std::lround(r.retry_after_s);
+    res.set_header("Retry-After", std::to_string(wait));
+    said = "too many wrong secrets: wait " + std::to_string(wait) + " s";
+    error(res, 429, said);
+  } else if (r.status == LoginResult::Status::kWrongSecret) {
+    said = "wrong secret";
+    error(res, 401, "wrong secret (the pairing secret is on the machine's label)");
+  } else {
+    said = std::string("logged in as ") + role_name(r.role);
+    res.set_header("Set-Cookie",
+                   std::string(kCookie) + "=" + r.token + "; HttpOnly; SameSite=Strict; Path=/");
+    answer(res, 200, {{"role", role_name(r.role)}, {"csrf", r.csrf}});
+  }
+  if (audit_) audit_->append(req.remote_addr, r.id.empty() ? "-" : r.id, "login", "-", said);
+}
+
+void ConsoleServer::command(const httplib::Request& req, httplib::Response& res) {
+  const std::string token = cookie_token(req);
+  const auto session = sessions_->find(token);
+  const std::string who = session ? session->id : "-";
+  std::string what = "command", value = "-";
+  // Every answer below is also written to the audit log.
+  const auto refuse = [&](int status, const std::string& words) {
+    error(res, status, words);
+    audit_->append(req.remote_addr, who, what, value, words);
+  };
+  const auto body = nlohmann::json::parse(req.body, nullptr, false);
+  if (body.is_object() && body.contains("command") && body["command"].is_string())
+    what = body["command"].get<std::string>();
+  if (body.is_object() && body.contains("value") && body["value"].is_number())
+    value = number_text(body["value"].get<double>());
+  if (!session) return refuse(401, "log in with the pairing secret to give commands");
+  if (req.get_header_value("X-CSRF-Token") != session->csrf)
+    return refuse(403, "refused: the request has no valid CSRF token (reload the page)");
+  if (session->role != Role::kOperator)
+    return refuse(403, "refused: a viewer cannot give commands; log in with the pairing secret");
+  if (!audit_->ok()) {
+    error(res, 503, "refused: the audit log " + audit_->path() + " cannot be written");
+    return;
+  }
+  ConsoleCommandKind kind{};
+  if (!body.is_object() || !parse_command_name(what.c_str(), kind))
+    return refuse(400,
+                  "send {\"command\": run | stop | fault_reset | set_depth_mm | "
+                  "set_clamp_force_N | record_start | record_stop, \"value\": number}");
+  if (takes_value(kind) && value == "-") return refuse(400, what + " needs a number: \"value\"");
+  if ((kind == ConsoleCommandKind::kRecordStart || kind == ConsoleCommandKind::kRecordStop) &&
+      !info_.can_record)
+    return refuse(409, "refused: this machine does not record from the console");
+  if (!sessions_->take_command(token))
+    return refuse(429, "too many commands: at most " +
+                           std::to_string(options_.policy.commands_per_window) + " in " +
+                           number_text(options_.policy.command_window_s) + " s");
+  const double v = takes_value(kind) ? body["value"].get<double>() : 0.0;
+  const ConsoleReply reply = options_.commands->submit(kind, v, kAnswerTimeout);
+  std::string words = reply.text;
+  if (reply.result == ConsoleResult::kOutOfRange)
+    words = what + " " + value + " is outside " +
+            (kind == ConsoleCommandKind::kSetDepth ? range_text(info_.depth_range_mm, "mm")
+                                                   : range_text(info_.clamp_force_range_N, "N")) +
+            ": nothing changed";
+  const int status = http_status(reply.result);
+  if (!audit_->append(req.remote_addr, who, what, value, words))
+    words += " (the audit log cannot be written: further commands are refused)";
+  answer(
+      res, status,
+      {{"result", status == 200 ? "accepted" : "refused"}, {"message", words}, {"t_s", reply.t_s}});
+}
+
+void ConsoleServer::install_command_routes(httplib::Server& srv) {
+  srv.Get("/api/session", [this](const httplib::Request& req, httplib::Response& res) {
+    const auto s = sessions_->find(cookie_token(req));
+    if (!s) return error(res, 401, "no session");
+    answer(res, 200, {{"role", role_name(s->role)}, {"csrf", s->csrf}});
+  });
+  srv.Post("/api/login", [this](const httplib::Request& req, httplib::Response& res) {
+    if (same_origin(req, res)) login(req, res);
+  });
+  srv.Post("/api/logout", [this](const httplib::Request& req, httplib::Response& res) {
+    if (!same_origin(req, res)) return;
+    sessions_->logout(cookie_token(req));
+    res.set_header("Set-Cookie", std::string(kCookie) + "=; Max-Age=0; Path=/");
+    answer(res, 200, {{"role", "none"}});
+  });
+  if (options_.commands == nullptr) return;
+  srv.Post("/api/command", [this](const httplib::Request& req, httplib::Response& res) {
+    if (same_origin(req, res)) return command(req, res);
+    audit_->append(req.remote_addr, "-", "command", "-", nlohmann::json::parse(res.body)["error"]);
+  });
+}
+
+void ConsoleServer::install_recording_routes(httplib::Server& srv) {
+  namespace fs = std::filesystem;
+  // Only names the console itself gives: no path, no dot first.
+  static const std::regex kName("[A-Za-z0-9][A-Za-z0-9._-]*\\.csv");
+  srv.Get("/api/recordings", [this](const httplib::Request& req, httplib::Response& res) {
+    if (!may_view(req, res)) return;
+    nlohmann::json list = nlohmann::json::array();
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(options_.recordings_dir, ec)) {
+      const std::string name = e.path().filename().string();
+      if (e.is_regular_file(ec) && std::regex_match(name, kName))
+        list.push_back({{"name", name}, {"bytes", e.file_size(ec)}});
+    }
+    std::sort(list.begin(), list.end(),
+              [](const auto& a, const auto& b) { return a["name"] < b["name"]; });
+    answer(res, 200, {{"recordings", list}});
+  });
+  srv.Get(R"(/api/recordings/([A-Za-z0-9][A-Za-z0-9._-]*\.csv))",
+          [this](const httplib::Request& req, httplib::Response& res) {
+            if (!may_view(req, res)) return;
+            const std::string name = req.matches[1];
+            const fs::path path = fs::path(options_.recordings_dir) / name;
+            auto file = std::make_shared<std::ifstream>(path, std::ios::binary);
+            std::error_code ec;
+            const auto size = fs::file_size(path, ec);
+            if (!*file || ec) return error(res, 404, "no recording " + name);
+            res.set_header("Content-Disposition", "attachment; filename=\"" + name + "\"");
+            // The size when asked: a recording still being written is sent as far as it was.
+            res.set_content_provider(
+                size, "text/csv",
+                [file](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+                  char buffer[65536];
+                  file->seekg(static_cast<std::streamoff>(offset));
+                  file->read(buffer, static_cast<std::streamsize>(
+                                         std::min<std::size_t>(length, sizeof buffer)));
+                  const auto got = file->gcount();
+                  if (got <= 0) return false;
+                  return sink.write(buffer, static_cast<std::size_t>(got));
+                });
+          });
+}
+
+}  // namespace planter::console

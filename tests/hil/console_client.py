@@ -1,0 +1,82 @@
+#!/usr/bin/python3
+"""planterd's console on the real kernel (in the test VM), as a phone on the machine's network
+would use it: the page and the live values open to view; a command without a session gets
+401; the operator logs in with the pairing secret, sets the depth (which the recording then
+holds), and is told a depth out of range is refused; wrong secrets are limited; the audit log
+has it all; the recording is offered for download. Prints one line per check ("hil: ...").
+Usage: console_client.py URL SECRET_FILE AUDIT_LOG RECORDING   (exits 1 on any failure)
+"""
+import json, os, sys, time, urllib.error, urllib.request
+
+url, secret_file, audit_path, recording = sys.argv[1:5]
+secret = open(secret_file).read().split("\n")[0]
+fail = 0
+
+
+def say(ok, what):
+    global fail
+    print("hil: %s%s" % ("" if ok else "FAIL ", what))
+    fail |= 0 if ok else 1
+
+
+def call(path, body=None, headers=None):
+    h = dict(headers or {})
+    data = None
+    if body is not None:
+        h["Content-Type"] = "application/json"
+        data = json.dumps(body).encode()
+    try:
+        with urllib.request.urlopen(urllib.request.Request(url + path, data=data, headers=h),
+                                    timeout=10) as r:
+            return r.status, r.read().decode(), r.headers
+    except urllib.error.HTTPError as e:
+        return e.code, e.read().decode(), e.headers
+
+
+state = None
+for _ in range(100):
+    try:
+        status, body, _ = call("/api/state")
+        state = json.loads(body)
+        if state.get("state") == "running":
+            break
+    except (OSError, ValueError):
+        pass
+    time.sleep(0.2)
+say(state is not None and state.get("state") == "running",
+    "console: the live state is open to view: %s" % (state or {}).get("state"))
+status, page, _ = call("/")
+say(status == 200 and "Transplanter console" in page, "console: the page loads (%d)" % status)
+status, body, _ = call("/api/command", {"command": "set_depth_mm", "value": 90})
+say(status == 401, "console: a command without a session gets %d" % status)
+status, body, headers = call("/api/login", {"secret": secret})
+cookie = headers.get("Set-Cookie", "").split(";")[0]
+csrf = json.loads(body).get("csrf", "") if status == 200 else ""
+say(status == 200 and cookie, "console: the operator logs in with the pairing secret (%d)" % status)
+auth = {"Cookie": cookie, "X-CSRF-Token": csrf}
+sent = time.time()
+status, body, _ = call("/api/command", {"command": "set_depth_mm", "value": 90}, auth)
+say(status == 200, "console: set_depth_mm 90: %d %s" % (status, body))
+status, body, _ = call("/api/command", {"command": "set_depth_mm", "value": 300}, auth)
+say(status == 422 and "nothing changed" in body, "console: set_depth_mm 300: %d %s" % (status, body))
+# The recording is flushed every 200 ms: the new target must be there within 1 s.
+seen = None
+while time.time() - sent < 3 and seen is None:
+    lines = [l for l in open(recording).read().splitlines() if l and not l.startswith("#")]
+    col = lines[0].split(",").index("depth_target_mm")
+    if any(l.count(",") == lines[0].count(",") and float(l.split(",")[col]) == 90.0
+           for l in lines[1:]):
+        seen = time.time() - sent
+    time.sleep(0.05)
+say(seen is not None and seen <= 1.0, "console: the depth target reached the recording in %s"
+    % ("%.2f s" % seen if seen is not None else "more than 3 s"))
+codes = [call("/api/login", {"secret": "wrong-%d" % i})[0] for i in range(7)]
+say(codes == [401] * 5 + [429] * 2, "console: 7 wrong secrets: %s" % codes)
+status, body, _ = call("/api/recordings")
+names = [r["name"] for r in json.loads(body).get("recordings", [])] if status == 200 else []
+say(os.path.basename(recording) in names, "console: the recording is offered: %s" % names)
+audit = open(audit_path).read()
+for words in ('set_depth_mm value=90 result="accepted"', "set_depth_mm value=300",
+              'login value=- result="logged in as operator"', 'result="wrong secret"'):
+    say(words in audit, "console: the audit log has " + words)
+sys.exit(fail)

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 
+#include "console/console_request.h"
 #include "console/console_server.h"
 
 namespace planter::console {
@@ -24,18 +25,7 @@ void error(httplib::Response& res, int status, const std::string& words) {
 }
 
 std::string cookie_token(const httplib::Request& req) {
-  const std::string cookies = req.get_header_value("Cookie");
-  const std::string key = std::string(kCookie) + "=";
-  for (std::size_t at = 0; at < cookies.size();) {
-    std::size_t end = cookies.find(';', at);
-    if (end == std::string::npos) end = cookies.size();
-    std::size_t start = at;
-    while (start < end && cookies[start] == ' ') ++start;
-    if (cookies.compare(start, key.size(), key) == 0)
-      return cookies.substr(start + key.size(), end - start - key.size());
-    at = end + 1;
-  }
-  return {};
+  return session_cookie(req.get_header_value("Cookie"));
 }
 
 // A request that changes something must come from this console's own page: a browser names
@@ -94,10 +84,9 @@ bool ConsoleServer::may_view(const httplib::Request& req, httplib::Response& res
 }
 
 void ConsoleServer::login(const httplib::Request& req, httplib::Response& res) {
-  const auto body = nlohmann::json::parse(req.body, nullptr, false);
-  if (!body.is_object() || !body.contains("secret") || !body["secret"].is_string())
-    return error(res, 400, "send {\"secret\": \"...\"}");
-  const LoginResult r = sessions_->login(req.remote_addr, body["secret"].get<std::string>());
+  const auto secret = login_secret(req.body);
+  if (!secret) return error(res, 400, "send {\"secret\": \"...\"}");
+  const LoginResult r = sessions_->login(req.remote_addr, *secret);
   std::string said;
   if (r.status == LoginResult::Status::kRateLimited) {
     const long wait = std::lround(r.retry_after_s);
@@ -120,17 +109,14 @@ void ConsoleServer::command(const httplib::Request& req, httplib::Response& res)
   const std::string token = cookie_token(req);
   const auto session = sessions_->find(token);
   const std::string who = session ? session->id : "-";
-  std::string what = "command", value = "-";
+  const CommandBody body = parse_command_body(req.body);
+  const std::string& what = body.name;
+  const std::string& value = body.value_text;
   // Every answer below is also written to the audit log.
   const auto refuse = [&](int status, const std::string& words) {
     error(res, status, words);
     audit_->append(req.remote_addr, who, what, value, words);
   };
-  const auto body = nlohmann::json::parse(req.body, nullptr, false);
-  if (body.is_object() && body.contains("command") && body["command"].is_string())
-    what = body["command"].get<std::string>();
-  if (body.is_object() && body.contains("value") && body["value"].is_number())
-    value = number_text(body["value"].get<double>());
   if (!session) return refuse(401, "log in with the pairing secret to give commands");
   if (req.get_header_value("X-CSRF-Token") != session->csrf)
     return refuse(403, "refused: the request has no valid CSRF token (reload the page)");
@@ -140,12 +126,8 @@ void ConsoleServer::command(const httplib::Request& req, httplib::Response& res)
     error(res, 503, "refused: the audit log " + audit_->path() + " cannot be written");
     return;
   }
-  ConsoleCommandKind kind{};
-  if (!body.is_object() || !parse_command_name(what.c_str(), kind))
-    return refuse(400,
-                  "send {\"command\": run | stop | fault_reset | set_depth_mm | "
-                  "set_clamp_force_N | record_start | record_stop, \"value\": number}");
-  if (takes_value(kind) && value == "-") return refuse(400, what + " needs a number: \"value\"");
+  if (!body.ok) return refuse(400, body.error);
+  const ConsoleCommandKind kind = body.kind;
   if ((kind == ConsoleCommandKind::kRecordStart || kind == ConsoleCommandKind::kRecordStop) &&
       !info_.can_record)
     return refuse(409, "refused: this machine does not record from the console");
@@ -153,8 +135,7 @@ void ConsoleServer::command(const httplib::Request& req, httplib::Response& res)
     return refuse(429, "too many commands: at most " +
                            std::to_string(options_.policy.commands_per_window) + " in " +
                            number_text(options_.policy.command_window_s) + " s");
-  const double v = takes_value(kind) ? body["value"].get<double>() : 0.0;
-  const ConsoleReply reply = options_.commands->submit(kind, v, kAnswerTimeout);
+  const ConsoleReply reply = options_.commands->submit(kind, body.value, kAnswerTimeout);
   std::string words = reply.text;
   if (reply.result == ConsoleResult::kOutOfRange)
     words = what + " " + value + " is outside " +

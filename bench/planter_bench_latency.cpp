@@ -141,11 +141,7 @@ class ConsoleLoad {
   // The loop's side, as planterd's: no lock, no allocation, no wait.
   void tick(long n, double t_s, sim::LockstepRunner& runner) {
     commands.serve([&](const console::ConsoleRequest& request, console::ConsoleReply& reply) {
-      OperatorCommand c;
-      console::controller_command(request.kind, c, request.value);
-      const CommandOutcome outcome = runner.controller().command(c);
-      reply.result = console::console_result(outcome);
-      reply.say(command_outcome_text(outcome));
+      console::answer_with(runner.controller(), request, reply);
     });
     if (n % 10 == 0) server_->publish(console::live_sample(t_s, runner.controller().telemetry()));
   }

@@ -61,6 +61,21 @@ const char* command_name(ConsoleCommandKind kind);
   return k == ConsoleCommandKind::kSetDepth || k == ConsoleCommandKind::kSetClampForce;
 }
 
+// The loop's answer to a request: the controller (a ControlCycle) decides. A request that is
+// not the controller's is refused, never taken for another command.
+template <typename Controller>
+void answer_with(Controller& controller, const ConsoleRequest& request, ConsoleReply& reply) {
+  OperatorCommand c;
+  if (!controller_command(request.kind, c, request.value)) {
+    reply.result = ConsoleResult::kRefused;
+    reply.say("refused: not a command for the controller");
+    return;
+  }
+  const CommandOutcome outcome = controller.command(c);
+  reply.result = console_result(outcome);
+  reply.say(command_outcome_text(outcome));
+}
+
 class CommandChannel {
  public:
   explicit CommandChannel(std::size_t capacity = 16) : requests_(capacity), replies_(capacity) {}

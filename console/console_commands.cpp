@@ -128,14 +128,19 @@ void ConsoleServer::command(const httplib::Request& req, httplib::Response& res)
   }
   if (!body.ok) return refuse(400, body.error);
   const ConsoleCommandKind kind = body.kind;
-  if ((kind == ConsoleCommandKind::kRecordStart || kind == ConsoleCommandKind::kRecordStop) &&
-      !info_.can_record)
+  const bool recording =
+      kind == ConsoleCommandKind::kRecordStart || kind == ConsoleCommandKind::kRecordStop;
+  if (recording && options_.recording == nullptr)
     return refuse(409, "refused: this machine does not record from the console");
   if (!sessions_->take_command(token))
     return refuse(429, "too many commands: at most " +
                            std::to_string(options_.policy.commands_per_window) + " in " +
                            number_text(options_.policy.command_window_s) + " s");
-  const ConsoleReply reply = options_.commands->submit(kind, body.value, kAnswerTimeout);
+  // Recordings are the program's, not the loop's: answered here, in the server's thread.
+  const ConsoleReply reply =
+      !recording ? options_.commands->submit(kind, body.value, kAnswerTimeout)
+      : kind == ConsoleCommandKind::kRecordStart ? options_.recording->start()
+                                                 : options_.recording->stop();
   std::string words = reply.text;
   if (reply.result == ConsoleResult::kOutOfRange)
     words = what + " " + value + " is outside " +
@@ -145,9 +150,10 @@ void ConsoleServer::command(const httplib::Request& req, httplib::Response& res)
   const int status = http_status(reply.result);
   if (!audit_->append(req.remote_addr, who, what, value, words))
     words += " (the audit log cannot be written: further commands are refused)";
-  answer(
-      res, status,
-      {{"result", status == 200 ? "accepted" : "refused"}, {"message", words}, {"t_s", reply.t_s}});
+  answer(res, status,
+         {{"result", status == 200 ? "accepted" : "refused"},
+          {"message", words},
+          {"t_s", recording ? nlohmann::json(nullptr) : nlohmann::json(reply.t_s)}});
 }
 
 void ConsoleServer::install_command_routes(httplib::Server& srv) {

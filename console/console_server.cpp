@@ -118,7 +118,7 @@ void ConsoleServer::start() {
       {"photo_eye", info_.photo_eye},
       {"simulated", info_.simulated},
       {"can_command", options_.commands != nullptr},
-      {"can_record", info_.can_record && options_.commands != nullptr},
+      {"can_record", options_.recording != nullptr && options_.commands != nullptr},
       {"recordings", !options_.recordings_dir.empty()},
       {"viewing_open", sessions_->viewing_open()},
       {"depth_min_mm", info_.depth_range_mm.min},

@@ -17,6 +17,7 @@
 #include "console/command_channel.h"
 #include "console/live_sample.h"
 #include "console/operator_sessions.h"
+#include "console/recording_control.h"
 #include "console/spsc_queue.h"
 #include "firmware/controller/setpoint_rules.h"
 
@@ -37,7 +38,8 @@ struct ConsoleOptions {
   std::string audit_log;  // path
   Secrets secrets;
   SessionPolicy policy;
-  std::string recordings_dir;  // recordings offered for download; empty: none
+  std::string recordings_dir;             // recordings offered for download; empty: none
+  RecordingControl* recording = nullptr;  // record_start and record_stop; nullptr: refused
 };
 
 // What the page shows beside the live values: the machine and its limits.
@@ -49,7 +51,6 @@ struct ConsoleInfo {
   bool simulated = false;  // sigma_true is known
   SetpointRange depth_range_mm;
   SetpointRange clamp_force_range_N;
-  bool can_record = false;  // record_start and record_stop are understood
 };
 
 class ConsoleServer {

@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "apps/planterd/board_hardware.h"
+#include "apps/planterd/console_recording.h"
 #include "apps/planterd/crash_safe_recording.h"
 #include "apps/planterd/service_notify.h"
 #include "config/commissioning.h"
@@ -136,15 +137,7 @@ class LoopTick {
     if (commands_ != nullptr) {
       commands_->serve([&](const console::ConsoleRequest& request, console::ConsoleReply& reply) {
         reply.t_s = static_cast<double>(now - start_ns_) * 1e-9;
-        OperatorCommand c;
-        if (!console::controller_command(request.kind, c, request.value)) {
-          reply.result = console::ConsoleResult::kRefused;
-          reply.say("refused: planterd records always (--record); download the recording");
-          return;
-        }
-        const CommandOutcome outcome = controller_.command(c);
-        reply.result = console::console_result(outcome);
-        reply.say(command_outcome_text(outcome));
+        console::answer_with(controller_, request, reply);
       });
     }
     controller_.tick(now, dt);
@@ -194,12 +187,14 @@ class LoopTick {
 class MainThread {
  public:
   MainThread(const Options& opt, Shared& shared, daemon::ServiceNotifier& service,
-             daemon::CrashSafeRecording* recording, console::SpscQueue<Row>& rows,
-             hal::linux_backend::TickTrace& trace, daemon::BoardHardware& hw)
+             daemon::CrashSafeRecording* recording, daemon::ConsoleRecording* console_recording,
+             console::SpscQueue<Row>& rows, hal::linux_backend::TickTrace& trace,
+             daemon::BoardHardware& hw)
       : opt_(opt),
         shared_(shared),
         service_(service),
         recording_(recording),
+        console_recording_(console_recording),
         rows_(rows),
         trace_(trace),
         hw_(hw),
@@ -226,6 +221,7 @@ class MainThread {
                      opt_.record.c_str());
         recording_ok_ = false;
       }
+      if (console_recording_ != nullptr) console_recording_->flush();
     }
     if (const std::string overrun = trace_.take_report(); !overrun.empty()) {
       std::fprintf(stderr, "planterd: %s", overrun.c_str());
@@ -267,7 +263,10 @@ class MainThread {
  private:
   void take_rows() {
     Row row{};
-    while (rows_.pop(row)) recording_->add(row.t_s, row.telemetry);
+    while (rows_.pop(row)) {
+      recording_->add(row.t_s, row.telemetry);
+      if (console_recording_ != nullptr) console_recording_->add(row.t_s, row.telemetry);
+    }
   }
 
   // Looked at once a second, so a check that passes lets the drives start without a restart.
@@ -290,6 +289,7 @@ class MainThread {
   Shared& shared_;
   daemon::ServiceNotifier& service_;
   daemon::CrashSafeRecording* recording_;
+  daemon::ConsoleRecording* console_recording_;
   console::SpscQueue<Row>& rows_;
   hal::linux_backend::TickTrace& trace_;
   daemon::BoardHardware& hw_;
@@ -327,9 +327,16 @@ class OperatorConsole {
       o.commands = &commands;
       o.audit_log = opt.console_audit_log;
     }
-    if (!opt.record.empty())
+    // The console's recordings go beside --record's, from the same rows.
+    if (!opt.record.empty()) {
       o.recordings_dir = std::filesystem::path(opt.record).parent_path().string();
-    if (o.recordings_dir.empty() && !opt.record.empty()) o.recordings_dir = ".";
+      if (o.recordings_dir.empty()) o.recordings_dir = ".";
+      recording_ = std::make_unique<daemon::ConsoleRecording>(
+          o.recordings_dir,
+          std::vector<std::string>{"board: " + board.name, "source: planterd console",
+                                   "units: PRODUCT.md v1"});
+      if (o.commands != nullptr) o.recording = recording_.get();
+    }
     console::ConsoleInfo info;
     const ControllerConfig& c = board.controller;
     info.title = board.name;
@@ -345,6 +352,7 @@ class OperatorConsole {
                  o.commands != nullptr ? "commands with the pairing secret" : "viewing only",
                  o.commands != nullptr ? o.audit_log.c_str() : "none");
   }
+  [[nodiscard]] daemon::ConsoleRecording* recording() { return recording_.get(); }
   // The main thread: the loop's samples since the last call, to the console.
   void publish(console::SpscQueue<Row>& rows) {
     Row row{};
@@ -352,6 +360,7 @@ class OperatorConsole {
   }
 
  private:
+  std::unique_ptr<daemon::ConsoleRecording> recording_;  // before the server: it outlives it
   std::unique_ptr<console::ConsoleServer> server_;
 #else
   OperatorConsole(const config::BoardConfig& board, const Options&, console::CommandChannel&) {
@@ -365,6 +374,7 @@ class OperatorConsole {
     while (rows.pop(row)) {
     }
   }
+  [[nodiscard]] daemon::ConsoleRecording* recording() { return nullptr; }
 #endif
 };
 
@@ -508,14 +518,16 @@ int main(int argc, char** argv) {
   daemon::ServiceNotifier service;
   service.notify("READY=1\nSTATUS=booting CANopen nodes");
 
-  MainThread main_thread(opt, shared, service, recording.get(), rows, trace, *hw);
+  MainThread main_thread(opt, shared, service, recording.get(),
+                         operator_console ? operator_console->recording() : nullptr, rows, trace,
+                         *hw);
   while (!shared.finished) {
     main_thread.wake(signals);
     if (operator_console) operator_console->publish(console_rows);
   }
-  operator_console.reset();
   loop_thread.join();
   const bool recording_ok = main_thread.drain();
+  operator_console.reset();  // after the last rows: its recording takes them too
   const auto& lat = loop.latency();
   const auto& edge = hw->edge_latency().histogram();
   std::fprintf(stderr,

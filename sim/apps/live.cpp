@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <thread>
@@ -34,22 +35,23 @@ std::string read_secret(const std::string& path) {
   return text;
 }
 
-// The console's recordings: started and stopped by the operator, one file each, flushed five
-// times a second so a download or a reader sees the last 0.2 s.
-class LiveRecorder {
+// The console's recordings: started and stopped by the operator (from the console's thread),
+// one file each, written by the simulation's thread and flushed five times a second, so a
+// download or a reader sees the last 0.2 s.
+class LiveRecorder : public console::RecordingControl {
  public:
   LiveRecorder(std::string dir, const Scenario& scenario)
       : dir_(std::move(dir)), scenario_(scenario) {}
 
-  void start(console::ConsoleReply& reply) {
-    if (writer_) return refuse(reply, "already recording to " + name_);
+  console::ConsoleReply start() override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (writer_) return answer(console::ConsoleResult::kRefused, "already recording to " + name_);
     std::time_t now = std::time(nullptr);
     std::tm utc{};
     gmtime_r(&now, &utc);
     char name[64];
     std::strftime(name, sizeof name, "live-%Y%m%dT%H%M%SZ.csv", &utc);
-    name_ = name;
-    const std::string path = dir_ + "/" + name_;
+    const std::string path = dir_ + "/" + name;
     try {
       writer_ = std::make_unique<RecordingWriter>(
           path, path,
@@ -58,32 +60,32 @@ class LiveRecorder {
                                                            {"board", scenario_.board.name},
                                                            {"units", "1"}});
     } catch (const std::exception& e) {
-      reply.result = console::ConsoleResult::kFailed;
-      return reply.say(e.what());
+      return answer(console::ConsoleResult::kFailed, e.what());
     }
-    reply.result = console::ConsoleResult::kAccepted;
-    reply.say(("recording to " + name_).c_str());
+    name_ = name;
+    return answer(console::ConsoleResult::kAccepted, "recording to " + name_);
   }
 
-  void stop(console::ConsoleReply& reply) {
-    if (!writer_) return refuse(reply, "not recording");
+  console::ConsoleReply stop() override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!writer_) return answer(console::ConsoleResult::kRefused, "not recording");
     try {
       auto writer = std::move(writer_);
       writer->close();
     } catch (const std::exception& e) {
-      reply.result = console::ConsoleResult::kFailed;
-      return reply.say(e.what());
+      return answer(console::ConsoleResult::kFailed, e.what());
     }
-    reply.result = console::ConsoleResult::kAccepted;
-    reply.say(("recording " + name_ + " closed").c_str());
+    return answer(console::ConsoleResult::kAccepted, "recording " + name_ + " closed");
   }
 
   void write(const TickRecord& r) {
+    std::lock_guard<std::mutex> lock(mutex_);
     if (writer_) writer_->write(r);
   }
 
   // A recording that can no longer be written stops, and says so.
   void flush() {
+    std::lock_guard<std::mutex> lock(mutex_);
     if (writer_ && !writer_->flush()) {
       std::fprintf(stderr, "planter-sim live: %s/%s: cannot be written; recording stopped\n",
                    dir_.c_str(), name_.c_str());
@@ -92,12 +94,15 @@ class LiveRecorder {
   }
 
  private:
-  static void refuse(console::ConsoleReply& reply, const std::string& words) {
-    reply.result = console::ConsoleResult::kRefused;
+  static console::ConsoleReply answer(console::ConsoleResult result, const std::string& words) {
+    console::ConsoleReply reply;
+    reply.result = result;
     reply.say(words.c_str());
+    return reply;
   }
   std::string dir_;
   const Scenario& scenario_;
+  std::mutex mutex_;  // the console's thread starts and stops; the simulation's writes
   std::unique_ptr<RecordingWriter> writer_;
   std::string name_;
 };
@@ -114,11 +119,11 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
   info.simulated = true;
   info.depth_range_mm = depth_range_mm(cfg);
   info.clamp_force_range_N = clamp_force_range_N(cfg);
-  info.can_record = true;
 
   console::ConsoleOptions console_options = options.console;
   console::CommandChannel commands;
   const std::string recordings = options.dir + "/recordings";
+  LiveRecorder recorder(recordings, scenario);
   std::string pairing;
   if (!options.view_only) {
     std::filesystem::create_directories(recordings);
@@ -128,6 +133,7 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
     console_options.audit_log = options.dir + "/audit.log";
     console_options.secrets.pairing = pairing;
     console_options.recordings_dir = recordings;
+    console_options.recording = &recorder;
   }
   if (!options.viewer_secret_file.empty())
     console_options.secrets.viewer = read_secret(options.viewer_secret_file);
@@ -147,7 +153,6 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
   std::signal(SIGTERM, on_signal);
 
   LockstepRunner runner(scenario);
-  LiveRecorder recorder(recordings, scenario);
   // Ten samples a second to the console (the page polls five times a second).
   const std::int64_t every = std::max<std::int64_t>(1, 100'000'000 / cfg.can.sync_period_ns);
   std::int64_t tick = 0;
@@ -167,16 +172,7 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
     // The operator's commands, between two ticks, as planterd's loop takes them.
     commands.serve([&](const console::ConsoleRequest& request, console::ConsoleReply& reply) {
       reply.t_s = runner.time_s();
-      OperatorCommand c;
-      if (console::controller_command(request.kind, c, request.value)) {
-        const CommandOutcome outcome = runner.controller().command(c);
-        reply.result = console::console_result(outcome);
-        reply.say(command_outcome_text(outcome));
-      } else if (request.kind == console::ConsoleCommandKind::kRecordStart) {
-        recorder.start(reply);
-      } else {
-        recorder.stop(reply);
-      }
+      console::answer_with(runner.controller(), request, reply);
     });
     runner.step();
     const double t = runner.time_s();
@@ -190,8 +186,7 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
                                               std::chrono::duration<double>(t / options.speed)));
   }
   server.stop();
-  console::ConsoleReply closing;
-  recorder.stop(closing);
+  const console::ConsoleReply closing = recorder.stop();
   if (closing.result == console::ConsoleResult::kFailed) {
     std::fprintf(stderr, "planter-sim live: %s\n", closing.text);
     return 1;

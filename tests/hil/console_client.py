@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """planterd's console on the real kernel (in the test VM), as a phone on the machine's network
 would use it: the page and the live values open to view; a command without a session gets
-401; the operator logs in with the pairing secret, sets the depth (which the recording then
-holds), and is told a depth out of range is refused; wrong secrets are limited; the audit log
-has it all; the recording is offered for download. Prints one line per check ("hil: ...").
+401; the operator logs in with the pairing secret, starts a recording, sets the depth (which
+planterd's recording then holds), is told a depth out of range is refused, and stops the
+recording, which holds the new target and downloads whole; wrong secrets are limited; the
+audit log has it all; the recordings are offered for download. Prints one line per check ("hil: ...").
 Usage: console_client.py URL SECRET_FILE AUDIT_LOG RECORDING   (exits 1 on any failure)
 """
 import json, os, sys, time, urllib.error, urllib.request
@@ -54,6 +55,10 @@ cookie = headers.get("Set-Cookie", "").split(";")[0]
 csrf = json.loads(body).get("csrf", "") if status == 200 else ""
 say(status == 200 and cookie, "console: the operator logs in with the pairing secret (%d)" % status)
 auth = {"Cookie": cookie, "X-CSRF-Token": csrf}
+status, body, _ = call("/api/command", {"command": "record_start"}, auth)
+console_rec = json.loads(body).get("message", "").replace("recording to ", "") if status == 200 else ""
+say(status == 200 and console_rec.startswith("console-"), "console: record_start: %d %s" % (status, body))
+time.sleep(0.5)
 sent = time.time()
 status, body, _ = call("/api/command", {"command": "set_depth_mm", "value": 90}, auth)
 say(status == 200, "console: set_depth_mm 90: %d %s" % (status, body))
@@ -70,11 +75,22 @@ while time.time() - sent < 3 and seen is None:
     time.sleep(0.05)
 say(seen is not None and seen <= 1.0, "console: the depth target reached the recording in %s"
     % ("%.2f s" % seen if seen is not None else "more than 3 s"))
+status, body, _ = call("/api/command", {"command": "record_stop"}, auth)
+say(status == 200 and "closed" in body, "console: record_stop: %d %s" % (status, body))
+rec_path = os.path.join(os.path.dirname(os.path.abspath(recording)), console_rec)
+rows = [l for l in open(rec_path).read().splitlines() if l and not l.startswith("#")] if console_rec else []
+col = rows[0].split(",").index("depth_target_mm") if rows else 0
+say(len(rows) > 50 and any(float(r.split(",")[col]) == 90.0 for r in rows[1:]),
+    "console: the console's recording %s has %d rows, the new target among them" % (console_rec, len(rows) - 1))
+status, got, _ = call("/api/recordings/" + console_rec)
+say(status == 200 and got == open(rec_path).read() if console_rec else False,
+    "console: the console's recording downloads whole (%d, %d bytes)" % (status, len(got)))
 codes = [call("/api/login", {"secret": "wrong-%d" % i})[0] for i in range(7)]
 say(codes == [401] * 5 + [429] * 2, "console: 7 wrong secrets: %s" % codes)
 status, body, _ = call("/api/recordings")
 names = [r["name"] for r in json.loads(body).get("recordings", [])] if status == 200 else []
-say(os.path.basename(recording) in names, "console: the recording is offered: %s" % names)
+say(os.path.basename(recording) in names and console_rec in names,
+    "console: the recordings are offered: %s" % names)
 audit = open(audit_path).read()
 for words in ('set_depth_mm value=90 result="accepted"', "set_depth_mm value=300",
               'login value=- result="logged in as operator"', 'result="wrong secret"'):

@@ -176,7 +176,7 @@ int main(int argc, char** argv) {
   cfg.priority = priority;
   cfg.cpu = 0;
 #ifdef PLANTER_BENCH_CONSOLE
-  // 0. Our loop alone for half as long, without the console: what its clients are held to.
+  // 0. Our loop alone for a third as long, without the console: what its clients are held to.
   Stats quiet;
   unsigned long long quiet_overruns = 0;
   {
@@ -186,7 +186,7 @@ int main(int argc, char** argv) {
     long k = 0;
     alone.run([&](std::int64_t, std::int64_t) {
       quiet_runner.step();
-      return ++k < loops / 2;
+      return ++k < loops / 3;
     });
     const auto& q = alone.latency();
     quiet = {q.percentile_us(50), q.percentile_us(99), q.max_us()};

@@ -83,13 +83,17 @@ CrashSafeRecording::~CrashSafeRecording() {
   }
 }
 
-void CrashSafeRecording::add(double t_s, const Telemetry& row) {
-  char line[512];
+bool CrashSafeRecording::add(double t_s, const Telemetry& row) {
+  char line[2048];
   const int n = config::format_controller_columns(line, sizeof line - 1, t_s, row);
-  if (n <= 0 || static_cast<std::size_t>(n) >= sizeof line - 1) return;
+  if (n <= 0 || static_cast<std::size_t>(n) >= sizeof line - 1) {
+    ++rows_unformatted_;
+    return false;
+  }
   line[n] = '\n';
   block_.append(line, static_cast<std::size_t>(n) + 1);
   ++rows_pending_;
+  return true;
 }
 
 bool CrashSafeRecording::flush() {

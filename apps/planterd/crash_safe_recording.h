@@ -27,14 +27,16 @@ class CrashSafeRecording {
   CrashSafeRecording(const CrashSafeRecording&) = delete;
   CrashSafeRecording& operator=(const CrashSafeRecording&) = delete;
 
-  // Formats one row into the pending block (not the real-time thread).
-  void add(double t_s, const Telemetry& row);
+  // Formats one row into the pending block (not the real-time thread). False (and counted)
+  // when the row does not fit a line of 2 kB: it is not recorded, and the caller says so.
+  bool add(double t_s, const Telemetry& row);
   // Writes the pending block and syncs it. Returns false (and keeps the block) on failure.
   bool flush();
 
   [[nodiscard]] const std::string& moved_aside_to() const { return moved_aside_; }
   [[nodiscard]] std::uint64_t rows_written() const { return rows_written_; }
   [[nodiscard]] std::uint64_t blocks_written() const { return blocks_written_; }
+  [[nodiscard]] std::uint64_t rows_unformatted() const { return rows_unformatted_; }
 
  private:
   int fd_ = -1;
@@ -44,6 +46,7 @@ class CrashSafeRecording {
   std::uint64_t rows_pending_ = 0;
   std::uint64_t rows_written_ = 0;
   std::uint64_t blocks_written_ = 0;
+  std::uint64_t rows_unformatted_ = 0;
 };
 
 }  // namespace planter::daemon

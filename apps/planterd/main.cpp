@@ -264,7 +264,11 @@ class MainThread {
   void take_rows() {
     Row row{};
     while (rows_.pop(row)) {
-      recording_->add(row.t_s, row.telemetry);
+      if (!recording_->add(row.t_s, row.telemetry) && recording_->rows_unformatted() == 1)
+        std::fprintf(stderr,
+                     "planterd: %s: a row at %.3f s is longer than a line may be and is not "
+                     "recorded (the count is in the last line)\n",
+                     opt_.record.c_str(), row.t_s);
       if (console_recording_ != nullptr) console_recording_->add(row.t_s, row.telemetry);
     }
   }
@@ -547,6 +551,8 @@ int main(int argc, char** argv) {
       static_cast<unsigned long long>(loop.overruns()), hw->can().link_down_count(),
       hw->can().reopen_count(), can.error_frames, can.tx_dropped, can.rx_overflow,
       controller.telemetry().unknown_frames,
-      static_cast<unsigned long long>(shared.rows_dropped.load()), shared.link_resets.load());
+      static_cast<unsigned long long>(shared.rows_dropped.load() +
+                                      (recording ? recording->rows_unformatted() : 0)),
+      shared.link_resets.load());
   return recording_ok ? 0 : 1;
 }

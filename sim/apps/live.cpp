@@ -80,7 +80,13 @@ class LiveRecorder : public console::RecordingControl {
 
   void write(const TickRecord& r) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (writer_) writer_->write(r);
+    if (!writer_) return;
+    try {
+      writer_->write(r);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "planter-sim live: %s; recording stopped\n", e.what());
+      writer_.reset();
+    }
   }
 
   // A recording that can no longer be written stops, and says so.

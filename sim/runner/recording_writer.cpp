@@ -28,9 +28,13 @@ RecordingWriter::~RecordingWriter() {
 
 void RecordingWriter::write(const TickRecord& r) {
   const PlantTruth& p = r.truth;
-  char row[512];
-  config::format_controller_columns(row, sizeof row,
-                                    static_cast<double>(r.controller.time_ns) * 1e-9, r.controller);
+  char row[2048];
+  const double t_s = static_cast<double>(r.controller.time_ns) * 1e-9;
+  const int n = config::format_controller_columns(row, sizeof row, t_s, r.controller);
+  // A row cut short would be a wrong row: refuse it instead.
+  if (n <= 0 || static_cast<std::size_t>(n) >= sizeof row)
+    throw std::runtime_error(path_ + ": the row at " + std::to_string(t_s) +
+                             " s does not fit a line of 2 kB");
   std::fprintf(file_, "%s,%.5f,%.5f,%.4f,%.5f,%.2f,%.3f,%.4f\n", row, p.v_mps, p.x_m, p.sigma,
                p.disc_omega_radps, p.clamp_force_N, p.depth_mm, p.slip);
 }

@@ -88,9 +88,9 @@ python3 "$R/tests/hil/check_hil.py" "$BOARD" . || fail=1
 rm -f d.* d-*
 echo "test1-pairing-secret-$$" > d-secret
 "$SIM" devices "$R/scenarios/hil-field-short.toml" --board "$BOARD" --can vcan0 --gpio planter-sim \
-  --duration 32 > d-devices.out 2> d-devices.log & DEV=$!
+  --duration 17 > d-devices.out 2> d-devices.log & DEV=$!
 sleep 1
-"$PLANTERD" --board "$BOARD" --record d.csv --run --duration 30 --log-period 0 \
+"$PLANTERD" --board "$BOARD" --record d.csv --run --duration 15 --log-period 0 \
   --pairing-secret-file d-secret --console-audit-log d-audit.log 2> d-planterd.log & PD=$!
 python3 "$R/tests/hil/console_client.py" http://127.0.0.1:8080 d-secret d-audit.log d.csv || fail=1
 wait $PD; rc=$?

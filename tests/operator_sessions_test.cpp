@@ -1,14 +1,18 @@
 // Who may command the machine from the console, on a clock the test moves: the login limits,
-// session expiry, roles, the command rate, and the loop's command channel.
+// session expiry, roles, the command rate, the loop's command channel, and a full disk under
+// the audit log.
 #include "console/operator_sessions.h"
 
 #include <gtest/gtest.h>
+#include <httplib.h>
 
 #include <atomic>
 #include <set>
 #include <thread>
 
+#include "console/audit_log.h"
 #include "console/command_channel.h"
+#include "console/console_server.h"
 
 namespace planter::console {
 namespace {
@@ -131,6 +135,54 @@ TEST(CommandChannel, TheLoopAnswersEachRequestAndSilenceIsSaid) {
   EXPECT_TRUE(parse_command_name("record_start", kind));
   EXPECT_EQ(kind, ConsoleCommandKind::kRecordStart);
   EXPECT_FALSE(parse_command_name("set_depth", kind));
+}
+
+// A full disk (/dev/full) under the audit log: the write is seen to fail, and from then the
+// console gives no command, saying which file; nothing reaches the loop.
+TEST(AuditLog, AFullDiskIsSeenAndThenNoCommandIsGiven) {
+  {
+    AuditLog log("/dev/full");
+    EXPECT_FALSE(log.append("10.0.0.1", "-", "login", "-", "wrong secret"));
+    EXPECT_FALSE(log.ok());
+  }
+  CommandChannel channel;
+  ConsoleOptions o;
+  o.port = 0;
+  o.commands = &channel;
+  o.audit_log = "/dev/full";
+  o.secrets.pairing = "abcde-fghij-kmnpq";
+  ConsoleInfo info;
+  info.depth_range_mm = {40, 160, false};
+  ConsoleServer server(o, info);
+  server.start();
+  httplib::Client cli("127.0.0.1", server.port());
+  auto login = cli.Post("/api/login", R"({"secret":"abcde-fghij-kmnpq"})", "application/json");
+  ASSERT_TRUE(login);
+  ASSERT_EQ(login->status, 200);  // logging in is no command; its audit line failed
+  const std::string cookie = login->get_header_value("Set-Cookie");
+  const auto at = login->body.find("\"csrf\":\"");
+  ASSERT_NE(at, std::string::npos);
+  const httplib::Headers headers = {{"Cookie", cookie.substr(0, cookie.find(';'))},
+                                    {"X-CSRF-Token", login->body.substr(at + 8, 43)}};
+  std::atomic<int> served{0};
+  std::atomic<bool> stop{false};
+  std::thread loop([&] {
+    while (!stop) {
+      channel.serve([&](const ConsoleRequest&, ConsoleReply& reply) {
+        ++served;
+        reply.result = ConsoleResult::kAccepted;
+      });
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  });
+  auto command = cli.Post("/api/command", headers, R"({"command":"stop"})", "application/json");
+  stop = true;
+  loop.join();
+  server.stop();
+  ASSERT_TRUE(command);
+  EXPECT_EQ(command->status, 503);
+  EXPECT_NE(command->body.find("/dev/full cannot be written"), std::string::npos) << command->body;
+  EXPECT_EQ(served.load(), 0) << "a command went to the loop with no audit line possible";
 }
 
 }  // namespace

@@ -30,7 +30,6 @@
 #include <httplib.h>
 
 #include "console/console_server.h"
-#include "firmware/controller/setpoint_rules.h"
 #endif
 
 using namespace planter;
@@ -72,18 +71,16 @@ Stats cyclictest_stats(const std::string& histfile, double max_us) {
 // The console's load, as five phones and one guesser would put it on the machine.
 class ConsoleLoad {
  public:
-  ConsoleLoad(const sim::Scenario& scenario, double seconds) {
+  ConsoleLoad(const sim::Scenario& scenario, double seconds)
+      : every_(console::ticks_per_live_sample(scenario.board.controller.can.sync_period_ns)) {
     console::ConsoleOptions o;
     o.port = 0;
     o.commands = &commands;
     o.audit_log = "/tmp/planter_bench_console_audit.log";
     o.secrets.pairing = console::OperatorSessions::new_secret();
     o.policy.commands_per_window = 1000;  // the depth client is not the one being limited
-    console::ConsoleInfo info;
-    info.title = scenario.name;
-    info.depth_range_mm = depth_range_mm(scenario.board.controller);
-    info.clamp_force_range_N = clamp_force_range_N(scenario.board.controller);
-    server_ = std::make_unique<console::ConsoleServer>(o, info);
+    server_ = std::make_unique<console::ConsoleServer>(
+        o, console::console_info(scenario.name, scenario.board.controller, true));
     server_->start();
     const int port = server_->port();
     const std::string secret = o.secrets.pairing;
@@ -143,7 +140,8 @@ class ConsoleLoad {
     commands.serve([&](const console::ConsoleRequest& request, console::ConsoleReply& reply) {
       console::answer_with(runner.controller(), request, reply);
     });
-    if (n % 10 == 0) server_->publish(console::live_sample(t_s, runner.controller().telemetry()));
+    if (n % every_ == 0)
+      server_->publish(console::live_sample(t_s, runner.controller().telemetry()));
   }
   [[nodiscard]] std::uint64_t dropped() const { return server_->dropped(); }
 
@@ -152,6 +150,7 @@ class ConsoleLoad {
   std::atomic<double> flood_s{0};
 
  private:
+  std::int64_t every_;  // ticks per console sample, as planterd's
   std::unique_ptr<console::ConsoleServer> server_;
   std::vector<std::thread> clients_;
   std::atomic<bool> done_{false};

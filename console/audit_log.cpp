@@ -13,23 +13,19 @@
 
 namespace planter::console {
 namespace {
-// Values come from the network: keep a line one line, and printable.
-std::string clean(const std::string& s) {
+// Values come from the network: a line stays one line, printable, with no quote. Fields keep
+// no space (a space ends them); the result is in words and keeps its spaces.
+std::string printable(const std::string& s, std::size_t max_chars, bool spaces) {
   std::string out;
-  for (char c : s.substr(0, 80)) {
+  for (char c : s.substr(0, max_chars)) {
     const auto u = static_cast<unsigned char>(c);
-    out.push_back(u >= 0x21 && u < 0x7f && c != '"' ? c : '_');
-  }
-  return out.empty() ? "-" : out;
-}
-// The result is in words: spaces stay, quotes and control characters do not.
-std::string words(const std::string& s) {
-  std::string out;
-  for (char c : s.substr(0, 200)) {
-    const auto u = static_cast<unsigned char>(c);
-    out.push_back(u >= 0x20 && u < 0x7f && c != '"' ? c : '_');
+    out.push_back(u >= (spaces ? 0x20 : 0x21) && u < 0x7f && c != '"' ? c : '_');
   }
   return out;
+}
+std::string field(const std::string& s) {
+  const std::string out = printable(s, 80, false);
+  return out.empty() ? "-" : out;
 }
 }  // namespace
 
@@ -57,9 +53,9 @@ bool AuditLog::append(const std::string& address, const std::string& session,
   std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%S", &utc);
   char ms[24];
   std::snprintf(ms, sizeof ms, ".%03ldZ", now.tv_nsec / 1'000'000);
-  const std::string line = std::string(when) + ms + " from=" + clean(address) +
-                           " session=" + clean(session) + " " + clean(what) +
-                           " value=" + clean(value) + " result=\"" + words(result) + "\"\n";
+  const std::string line =
+      std::string(when) + ms + " from=" + field(address) + " session=" + field(session) + " " +
+      field(what) + " value=" + field(value) + " result=\"" + printable(result, 200, true) + "\"\n";
   if (!config::write_all(fd_, line.data(), line.size()) || ::fdatasync(fd_) != 0) {
     std::fprintf(stderr, "console: %s: cannot be written (%s): commands are refused from now\n",
                  path_.c_str(), std::strerror(errno));

@@ -1,46 +1,35 @@
 #include "console/command_channel.h"
 
+#include <optional>
 #include <thread>
 
 namespace planter::console {
 
 namespace {
+// Each console command once: its name on the wire, and the controller's command it is, if any.
 struct Name {
   ConsoleCommandKind kind;
   const char* name;
+  std::optional<CommandKind> command;  // none: the program's (the recording), not the loop's
 };
 constexpr Name kNames[] = {
-    {ConsoleCommandKind::kRun, "run"},
-    {ConsoleCommandKind::kStop, "stop"},
-    {ConsoleCommandKind::kFaultReset, "fault_reset"},
-    {ConsoleCommandKind::kSetDepth, "set_depth_mm"},
-    {ConsoleCommandKind::kSetClampForce, "set_clamp_force_N"},
-    {ConsoleCommandKind::kRecordStart, "record_start"},
-    {ConsoleCommandKind::kRecordStop, "record_stop"},
+    {ConsoleCommandKind::kRun, "run", CommandKind::kRun},
+    {ConsoleCommandKind::kStop, "stop", CommandKind::kStop},
+    {ConsoleCommandKind::kFaultReset, "fault_reset", CommandKind::kFaultReset},
+    {ConsoleCommandKind::kSetDepth, "set_depth_mm", CommandKind::kSetDepth},
+    {ConsoleCommandKind::kSetClampForce, "set_clamp_force_N", CommandKind::kSetClampForce},
+    {ConsoleCommandKind::kRecordStart, "record_start", std::nullopt},
+    {ConsoleCommandKind::kRecordStop, "record_stop", std::nullopt},
 };
 }  // namespace
 
 bool controller_command(ConsoleCommandKind kind, OperatorCommand& out, double value) {
-  out.value = value;
-  switch (kind) {
-    case ConsoleCommandKind::kRun:
-      out.kind = CommandKind::kRun;
-      return true;
-    case ConsoleCommandKind::kStop:
-      out.kind = CommandKind::kStop;
-      return true;
-    case ConsoleCommandKind::kFaultReset:
-      out.kind = CommandKind::kFaultReset;
-      return true;
-    case ConsoleCommandKind::kSetDepth:
-      out.kind = CommandKind::kSetDepth;
-      return true;
-    case ConsoleCommandKind::kSetClampForce:
-      out.kind = CommandKind::kSetClampForce;
-      return true;
-    case ConsoleCommandKind::kRecordStart:
-    case ConsoleCommandKind::kRecordStop:
-      return false;
+  for (const Name& n : kNames) {
+    if (n.kind != kind) continue;
+    if (!n.command) return false;
+    out.kind = *n.command;
+    out.value = value;
+    return true;
   }
   return false;
 }

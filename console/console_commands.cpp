@@ -32,27 +32,23 @@ std::string cookie_token(const httplib::Request& req) {
 // the page's origin, and it must be this server's; a cross-site fetch is refused before any
 // secret or session is looked at. Clients that are not browsers send no Origin: the CSRF
 // token still binds them to a session.
-bool same_origin(const httplib::Request& req, httplib::Response& res) {
+// Returns the refusal's words (also answered in res), or "" when the request may go on.
+std::string refused_origin(const httplib::Request& req, httplib::Response& res) {
   const std::string origin = req.get_header_value("Origin");
   const std::string site = req.get_header_value("Sec-Fetch-Site");
+  std::string words;
+  int status = 403;
   if ((!origin.empty() && origin != "http://" + req.get_header_value("Host")) ||
       (!site.empty() && site != "same-origin" && site != "none")) {
-    error(res, 403,
-          "refused: the request came from another site (" + (origin.empty() ? site : origin) + ")");
-    return false;
+    words =
+        "refused: the request came from another site (" + (origin.empty() ? site : origin) + ")";
+  } else if (req.get_header_value("Content-Type").rfind("application/json", 0) != 0) {
+    // A JSON body cannot be sent across sites without the browser asking first.
+    words = "send the command as application/json";
+    status = 415;
   }
-  // A JSON body cannot be sent across sites without the browser asking first.
-  if (req.get_header_value("Content-Type").rfind("application/json", 0) != 0) {
-    error(res, 415, "send the command as application/json");
-    return false;
-  }
-  return true;
-}
-
-std::string number_text(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
+  if (!words.empty()) error(res, status, words);
+  return words;
 }
 
 std::string range_text(const SetpointRange& r, const char* unit) {
@@ -163,18 +159,19 @@ void ConsoleServer::install_command_routes(httplib::Server& srv) {
     answer(res, 200, {{"role", role_name(s->role)}, {"csrf", s->csrf}});
   });
   srv.Post("/api/login", [this](const httplib::Request& req, httplib::Response& res) {
-    if (same_origin(req, res)) login(req, res);
+    if (refused_origin(req, res).empty()) login(req, res);
   });
   srv.Post("/api/logout", [this](const httplib::Request& req, httplib::Response& res) {
-    if (!same_origin(req, res)) return;
+    if (!refused_origin(req, res).empty()) return;
     sessions_->logout(cookie_token(req));
     res.set_header("Set-Cookie", std::string(kCookie) + "=; Max-Age=0; Path=/");
     answer(res, 200, {{"role", "none"}});
   });
   if (options_.commands == nullptr) return;
   srv.Post("/api/command", [this](const httplib::Request& req, httplib::Response& res) {
-    if (same_origin(req, res)) return command(req, res);
-    audit_->append(req.remote_addr, "-", "command", "-", nlohmann::json::parse(res.body)["error"]);
+    const std::string refused = refused_origin(req, res);
+    if (refused.empty()) return command(req, res);
+    audit_->append(req.remote_addr, "-", "command", "-", refused);
   });
 }
 

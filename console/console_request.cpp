@@ -7,6 +7,12 @@
 
 namespace planter::console {
 
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
 std::string session_cookie(std::string_view cookies) {
   constexpr std::string_view key = "planter_session=";
   while (!cookies.empty()) {
@@ -33,9 +39,7 @@ CommandBody parse_command_body(const std::string& body) {
   const bool has_value = j.is_object() && j.contains("value") && j["value"].is_number();
   if (has_value) {
     c.value = j["value"].get<double>();
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", c.value);
-    c.value_text = text;
+    c.value_text = number_text(c.value);
   }
   if (!j.is_object() || !parse_command_name(c.name.c_str(), c.kind) ||
       c.name.size() != std::strlen(c.name.c_str())) {

@@ -16,6 +16,9 @@ std::string session_cookie(std::string_view cookie_header);
 // The secret in {"secret": "..."}, or nothing.
 std::optional<std::string> login_secret(const std::string& body);
 
+// A number as the console says it back (and logs it): "%g".
+std::string number_text(double v);
+
 struct CommandBody {
   bool ok = false;
   ConsoleCommandKind kind = ConsoleCommandKind::kStop;

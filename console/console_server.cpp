@@ -35,7 +35,7 @@ ConsoleServer::ConsoleServer(const ConsoleOptions& options, const ConsoleInfo& i
             .count();
       })) {
   if (options_.commands != nullptr &&
-      OperatorSessions::normalise(options_.secrets.pairing).size() < 12)
+      OperatorSessions::normalise(options_.secrets.pairing).size() < kSecretLettersMin)
     throw std::runtime_error("console: commands need a pairing secret of at least 12 letters");
   page_ = console_page();
   const std::string marker = "/*DYGRAPHS*/";

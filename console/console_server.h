@@ -53,6 +53,19 @@ struct ConsoleInfo {
   SetpointRange clamp_force_range_N;
 };
 
+// The machine's limits as its controller configuration sets them (setpoint_rules.h).
+inline ConsoleInfo console_info(std::string title, const ControllerConfig& c, bool simulated) {
+  ConsoleInfo info;
+  info.title = std::move(title);
+  info.clamp_ceiling_N = c.clamp.ceiling_N;
+  info.target_spacing_mm = c.monitor.target_spacing_mm;
+  info.photo_eye = c.monitor.sensor_fitted;
+  info.simulated = simulated;
+  info.depth_range_mm = depth_range_mm(c);
+  info.clamp_force_range_N = clamp_force_range_N(c);
+  return info;
+}
+
 class ConsoleServer {
  public:
   ConsoleServer(const ConsoleOptions& options, const ConsoleInfo& info);

@@ -26,6 +26,13 @@ struct LiveSample {
   PlantingFigures planting;
 };
 
+// The console gets ten samples a second (the page polls five times a second): one every this
+// many control ticks of period_ns.
+constexpr std::int64_t kLiveSamplePeriodNs = 100'000'000;
+constexpr std::int64_t ticks_per_live_sample(std::int64_t period_ns) {
+  return period_ns >= kLiveSamplePeriodNs ? 1 : kLiveSamplePeriodNs / period_ns;
+}
+
 // The sample a tick's telemetry gives (sigma_true left unknown).
 LiveSample live_sample(double t_s, const Telemetry& t);
 // The sample as one JSON object (NaN as null: the page shows "unknown").

@@ -7,6 +7,8 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "config/input_file.h"
+
 namespace planter::console {
 namespace {
 constexpr std::size_t kSessionsMax = 64;  // a phone per person on the field is plenty
@@ -70,6 +72,14 @@ std::string OperatorSessions::new_secret() {
     out.push_back(letters[i]);
   }
   return out;
+}
+
+std::string OperatorSessions::read_secret_file(const std::string& path) {
+  std::string text = config::read_input_file(path, 4096);
+  text = text.substr(0, text.find('\n'));
+  if (normalise(text).size() < kSecretLettersMin)
+    throw std::runtime_error(path + ": a secret needs at least 12 letters or digits");
+  return text;
 }
 
 void OperatorSessions::forget_old(std::deque<std::int64_t>& times, double window_s,

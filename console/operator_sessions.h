@@ -7,6 +7,7 @@
 // address and in total, and a limited address is refused even the right secret until its
 // window has passed, so guessing gains nothing by going on. Commands are limited per session.
 // Time comes from the clock given, so the rules can be tested without waiting.
+#include <cstddef>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -18,6 +19,8 @@
 namespace planter::console {
 
 enum class Role : std::uint8_t { kNone, kViewer, kOperator };
+// The shortest secret the console takes, dashes and spaces aside.
+constexpr std::size_t kSecretLettersMin = 12;
 const char* role_name(Role role);
 
 struct SessionPolicy {
@@ -71,6 +74,9 @@ class OperatorSessions {
   static std::string normalise(const std::string& secret);
   // A new random secret for the machine's label (20 letters and digits, in groups of 5).
   static std::string new_secret();
+  // The first line of a secret's file. Throws config::ConfigError when the file cannot be read
+  // and std::runtime_error, naming the file, when the secret is shorter than 12 letters.
+  static std::string read_secret_file(const std::string& path);
 
  private:
   struct Session {

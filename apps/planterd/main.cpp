@@ -22,12 +22,11 @@
 #include "apps/planterd/service_notify.h"
 #include "config/commissioning.h"
 #include "config/config_error.h"
-#include "config/input_file.h"
 #include "console/command_channel.h"
+#include "console/live_sample.h"
 #include "console/spsc_queue.h"
 #ifdef PLANTERD_WITH_CONSOLE
 #include "console/console_server.h"
-#include "firmware/controller/setpoint_rules.h"
 #endif
 #include "firmware/controller/control_cycle.h"
 #include "hal/linux/hal_error.h"
@@ -110,7 +109,7 @@ class LoopTick {
         period_ns_(period_ns),
         commands_(commands),
         console_rows_(console_rows),
-        console_every_(std::max<std::int64_t>(1, 100'000'000 / period_ns)) {}
+        console_every_(console::ticks_per_live_sample(period_ns)) {}
 
   bool operator()(std::int64_t now, std::int64_t dt, std::int64_t late_ns) {
     trace_.begin(now, late_ns, dt);
@@ -145,7 +144,7 @@ class LoopTick {
     const Telemetry& t = controller_.telemetry();
     if (rows_ != nullptr && !rows_->push(Row{static_cast<double>(now - start_ns_) * 1e-9, t}))
       shared_.rows_dropped.fetch_add(1, std::memory_order_relaxed);
-    // Ten samples a second to the console's threads; a full queue drops one.
+    // The console's samples (console/live_sample.h); a full queue drops one.
     if (console_rows_ != nullptr && ++console_tick_ % console_every_ == 0)
       console_rows_->push(Row{static_cast<double>(now - start_ns_) * 1e-9, t});
     if (shared_.status_mutex.try_lock()) {
@@ -321,8 +320,7 @@ class OperatorConsole {
     o.secrets.viewer = board.console.viewer_secret;
     std::string secret;
     try {
-      secret = config::read_input_file(opt.pairing_secret_file, 4096);
-      secret = secret.substr(0, secret.find('\n'));
+      secret = console::OperatorSessions::read_secret_file(opt.pairing_secret_file);
     } catch (const config::ConfigError& e) {
       std::fprintf(stderr, "planterd: console: viewing only: no pairing secret (%s)\n", e.what());
     }
@@ -341,15 +339,8 @@ class OperatorConsole {
                                    "units: PRODUCT.md v1"});
       if (o.commands != nullptr) o.recording = recording_.get();
     }
-    console::ConsoleInfo info;
-    const ControllerConfig& c = board.controller;
-    info.title = board.name;
-    info.clamp_ceiling_N = c.clamp.ceiling_N;
-    info.target_spacing_mm = c.monitor.target_spacing_mm;
-    info.photo_eye = c.monitor.sensor_fitted;
-    info.depth_range_mm = depth_range_mm(c);
-    info.clamp_force_range_N = clamp_force_range_N(c);
-    server_ = std::make_unique<console::ConsoleServer>(o, info);
+    server_ = std::make_unique<console::ConsoleServer>(
+        o, console::console_info(board.name, board.controller, false));
     server_->start();
     std::fprintf(stderr, "planterd: console on http://%s:%d/ (%s; audit log %s)\n", o.bind.c_str(),
                  server_->port(),

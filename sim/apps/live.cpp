@@ -14,9 +14,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "config/input_file.h"
 #include "console/operator_sessions.h"
-#include "firmware/controller/setpoint_rules.h"
 #include "sim/runner/lockstep_runner.h"
 #include "sim/runner/recording_writer.h"
 #include "sim/runner/summary.h"
@@ -25,15 +23,6 @@ namespace planter::sim {
 namespace {
 std::atomic<bool> g_stop{false};  // set by SIGINT/SIGTERM: the only way a signal can talk
 extern "C" void on_signal(int) { g_stop.store(true); }
-
-// A secret from its file: the first line, which must not be empty.
-std::string read_secret(const std::string& path) {
-  std::string text = config::read_input_file(path, 4096);
-  text = text.substr(0, text.find('\n'));
-  if (console::OperatorSessions::normalise(text).size() < 12)
-    throw std::runtime_error(path + ": a secret needs at least 12 letters or digits");
-  return text;
-}
 
 // The console's recordings: started and stopped by the operator (from the console's thread),
 // one file each, written by the simulation's thread and flushed five times a second, so a
@@ -45,12 +34,10 @@ class LiveRecorder : public console::RecordingControl {
 
   console::ConsoleReply start() override {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (writer_) return answer(console::ConsoleResult::kRefused, "already recording to " + name_);
-    std::time_t now = std::time(nullptr);
-    std::tm utc{};
-    gmtime_r(&now, &utc);
-    char name[64];
-    std::strftime(name, sizeof name, "live-%Y%m%dT%H%M%SZ.csv", &utc);
+    if (writer_)
+      return console::recording_reply(console::ConsoleResult::kRefused,
+                                      "already recording to " + name_);
+    const std::string name = console::recording_file_name("live");
     const std::string path = dir_ + "/" + name;
     try {
       writer_ = std::make_unique<RecordingWriter>(
@@ -60,22 +47,24 @@ class LiveRecorder : public console::RecordingControl {
                                                            {"board", scenario_.board.name},
                                                            {"units", "1"}});
     } catch (const std::exception& e) {
-      return answer(console::ConsoleResult::kFailed, e.what());
+      return console::recording_reply(console::ConsoleResult::kFailed, e.what());
     }
     name_ = name;
-    return answer(console::ConsoleResult::kAccepted, "recording to " + name_);
+    return console::recording_reply(console::ConsoleResult::kAccepted, "recording to " + name_);
   }
 
   console::ConsoleReply stop() override {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (!writer_) return answer(console::ConsoleResult::kRefused, "not recording");
+    if (!writer_)
+      return console::recording_reply(console::ConsoleResult::kRefused, "not recording");
     try {
       auto writer = std::move(writer_);
       writer->close();
     } catch (const std::exception& e) {
-      return answer(console::ConsoleResult::kFailed, e.what());
+      return console::recording_reply(console::ConsoleResult::kFailed, e.what());
     }
-    return answer(console::ConsoleResult::kAccepted, "recording " + name_ + " closed");
+    return console::recording_reply(console::ConsoleResult::kAccepted,
+                                    "recording " + name_ + " closed");
   }
 
   void write(const TickRecord& r) {
@@ -100,12 +89,6 @@ class LiveRecorder : public console::RecordingControl {
   }
 
  private:
-  static console::ConsoleReply answer(console::ConsoleResult result, const std::string& words) {
-    console::ConsoleReply reply;
-    reply.result = result;
-    reply.say(words.c_str());
-    return reply;
-  }
   std::string dir_;
   const Scenario& scenario_;
   std::mutex mutex_;  // the console's thread starts and stops; the simulation's writes
@@ -117,14 +100,8 @@ class LiveRecorder : public console::RecordingControl {
 int run_live(const std::string& scenario_path, const LiveOptions& options) {
   const Scenario scenario = load_scenario(scenario_path);
   const ControllerConfig& cfg = scenario.board.controller;
-  console::ConsoleInfo info;
-  info.title = scenario.name + " (simulated)";
-  info.clamp_ceiling_N = cfg.clamp.ceiling_N;
-  info.target_spacing_mm = cfg.monitor.target_spacing_mm;
-  info.photo_eye = cfg.monitor.sensor_fitted;
-  info.simulated = true;
-  info.depth_range_mm = depth_range_mm(cfg);
-  info.clamp_force_range_N = clamp_force_range_N(cfg);
+  const console::ConsoleInfo info =
+      console::console_info(scenario.name + " (simulated)", cfg, true);
 
   console::ConsoleOptions console_options = options.console;
   console::CommandChannel commands;
@@ -133,8 +110,9 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
   std::string pairing;
   if (!options.view_only) {
     std::filesystem::create_directories(recordings);
-    pairing = options.pairing_secret_file.empty() ? console::OperatorSessions::new_secret()
-                                                  : read_secret(options.pairing_secret_file);
+    pairing = options.pairing_secret_file.empty()
+                  ? console::OperatorSessions::new_secret()
+                  : console::OperatorSessions::read_secret_file(options.pairing_secret_file);
     console_options.commands = &commands;
     console_options.audit_log = options.dir + "/audit.log";
     console_options.secrets.pairing = pairing;
@@ -142,7 +120,8 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
     console_options.recording = &recorder;
   }
   if (!options.viewer_secret_file.empty())
-    console_options.secrets.viewer = read_secret(options.viewer_secret_file);
+    console_options.secrets.viewer =
+        console::OperatorSessions::read_secret_file(options.viewer_secret_file);
   console::ConsoleServer server(console_options, info);
   server.start();
   std::printf("console: http://%s:%d/  (%s; Ctrl-C to stop)\n", options.console.bind.c_str(),
@@ -159,8 +138,7 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
   std::signal(SIGTERM, on_signal);
 
   LockstepRunner runner(scenario);
-  // Ten samples a second to the console (the page polls five times a second).
-  const std::int64_t every = std::max<std::int64_t>(1, 100'000'000 / cfg.can.sync_period_ns);
+  const std::int64_t every = console::ticks_per_live_sample(cfg.can.sync_period_ns);
   std::int64_t tick = 0;
   runner.set_observer([&](const TickRecord& r) {
     recorder.write(r);

@@ -9,7 +9,9 @@
 // the console ten times a second, the command channel served every tick) while five clients
 // poll it as the page does (state at 5 Hz, history every 2 s; one of them logged in and
 // setting the depth every 2 s), and a sixth sends 100 wrong secrets as fast as it can a third
-// of the way in: the figures are taken with all of that going on.
+// of the way in: the figures are taken with all of that going on. A window without the
+// console comes first (a third as long, cyclictest beside it too), and the last line compares
+// the two windows' ratios to cyclictest: the console's cost, with the machine's noise divided out.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -157,6 +159,108 @@ class ConsoleLoad {
 };
 #endif
 
+#ifdef PLANTER_BENCH_CONSOLE
+using LoadOnLoop = ConsoleLoad;
+#else
+struct LoadOnLoop {  // no console in this build: the loop has nothing more to do
+  void tick(long, double, sim::LockstepRunner&) {}
+};
+#endif
+
+// One window: cyclictest on CPU 1 and our loop on CPU 0 at the same time, for the same number
+// of wake-ups, so the machine's own stalls fall on both. With a console load, the loop also
+// does the console's part of planterd's tick.
+struct Window {
+  long wake_ups = 0;
+  Stats ours, cyclictest;
+  unsigned long long overruns = 0;
+  std::string first_overrun;  // the phase trace of the first overrun, if any
+  std::string error;          // cyclictest failed
+};
+
+Window measure(const sim::Scenario& scenario, const hal::linux_backend::RtLoopConfig& cfg,
+               long loops, LoadOnLoop* console_load) {
+  Window w;
+  const std::string hist = "/tmp/planter_bench_cyclictest.hist";
+  const std::string cmd = "cyclictest -q -m -p " + std::to_string(cfg.priority) + " -a 1 -t 1 -i " +
+                          std::to_string(cfg.period_ns / 1000) + " -l " + std::to_string(loops) +
+                          " -h 20000 --histfile=" + hist + " > /tmp/planter_bench_cyclictest.out";
+  const pid_t cyclictest = fork();
+  if (cyclictest == 0) {
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Our loop (the same RtLoop planterd runs) on CPU 0, at the same time.
+  hal::linux_backend::RtLoop loop(cfg);
+  sim::LockstepRunner runner(scenario);
+  const std::string refused = loop.setup();
+  if (!refused.empty()) std::printf("warning: %s\n", refused.c_str());
+  hal::linux_backend::TickTrace trace;  // keeps the first overrun's ticks for after the run
+  long n = 0;
+  loop.run([&](std::int64_t now, std::int64_t dt) {
+    trace.begin(now, loop.last_late_ns(), dt);
+    if (console_load != nullptr) console_load->tick(n, runner.time_s(), runner);
+    runner.step();
+    trace.phase_done(hal::TickPhase::kHandOff);
+    if (loop.last_late_ns() >= cfg.period_ns) trace.capture_overrun();
+    return ++n < loops;
+  });
+  w.wake_ups = n;
+  const auto& h = loop.latency();
+  w.ours = {h.percentile_us(50), h.percentile_us(99), h.max_us()};
+  w.overruns = loop.overruns();
+  // Formatted after the run, as planterd's service thread does: no string is built in the loop.
+  w.first_overrun = trace.take_report();
+  sched_param normal{};
+  sched_setscheduler(0, SCHED_OTHER, &normal);
+  int rc = 0;
+  waitpid(cyclictest, &rc, 0);
+  if (!WIFEXITED(rc) || WEXITSTATUS(rc) != 0) {
+    w.error =
+        "cyclictest failed (exit " + std::to_string(WEXITSTATUS(rc)) + "); is rt-tests installed?";
+    return w;
+  }
+  double ct_max = 0;
+  {
+    std::ifstream out(hist);
+    std::string line;
+    while (std::getline(out, line))
+      if (line.rfind("# Max Latencies:", 0) == 0) ct_max = std::atof(line.c_str() + 16);
+  }
+  w.cyclictest = cyclictest_stats(hist, ct_max);
+  if (w.cyclictest.p99 <= 0) w.error = "cyclictest wrote no histogram to " + hist;
+  return w;
+}
+
+// Prints a window's two lines and whose its worst wake-up was; false when cyclictest failed.
+bool report(const char* name, const Window& w, int priority, std::int64_t period_ns) {
+  if (!w.error.empty()) {
+    std::printf("%s\n", w.error.c_str());
+    return false;
+  }
+  std::printf(
+      "%s: planterd loop: %ld wake-ups at %.0f Hz, SCHED_FIFO %d on CPU 0: p50 %.0f us, p99 "
+      "%.0f us, max %.0f us, overruns %llu\n",
+      name, w.wake_ups, 1e9 / static_cast<double>(period_ns), priority, w.ours.p50, w.ours.p99,
+      w.ours.max, w.overruns);
+  std::printf(
+      "%s: cyclictest   : the same wake-ups at the same time on CPU 1: p50 %.0f us, p99 %.0f "
+      "us, max %.0f us\n",
+      name, w.cyclictest.p50, w.cyclictest.p99, w.cyclictest.max);
+  if (!w.first_overrun.empty()) std::printf("first %s", w.first_overrun.c_str());
+  // A wake-up over a millisecond late in ours while cyclictest's worst stayed under half of
+  // it is our program's; when both saw one, the machine stalled both CPUs.
+  const bool ours_stalled = w.ours.max > 1000.0;
+  std::printf("%s: worst wake-up: ours %.0f us, cyclictest %.0f us in the same window: %s\n", name,
+              w.ours.max, w.cyclictest.max,
+              !ours_stalled                          ? "no stall"
+              : w.cyclictest.max >= 0.5 * w.ours.max ? "the machine's (both CPUs late)"
+                                                     : "the program's (ours alone late)");
+  return true;
+}
+
+double p99_ratio(const Window& w) { return w.ours.p99 / w.cyclictest.p99; }
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -175,123 +279,36 @@ int main(int argc, char** argv) {
   cfg.priority = priority;
   cfg.cpu = 0;
 #ifdef PLANTER_BENCH_CONSOLE
-  // 0. Our loop alone for a third as long, without the console: what its clients are held to.
-  Stats quiet;
-  unsigned long long quiet_overruns = 0;
-  {
-    hal::linux_backend::RtLoop alone(cfg);
-    sim::LockstepRunner quiet_runner(scenario);
-    (void)alone.setup();
-    long k = 0;
-    alone.run([&](std::int64_t, std::int64_t) {
-      quiet_runner.step();
-      return ++k < loops / 3;
-    });
-    const auto& q = alone.latency();
-    quiet = {q.percentile_us(50), q.percentile_us(99), q.max_us()};
-    quiet_overruns = alone.overruns();
-    std::printf(
-        "without console: %ld wake-ups, SCHED_FIFO %d on CPU 0: p50 %.0f us, p99 %.0f us, max "
-        "%.0f us, overruns %llu\n",
-        k, priority, quiet.p50, quiet.p99, quiet.max, quiet_overruns);
-    sched_param normal{};
-    sched_setscheduler(0, SCHED_OTHER, &normal);
-  }
-  // The console and its clients start before the measured loop, as on a machine in the field.
+  // 1. Without the console, a third as long: what its clients are held to. cyclictest runs
+  // beside it as in the window with them, so the two differ by the console alone, and each
+  // window's p99 is taken against cyclictest's in the same seconds (the machine is shared).
+  const Window quiet = measure(scenario, cfg, loops / 3, nullptr);
+  if (!report("without console", quiet, priority, period_ns)) return 1;
+  // 2. With the console and its clients, started before the measured loop, as in the field.
   ConsoleLoad console_load(scenario, seconds);
-#endif
-  // 1. cyclictest in the background on CPU 1, for as many wake-ups as our loop makes.
-  const std::string hist = "/tmp/planter_bench_cyclictest.hist";
-  const std::string cmd = "cyclictest -q -m -p " + std::to_string(priority) + " -a 1 -t 1 -i " +
-                          std::to_string(period_ns / 1000) + " -l " + std::to_string(loops) +
-                          " -h 20000 --histfile=" + hist + " > /tmp/planter_bench_cyclictest.out";
-  const pid_t cyclictest = fork();
-  if (cyclictest == 0) {
-    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  // 2. Our loop (the same RtLoop planterd runs) on CPU 0, at the same time.
-  hal::linux_backend::RtLoop loop(cfg);
-  sim::LockstepRunner runner(scenario);
-  const std::string refused = loop.setup();
-  if (!refused.empty()) std::printf("warning: %s\n", refused.c_str());
-  hal::linux_backend::TickTrace trace;  // keeps the first overrun's ticks for after the run
-  long n = 0;
-  loop.run([&](std::int64_t now, std::int64_t dt) {
-    trace.begin(now, loop.last_late_ns(), dt);
-#ifdef PLANTER_BENCH_CONSOLE
-    console_load.tick(n, runner.time_s(), runner);
-#endif
-    runner.step();
-    trace.phase_done(hal::TickPhase::kHandOff);
-    if (loop.last_late_ns() >= period_ns) trace.capture_overrun();
-    return ++n < loops;
-  });
-#ifdef PLANTER_BENCH_CONSOLE
+  const Window busy = measure(scenario, cfg, loops, &console_load);
   console_load.stop();
   std::printf(
-      "console       : 5 clients for %.0f s: %ld pages served, %ld requests failed, %ld depth "
+      "with console: 5 clients for %.0f s: %ld pages served, %ld requests failed, %ld depth "
       "commands answered, %llu samples dropped; 100 wrong secrets in %.2f s: %ld refused "
       "(401), %ld rate-limited (429)\n",
       seconds, console_load.pages.load(), console_load.failed.load(),
       console_load.commands_answered.load(),
       static_cast<unsigned long long>(console_load.dropped()), console_load.flood_s.load(),
       console_load.wrong.load(), console_load.limited.load());
-#else
-  std::printf("console       : not in this build (no cpp-httplib): measured without clients\n");
-#endif
-  const auto& h = loop.latency();
-  Stats ours{h.percentile_us(50), h.percentile_us(99), h.max_us()};
-  std::printf(
-      "planterd loop : %ld wake-ups at %.0f Hz, SCHED_FIFO %d on CPU 0: p50 %.0f us, p99 "
-      "%.0f us, max %.0f us, overruns %llu\n",
-      n, 1e9 / static_cast<double>(period_ns), priority, ours.p50, ours.p99, ours.max,
-      static_cast<unsigned long long>(loop.overruns()));
-  // Formatted after the run, as planterd's service thread does: no string is built in the loop.
-  if (const std::string report = trace.take_report(); !report.empty())
-    std::printf("first %s", report.c_str());
-  sched_param normal{};
-  sched_setscheduler(0, SCHED_OTHER, &normal);
-  int rc = 0;
-  waitpid(cyclictest, &rc, 0);
-  if (!WIFEXITED(rc) || WEXITSTATUS(rc) != 0) {
-    std::printf("cyclictest failed (exit %d); is rt-tests installed?\n", WEXITSTATUS(rc));
-    return 1;
-  }
-  double ct_max = 0;
-  {
-    std::ifstream out(hist);
-    std::string line;
-    while (std::getline(out, line))
-      if (line.rfind("# Max Latencies:", 0) == 0) ct_max = std::atof(line.c_str() + 16);
-  }
-  const Stats ct = cyclictest_stats(hist, ct_max);
-  if (ct.p99 <= 0) {
-    std::printf("cyclictest wrote no histogram to %s\n", hist.c_str());
-    return 1;
-  }
-  std::printf(
-      "cyclictest    : %ld wake-ups at the same time on CPU 1, same period and priority: p50 "
-      "%.0f us, p99 %.0f us, max %.0f us\n",
-      loops, ct.p50, ct.p99, ct.max);
-  // A wake-up over a millisecond late in ours while cyclictest's worst stayed under half of
-  // it is our program's; when both saw one, the machine stalled both CPUs.
-  const bool ours_stalled = ours.max > 1000.0;
-  std::printf("worst wake-up: ours %.0f us, cyclictest %.0f us in the same window: %s\n", ours.max,
-              ct.max,
-              !ours_stalled              ? "no stall"
-              : ct.max >= 0.5 * ours.max ? "the machine's (both CPUs late)"
-                                         : "the program's (ours alone late)");
-#ifdef PLANTER_BENCH_CONSOLE
+  if (!report("with console", busy, priority, period_ns)) return 1;
+  const double with_clients = p99_ratio(busy), without = p99_ratio(quiet);
   std::printf(
       "p99 wake-up latency ratio planterd/cyclictest: %.2f (goal <= 1.2), overruns %llu, with 5 "
-      "console clients; p99 with them / without: %.0f / %.0f us = %.2f (goal: no worse)\n",
-      ct.p99 > 0 ? ours.p99 / ct.p99 : 0.0, static_cast<unsigned long long>(loop.overruns()),
-      ours.p99, quiet.p99, quiet.p99 > 0 ? ours.p99 / quiet.p99 : 0.0);
+      "console clients; without them %.2f (overruns %llu): with / without %.2f (goal <= 1, no "
+      "worse)\n",
+      with_clients, busy.overruns, without, quiet.overruns, with_clients / without);
 #else
+  std::printf("console: not in this build (no cpp-httplib): measured without clients\n");
+  const Window w = measure(scenario, cfg, loops, nullptr);
+  if (!report("no console", w, priority, period_ns)) return 1;
   std::printf("p99 wake-up latency ratio planterd/cyclictest: %.2f (goal <= 1.2), overruns %llu\n",
-              ct.p99 > 0 ? ours.p99 / ct.p99 : 0.0,
-              static_cast<unsigned long long>(loop.overruns()));
+              p99_ratio(w), w.overruns);
 #endif
   return 0;
 }

@@ -8,11 +8,17 @@ build=$(cd "${1:-$root/build}" && pwd)
 [ -x "$build/apps/planterd/planterd" ] && [ -x "$build/sim/planter-sim" ] ||
   { echo "vm-hil-test: build planterd and planter-sim first (scripts/setup.sh)" >&2; exit 1; }
 "$root/scripts/apt-install.sh" vm-hil-test python3 python3-can
+# The package the VM installs: this build's, made again when planterd is newer than it.
+deb=$(ls -t "$build"/planter_*_"$(dpkg --print-architecture)".deb 2>/dev/null | head -1 || true)
+if [ -z "$deb" ] || [ "$build/apps/planterd/planterd" -nt "$deb" ]; then
+  (cd "$build" && cpack -G DEB >/dev/null)
+  deb=$(ls -t "$build"/planter_*_"$(dpkg --print-architecture)".deb | head -1)
+fi
 "$root/scripts/vm/prepare.sh" "$build/vm-cache"
 run_dir="$build/vm-hil"
 rm -rf "$run_dir" && mkdir -p "$run_dir"
 PLANTER_VM_SHOW="$root:$build" "$root/scripts/vm/run.sh" "$build/vm-cache" "$run_dir" 600 \
-  sh "$root/tests/hil/guest_hil_test.sh" "$root" "$build" 2>&1 |
+  sh "$root/tests/hil/guest_hil_test.sh" "$root" "$build" "$deb" 2>&1 |
   grep -v -e '^\s*$' -e 'SeaBIOS' -e 'Booting from ROM' -e 'reboot: Power down' | tr -d '\033' |
   sed 's/^c\[?7l\[2J\(\[0m\)\?//'
 exit "${PIPESTATUS[0]}"

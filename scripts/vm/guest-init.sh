@@ -8,7 +8,7 @@ export PATH=/bin:/sbin
 mount -t proc proc /proc
 mount -t sysfs sys /sys
 mount -t devtmpfs dev /dev
-for m in virtio_pci 9pnet_virtio 9p can can-raw can-dev vcan configfs gpio-sim; do
+for m in virtio_pci 9pnet_virtio 9p can can-raw can-dev vcan configfs gpio-sim overlay; do
   modprobe "$m" 2>/dev/null || echo "guest: modprobe $m failed"
 done
 say() { echo "guest: $*"; }

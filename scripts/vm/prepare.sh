@@ -91,7 +91,7 @@ if [ ! -f "$initrd" ] || [ "$here/guest-init.sh" -nt "$initrd" ]; then
   mkdir -p "$mods"
   srcmods="$img_dir/lib/modules/$kver"
   for m in virtio_pci virtio_pci_modern_dev virtio_pci_legacy_dev virtio_ring virtio \
-           9pnet 9pnet_virtio 9p netfs fscache can can-raw can-dev vcan configfs; do
+           9pnet 9pnet_virtio 9p netfs fscache can can-raw can-dev vcan configfs overlay; do
     f=$(find "$srcmods" -name "$m.ko*" | head -1)
     [ -n "$f" ] || continue   # built into this kernel
     mkdir -p "$mods/$(dirname "${f#$srcmods/}")"

@@ -5,11 +5,17 @@ would use it: the page and the live values open to view; a command without a ses
 planterd's recording then holds), is told a depth out of range is refused, and stops the
 recording, which holds the new target and downloads whole; wrong secrets are limited; the
 audit log has it all; the recordings are offered for download. Prints one line per check ("hil: ...").
-Usage: console_client.py URL SECRET_FILE AUDIT_LOG RECORDING   (exits 1 on any failure)
+With --gated FILE (the installed package, not yet commissioned): first an operator's run is
+refused by the commissioning gate, then FILE is made and the machine awaited until it runs.
+Usage: console_client.py [--gated FILE] URL SECRET_FILE AUDIT_LOG RECORDING   (exits 1 on any failure)
 """
 import json, os, sys, time, urllib.error, urllib.request
 
-url, secret_file, audit_path, recording = sys.argv[1:5]
+args = sys.argv[1:]
+gated = None
+if args[:1] == ["--gated"]:
+    gated, args = args[1], args[2:]
+url, secret_file, audit_path, recording = args[:4]
 secret = open(secret_file).read().split("\n")[0]
 fail = 0
 
@@ -34,8 +40,29 @@ def call(path, body=None, headers=None):
         return e.code, e.read().decode(), e.headers
 
 
+def log_in():
+    status, body, headers = call("/api/login", {"secret": secret})
+    cookie = headers.get("Set-Cookie", "").split(";")[0]
+    csrf = json.loads(body).get("csrf", "") if status == 200 else ""
+    return status, {"Cookie": cookie, "X-CSRF-Token": csrf}
+
+
+if gated:
+    # Not commissioned: the console is up, the drives are held, and a run is refused.
+    status = None
+    for _ in range(150):
+        try:
+            status, auth = log_in()
+            break
+        except OSError:
+            time.sleep(0.2)
+    status, body, _ = call("/api/command", {"command": "run"}, auth) if status == 200 else (status, "", None)
+    say(status == 409 and "not commissioned" in body,
+        "console: before commissioning, run is refused by the gate: %s %s" % (status, body))
+    open(gated, "w").close()
+
 state = None
-for _ in range(100):
+for _ in range(200 if gated else 100):
     try:
         status, body, _ = call("/api/state")
         state = json.loads(body)
@@ -50,11 +77,8 @@ status, page, _ = call("/")
 say(status == 200 and "Transplanter console" in page, "console: the page loads (%d)" % status)
 status, body, _ = call("/api/command", {"command": "set_depth_mm", "value": 90})
 say(status == 401, "console: a command without a session gets %d" % status)
-status, body, headers = call("/api/login", {"secret": secret})
-cookie = headers.get("Set-Cookie", "").split(";")[0]
-csrf = json.loads(body).get("csrf", "") if status == 200 else ""
-say(status == 200 and cookie, "console: the operator logs in with the pairing secret (%d)" % status)
-auth = {"Cookie": cookie, "X-CSRF-Token": csrf}
+status, auth = log_in()
+say(status == 200 and auth["Cookie"], "console: the operator logs in with the pairing secret (%d)" % status)
 status, body, _ = call("/api/command", {"command": "record_start"}, auth)
 console_rec = json.loads(body).get("message", "").replace("recording to ", "") if status == 200 else ""
 say(status == 200 and console_rec.startswith("console-"), "console: record_start: %d %s" % (status, body))

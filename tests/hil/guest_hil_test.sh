@@ -1,10 +1,12 @@
 #!/bin/sh
 # Runs inside the test VM (scripts/vm/run.sh): planterd and `planter-sim devices` on the real
 # vcan0 and gpio-sim chip, with candump recording the bus. Then check_hil.py judges the logs.
-# Usage: guest_hil_test.sh REPO BUILD   (cwd: the run directory, shared with the host)
+# Usage: guest_hil_test.sh REPO BUILD DEB   (cwd: the run directory, shared with the host;
+# DEB: the package built for this machine)
 set -u
 R=$1
 B=$2
+DEB=$3
 BOARD=$R/boards/vm-hil/board.toml
 PLANTERD=$B/apps/planterd/planterd
 SIM=$B/sim/planter-sim
@@ -84,18 +86,9 @@ echo $? > c-restart.rc
 
 python3 "$R/tests/hil/check_hil.py" "$BOARD" . || fail=1
 
-# 5. planterd's console on the board's port, on the real kernel, with a phone's requests.
-rm -f d.* d-*
-echo "test1-pairing-secret-$$" > d-secret
-"$SIM" devices "$R/scenarios/hil-field-short.toml" --board "$BOARD" --can vcan0 --gpio planter-sim \
-  --duration 17 > d-devices.out 2> d-devices.log & DEV=$!
-sleep 1
-"$PLANTERD" --board "$BOARD" --record d.csv --run --duration 15 --log-period 0 \
-  --pairing-secret-file d-secret --console-audit-log d-audit.log 2> d-planterd.log & PD=$!
-python3 "$R/tests/hil/console_client.py" http://127.0.0.1:8080 d-secret d-audit.log d.csv || fail=1
-wait $PD; rc=$?
-[ $rc -eq 0 ] && note "console: planterd exit 0" || { note "FAIL console: planterd exit $rc"; cat d-planterd.log; fail=1; }
-wait $DEV
+# 5. The package installed as on a machine, its service's command with the console, a phone's
+# requests, the commissioning gate, and a stop as systemctl stops it.
+sh "$R/tests/hil/guest_package_test.sh" "$R" "$B" "$DEB" || fail=1
 
 # 6. planter-can over vcan0: scan, configure, calibrate, check, record, replay.
 sh "$R/tests/hil/guest_can_test.sh" "$R" "$B" || fail=1

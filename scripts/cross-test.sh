@@ -54,6 +54,11 @@ for p in "${presets[@]}"; do
   (cd "build-$p" && cpack -G DEB >/dev/null)
   deb=$(ls -t "build-$p"/planter_*_"$a".deb | head -1)
   scripts/package-test.sh "$deb" "$a"
+  if "${triple[$p]}-readelf" -d "build-$p/apps/planterd/planterd" | grep -q 'libcpp-httplib'; then
+    echo "cross: $p: planterd serves the operator's console (links libcpp-httplib)"
+  else
+    echo "cross: $p: planterd has NO operator's console (no cpp-httplib for $a: README, 'the console')"
+  fi
 done
 for p in "${presets[@]}"; do
   scripts/bench-size.sh "build-$p/apps/planterd/planterd" "${triple[$p]}"

@@ -49,6 +49,13 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION misc)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "can-utils")
+# A board's console links the cpp-httplib of a private sysroot (console/CMakeLists.txt), which
+# dpkg-shlibdeps cannot trace to an installed package: scripts/cross-test.sh names its package.
+set(PLANTER_CONSOLE_DEPENDS "" CACHE STRING "cross builds: the Depends of the sysroot's cpp-httplib")
+if(PLANTER_CONSOLE_DEPENDS AND PLANTER_CONSOLE_SYSROOT AND TARGET planter_console)
+  set(CPACK_DEBIAN_PACKAGE_DEPENDS "${PLANTER_CONSOLE_DEPENDS}")
+  set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS ${PLANTER_CONSOLE_SYSROOT}/usr/lib/${PLANTER_TRIPLE})
+endif()
 if(PLANTER_DEB_ARCH)  # set by a cross toolchain file
   set(CPACK_DEBIAN_PACKAGE_ARCHITECTURE ${PLANTER_DEB_ARCH})
 else()

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <regex>
 
@@ -201,10 +202,15 @@ void ConsoleServer::install_recording_routes(httplib::Server& srv) {
             std::error_code ec;
             const auto size = fs::file_size(path, ec);
             if (!*file || ec) return error(res, 404, "no recording " + name);
+            // A 32-bit board's server counts bytes in 32 bits: a larger file is said, not cut.
+            if (size > std::numeric_limits<std::size_t>::max())
+              return error(res, 413,
+                           "recording " + name + " is too large to download from this board (" +
+                               std::to_string(size) + " bytes); copy it from the machine");
             res.set_header("Content-Disposition", "attachment; filename=\"" + name + "\"");
             // The size when asked: a recording still being written is sent as far as it was.
             res.set_content_provider(
-                size, "text/csv",
+                static_cast<std::size_t>(size), "text/csv",
                 [file](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
                   char buffer[65536];
                   file->seekg(static_cast<std::streamoff>(offset));

@@ -42,11 +42,39 @@ for p in "${presets[@]}"; do
 done
 scripts/apt-install.sh cross "${wanted[@]}"
 
+# The operator's console: Debian's cpp-httplib of the board's architecture and the libraries
+# it links, downloaded (cached in the build directory) and unpacked into a private sysroot.
+# apt cannot install them beside the host's (Multi-Arch: same wants one version for all, and
+# this machine's mirror has served the boards' architectures older versions than the host's).
+# A download that fails is said, and that board is built without the console.
+console_sysroot() {  # console_sysroot BOARD ARCH: prints the cmake options, or nothing
+  local dir="$root/build-$1/console-sysroot" a=$2 pkgs=() p
+  for p in libcpp-httplib-dev libcpp-httplib0.11 libssl-dev libssl3 libbrotli-dev libbrotli1 \
+           zlib1g-dev zlib1g; do pkgs+=("$p:$a"); done
+  if [ ! -f "$dir/ready" ]; then
+    rm -rf "$dir" && mkdir -p "$dir/debs"
+    if ! (cd "$dir/debs" && apt-get download -qq "${pkgs[@]}" >"$dir/download.log" 2>&1); then
+      echo "cross: NO CONSOLE for board $1: apt-get download ${pkgs[*]} failed:" >&2
+      sed 's/^/    /' "$dir/download.log" >&2
+      return 0
+    fi
+    for d in "$dir"/debs/*.deb; do dpkg-deb -x "$d" "$dir/root"; done
+    touch "$dir/ready"
+  fi
+  local lib
+  lib=$(ls "$dir"/debs/libcpp-httplib0.11_*.deb | head -1)
+  local version
+  version=$(dpkg-deb -f "$lib" Version)
+  echo "-DPLANTER_CONSOLE_SYSROOT=$dir/root"
+  echo "-DPLANTER_CONSOLE_DEPENDS=$(dpkg-deb -f "$lib" Package) (>= ${version%-*})"
+}
+
 for p in "${presets[@]}"; do
   a=${arch[$p]}
   echo "== cross build for board $p ($a, ${triple[$p]})"
+  mapfile -t console_opts < <(console_sysroot "$p" "$a")
   cmake -S . -B "build-$p" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPLANTER_BOARD="$p" \
-    -DPLANTER_BUILD_BENCH=OFF >/dev/null
+    -DPLANTER_BUILD_BENCH=OFF "${console_opts[@]}" >/dev/null
   cmake --build "build-$p" -j "$(nproc)" --target planterd planter-can planter_unit_tests \
     planter_can_tests planterd_service_tests planter_dem_tests fuzz_can_frame fuzz_text_inputs fuzz_board_file
   echo "== unit tests of $p under qemu-user"
@@ -55,7 +83,12 @@ for p in "${presets[@]}"; do
   deb=$(ls -t "build-$p"/planter_*_"$a".deb | head -1)
   scripts/package-test.sh "$deb" "$a"
   if "${triple[$p]}-readelf" -d "build-$p/apps/planterd/planterd" | grep -q 'libcpp-httplib'; then
-    echo "cross: $p: planterd serves the operator's console (links libcpp-httplib)"
+    # It loads under qemu-user with the libraries the board's Depends bring (here the sysroot's).
+    libs_dir="$root/build-$p/console-sysroot/root"
+    LD_LIBRARY_PATH="$libs_dir/usr/lib/${triple[$p]}:$libs_dir/lib/${triple[$p]}" \
+      "$(toolchain_value "$(toolchain_of "$p")" PLANTER_QEMU)" "build-$p/apps/planterd/planterd" --help \
+      >/dev/null || { echo "cross: $p: planterd with the console does not start under qemu-user" >&2; exit 1; }
+    echo "cross: $p: planterd serves the operator's console (links libcpp-httplib; starts under qemu-user)"
   else
     echo "cross: $p: planterd has NO operator's console (no cpp-httplib for $a: README, 'the console')"
   fi

@@ -233,7 +233,7 @@ Window measure(const sim::Scenario& scenario, const hal::linux_backend::RtLoopCo
 }
 
 // Prints a window's two lines and whose its worst wake-up was; false when cyclictest failed.
-bool report(const char* name, const Window& w, int priority, std::int64_t period_ns) {
+bool report(const char* name, const Window& w, const hal::linux_backend::RtLoopConfig& cfg) {
   if (!w.error.empty()) {
     std::printf("%s\n", w.error.c_str());
     return false;
@@ -241,8 +241,8 @@ bool report(const char* name, const Window& w, int priority, std::int64_t period
   std::printf(
       "%s: planterd loop: %ld wake-ups at %.0f Hz, SCHED_FIFO %d on CPU 0: p50 %.0f us, p99 "
       "%.0f us, max %.0f us, overruns %llu\n",
-      name, w.wake_ups, 1e9 / static_cast<double>(period_ns), priority, w.ours.p50, w.ours.p99,
-      w.ours.max, w.overruns);
+      name, w.wake_ups, 1e9 / static_cast<double>(cfg.period_ns), cfg.priority, w.ours.p50,
+      w.ours.p99, w.ours.max, w.overruns);
   std::printf(
       "%s: cyclictest   : the same wake-ups at the same time on CPU 1: p50 %.0f us, p99 %.0f "
       "us, max %.0f us\n",
@@ -283,7 +283,7 @@ int main(int argc, char** argv) {
   // beside it as in the window with them, so the two differ by the console alone, and each
   // window's p99 is taken against cyclictest's in the same seconds (the machine is shared).
   const Window quiet = measure(scenario, cfg, loops / 3, nullptr);
-  if (!report("without console", quiet, priority, period_ns)) return 1;
+  if (!report("without console", quiet, cfg)) return 1;
   // 2. With the console and its clients, started before the measured loop, as in the field.
   ConsoleLoad console_load(scenario, seconds);
   const Window busy = measure(scenario, cfg, loops, &console_load);
@@ -296,7 +296,7 @@ int main(int argc, char** argv) {
       console_load.commands_answered.load(),
       static_cast<unsigned long long>(console_load.dropped()), console_load.flood_s.load(),
       console_load.wrong.load(), console_load.limited.load());
-  if (!report("with console", busy, priority, period_ns)) return 1;
+  if (!report("with console", busy, cfg)) return 1;
   const double with_clients = p99_ratio(busy), without = p99_ratio(quiet);
   std::printf(
       "p99 wake-up latency ratio planterd/cyclictest: %.2f (goal <= 1.2), overruns %llu, with 5 "
@@ -306,7 +306,7 @@ int main(int argc, char** argv) {
 #else
   std::printf("console: not in this build (no cpp-httplib): measured without clients\n");
   const Window w = measure(scenario, cfg, loops, nullptr);
-  if (!report("no console", w, priority, period_ns)) return 1;
+  if (!report("no console", w, cfg)) return 1;
   std::printf("p99 wake-up latency ratio planterd/cyclictest: %.2f (goal <= 1.2), overruns %llu\n",
               p99_ratio(w), w.overruns);
 #endif

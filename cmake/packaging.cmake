@@ -52,9 +52,9 @@ set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "can-utils")
 # A board's console links the cpp-httplib of a private sysroot (console/CMakeLists.txt), which
 # dpkg-shlibdeps cannot trace to an installed package: scripts/cross-test.sh names its package.
 set(PLANTER_CONSOLE_DEPENDS "" CACHE STRING "cross builds: the Depends of the sysroot's cpp-httplib")
-if(PLANTER_CONSOLE_DEPENDS AND PLANTER_CONSOLE_SYSROOT AND TARGET planter_console)
+if(PLANTER_CONSOLE_DEPENDS AND PLANTER_CONSOLE_SYSROOT_LIBS AND TARGET planter_console)
   set(CPACK_DEBIAN_PACKAGE_DEPENDS "${PLANTER_CONSOLE_DEPENDS}")
-  set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS ${PLANTER_CONSOLE_SYSROOT}/usr/lib/${PLANTER_TRIPLE})
+  set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS ${PLANTER_CONSOLE_SYSROOT_LIBS})
 endif()
 if(PLANTER_DEB_ARCH)  # set by a cross toolchain file
   set(CPACK_DEBIAN_PACKAGE_ARCHITECTURE ${PLANTER_DEB_ARCH})

@@ -47,8 +47,10 @@ scripts/apt-install.sh cross "${wanted[@]}"
 # apt cannot install them beside the host's (Multi-Arch: same wants one version for all, and
 # this machine's mirror has served the boards' architectures older versions than the host's).
 # A download that fails is said, and that board is built without the console.
+sysroot_of() { echo "$root/build-$1/console-sysroot"; }
 console_sysroot() {  # console_sysroot BOARD ARCH: prints the cmake options, or nothing
-  local dir="$root/build-$1/console-sysroot" a=$2 pkgs=() p
+  local dir a=$2 pkgs=() p
+  dir=$(sysroot_of "$1")
   for p in libcpp-httplib-dev libcpp-httplib0.11 libssl-dev libssl3 libbrotli-dev libbrotli1 \
            zlib1g-dev zlib1g; do pkgs+=("$p:$a"); done
   if [ ! -f "$dir/ready" ]; then
@@ -84,7 +86,7 @@ for p in "${presets[@]}"; do
   scripts/package-test.sh "$deb" "$a"
   if "${triple[$p]}-readelf" -d "build-$p/apps/planterd/planterd" | grep -q 'libcpp-httplib'; then
     # It loads under qemu-user with the libraries the board's Depends bring (here the sysroot's).
-    libs_dir="$root/build-$p/console-sysroot/root"
+    libs_dir="$(sysroot_of "$p")/root"
     LD_LIBRARY_PATH="$libs_dir/usr/lib/${triple[$p]}:$libs_dir/lib/${triple[$p]}" \
       "$(toolchain_value "$(toolchain_of "$p")" PLANTER_QEMU)" "build-$p/apps/planterd/planterd" --help \
       >/dev/null || { echo "cross: $p: planterd with the console does not start under qemu-user" >&2; exit 1; }

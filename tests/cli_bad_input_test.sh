@@ -31,7 +31,7 @@ sed "s|^texture = .*|draft_coeff = 4.8e5|" "$src/scenarios/zhangqiu-field.toml" 
 expect old-draft-key "d.toml:[0-9]+: 'soil.draft_coeff': .*ASABE D497" -- "$sim" run "$tmp/d.toml" --out "$tmp/o"
 # The tilt formula's keys are refused with what replaced them.
 sed "s|^carry_angle_deg = .*|kinematic_gain = 0.2|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/k.toml"
-expect old-tilt-key "k.toml:[0-9]+: 'mechanism.kinematic_gain': .*release mechanics.*root_reach_mm" -- "$sim" run "$tmp/k.toml" --out "$tmp/o"
+expect old-tilt-key "k.toml:[0-9]+: 'mechanism.kinematic_gain': .*release mechanics.*root_clearance_mm" -- "$sim" run "$tmp/k.toml" --out "$tmp/o"
 # The clamp pitch is the machine's now: a scenario that still sets it is told where it went.
 sed "s|^feed_miss_pct = .*|feed_pitch_mm = 44.25|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/p.toml"
 expect old-pitch-key "p.toml:[0-9]+: 'seedlings.feed_pitch_mm': is the machine's: \[planting_monitor\] clamp_pitch_mm" -- "$sim" run "$tmp/p.toml" --out "$tmp/o"

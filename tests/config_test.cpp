@@ -220,14 +220,14 @@ TEST(ScenarioConfig, AssumptionsAreWrittenFromWhatRan) {
   std::filesystem::remove(path);
   ASSERT_TRUE(s.plant.seedlings.force_model.loaded);
   const std::string with_dem = joined(sim::model_assumptions(s));
-  EXPECT_NE(with_dem.find("the first peak of the DEM's reduced-order model (" +
-                          std::string(PLANTER_SOURCE_DIR) + "/models/seedling_force.toml)"),
+  // The DEM gives the compression, never the strength: that is the measured peaks' (issue 27).
+  EXPECT_NE(with_dem.find("The DEM's reduced-order model (" + std::string(PLANTER_SOURCE_DIR) +
+                          "/models/seedling_force.toml) gives each seedling's compression, not "
+                          "its strength"),
             std::string::npos)
       << with_dem;
-  char peak[32];
-  std::snprintf(peak, sizeof peak, "%.1f N at", s.plant.seedlings.force_model.peak_force_N);
-  EXPECT_NE(with_dem.find(peak), std::string::npos) << with_dem;
-  EXPECT_EQ(with_dem.find("normal, mean"), std::string::npos) << with_dem;
+  EXPECT_NE(with_dem.find("lognormal with mean 161.9 N and SD 25.1 N"), std::string::npos)
+      << with_dem;
   EXPECT_NE(with_dem.find("force_offset_N = 8 N (load-cell offset)"), std::string::npos)
       << with_dem;
   EXPECT_NE(with_dem.find("F_i = 0.85, A = 91.0 N/cm"), std::string::npos) << with_dem;
@@ -235,7 +235,10 @@ TEST(ScenarioConfig, AssumptionsAreWrittenFromWhatRan) {
   s.plant.seedlings.force_model.loaded = false;
   s.plant.effects.force_offset_N = 0.0;
   const std::string without = joined(sim::model_assumptions(s));
-  EXPECT_NE(without.find("normal, mean 140.6 N, SD 24.9 N"), std::string::npos) << without;
+  EXPECT_EQ(without.find("The DEM's reduced-order model"), std::string::npos) << without;
+  s.plant.seedlings.strength_mean_N = 150.0;  // a scenario's own value is the one shown
+  EXPECT_NE(joined(sim::model_assumptions(s)).find("lognormal with mean 150.0 N"),
+            std::string::npos);
   EXPECT_NE(without.find("Hidden effects: none"), std::string::npos) << without;
 }
 

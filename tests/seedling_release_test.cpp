@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
+
+#include "sim/seedling/measured_strength.h"
 
 namespace planter::sim {
 namespace {
@@ -21,7 +24,7 @@ ReleaseInput centre(double sigma) {
 }
 
 TEST(RootAnchorage, IsBromsShortPileWithRankinesCoefficient) {
-  const soil::CohesionlessSoil loam;  // 14 kN/m^3, 30 deg: K_p = 3
+  const soil::Soil loam{14.0, 30.0, 0.0};  // 14 kN/m^3, 30 deg: K_p = 3
   EXPECT_NEAR(soil::passive_coefficient(loam), 3.0, 1e-9);
   const soil::RootAnchorage hold(loam);
   // 0.5 K_p gamma D b^3 for a 10 mm root buried 50 mm.
@@ -30,7 +33,72 @@ TEST(RootAnchorage, IsBromsShortPileWithRankinesCoefficient) {
   EXPECT_NEAR(hold.holding_force_N(0.010, 0.050, 0.020),
               hold.holding_moment_Nm(0.010, 0.050) / 0.070, 1e-12);
   EXPECT_NEAR(hold.plowing_force_N(0.010, 0.050), 1.5 * 3 * 14000 * 0.010 * 2.5e-3, 1e-12);
+  EXPECT_NEAR(hold.plowing_depth_m(0.010, 0.050), 2.0 * 0.050 / 3.0, 1e-12);
   EXPECT_EQ(hold.holding_moment_Nm(0.010, 0.0), 0.0);
+}
+
+TEST(RootAnchorage, CohesionAddsRankineBellsTermAndAFewKilopascalsHoldTenTimesMore) {
+  const soil::Soil loose{14.0, 30.0, 0.0}, moist{14.0, 30.0, 3.0};
+  const soil::RootAnchorage c0(loose), c3(moist);
+  // 3 D (2 c sqrt(K_p)) b^2 / 2 more about the end, 3 D (2 c sqrt(K_p)) b more when plowed.
+  const double cohesive = 2.0 * 3000.0 * std::sqrt(3.0);
+  EXPECT_NEAR(c3.holding_moment_Nm(0.010, 0.040) - c0.holding_moment_Nm(0.010, 0.040),
+              1.5 * cohesive * 0.010 * 0.040 * 0.040, 1e-12);
+  EXPECT_NEAR(c3.plowing_force_N(0.010, 0.040) - c0.plowing_force_N(0.010, 0.040),
+              3.0 * cohesive * 0.010 * 0.040, 1e-12);
+  EXPECT_GT(c3.holding_moment_Nm(0.010, 0.040), 10.0 * c0.holding_moment_Nm(0.010, 0.040));
+}
+
+TEST(SeedlingRelease, TheDiscRidesWithTheOpenerSoTheBurialFollowsTheDepth) {
+  const PlantConfig config;
+  ReleaseInput in = centre(1.5);
+  in.depth_mm = 80.0;
+  const double shallow = release_seedling(config, in).burial_mm;
+  in.depth_mm = 140.0;
+  const double deep = release_seedling(config, in).burial_mm;
+  EXPECT_NEAR(deep - shallow, 60.0, 1.0) << shallow << " " << deep;
+  // Its lowest point sits root_clearance_mm above the floor, 10 deg before the release.
+  EXPECT_LT(deep, 140.0 - config.mechanism.root_clearance_mm);
+}
+
+TEST(SeedlingRelease, TooLittleGripDropsTheSeedlingInTheCarry) {
+  const PlantConfig config;
+  ReleaseInput in = centre(1.5);
+  const double needed = carry_grip_needed_N(config, in.length_mm, in.diameter_mm, in.omega_radps);
+  // A 196 mm, 10 mm seedling weighs about 0.13 N; over 2 x 0.25 of friction, with the hand-off.
+  EXPECT_GT(needed, 0.2);
+  EXPECT_LT(needed, 1.0);
+  in.clamp_force_N = 0.9 * needed;
+  EXPECT_TRUE(release_seedling(config, in).fell_in_carry);
+  in.clamp_force_N = 1.1 * needed;
+  EXPECT_FALSE(release_seedling(config, in).fell_in_carry);
+}
+
+TEST(SeedlingRelease, AWeakGripLetsTheSoilSlideTheSeedlingAlongTheClamp) {
+  PlantConfig config;
+  config.soil.backflow.cohesion_kPa = 2.0;
+  ReleaseInput in = centre(1.5);
+  in.clamp_force_N = 90.0;
+  const double firm = release_seedling(config, in).clamp_slip_mm;
+  in.clamp_force_N = 2.0;
+  const double weak = release_seedling(config, in).clamp_slip_mm;
+  EXPECT_EQ(firm, 0.0);
+  EXPECT_LT(weak, -1.0) << "the soil pushes the root back into the clamp";
+}
+
+TEST(SeedlingRelease, TheCoveringWheelSavesAFallingSeedlingOnlyIfItComesFirst) {
+  PlantConfig config;
+  config.soil.backflow.cohesion_kPa = 0.0;
+  ReleaseInput in = centre(1.5);
+  in.depth_mm = 45.0;  // little returned soil: it cannot stand on it
+  in.scatter_deg = 20.0;
+  config.mechanism.covering_wheel_behind_mm = 1.0;  // at once
+  const ReleaseOutcome early = release_seedling(config, in);
+  config.mechanism.covering_wheel_behind_mm = 400.0;  // 6.7 s at 0.06 m/s
+  const ReleaseOutcome late = release_seedling(config, in);
+  EXPECT_FALSE(early.lodged) << early.tilt_deg;
+  EXPECT_TRUE(late.lodged) << late.tilt_deg;
+  EXPECT_GT(std::abs(late.fall_deg), std::abs(early.fall_deg));
 }
 
 TEST(SeedlingRelease, TheLipsTurnTheTopBackwardsOnlyWhenTheDiscOutrunsTheGround) {
@@ -68,10 +136,36 @@ TEST(SeedlingRelease, AWeakGripLetsTheSoilTurnTheSeedlingInTheClamp) {
   PlantConfig config;
   ReleaseInput in = centre(1.5);
   const double firm = release_seedling(config, in).clamp_turn_deg;
-  config.mechanism.contact_area_mm2 = 60.0;  // a narrow grip: friction moment mu N w / 4
+  config.mechanism.contact_area_mm2 = 60.0;  // a narrow grip: friction moment mu N w / 2
   in.clamp_force_N = 30.0;
   const double weak = release_seedling(config, in).clamp_turn_deg;
   EXPECT_LT(weak, firm - 2.0) << "firm " << firm << " weak " << weak;
+}
+
+}  // namespace
+}  // namespace planter::sim
+
+namespace planter::sim {
+namespace {
+
+TEST(SeedlingStrength, IsLognormalWithTheSixMeasuredPeaksMeanAndSd) {
+  const StrengthFit m = measured_strength();
+  EXPECT_NEAR(m.mean_N, 161.92, 0.01);  // (181.2 + 191.6 + 162.9 + 137.5 + 127.2 + 171.1) / 6
+  EXPECT_NEAR(m.sd_N, 25.1, 0.05);
+  EXPECT_DOUBLE_EQ(m.min_N, 127.2);
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> z(0.0, 1.0);
+  double sum = 0, sq = 0;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    const double x = lognormal_strength_N(m.mean_N, m.sd_N, z(rng));
+    ASSERT_GT(x, 0.0);
+    sum += x;
+    sq += x * x;
+  }
+  const double mean = sum / n;
+  EXPECT_NEAR(mean, m.mean_N, 0.5);
+  EXPECT_NEAR(std::sqrt(sq / n - mean * mean), m.sd_N, 0.5);
 }
 
 }  // namespace

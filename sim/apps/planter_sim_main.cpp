@@ -44,6 +44,13 @@ void print_summary(const Summary& s) {
   std::printf("uprightness         %.2f %%, %d lodged   (paper: 94.8 predicted, 93.86 field)\n",
               s.uprightness_pct, s.seedlings_lodged);
   std::printf("damage rate         %.2f %%   (paper: 3 predicted, 2.76 field)\n", s.damage_pct);
+  if (s.seedlings_damaged > 0)
+    std::printf(
+        "damaged seedlings   mean strength %.1f N, %d below the weakest measured (127.2 N)\n",
+        s.damaged_strength_mean_N, s.damaged_below_measured);
+  std::printf(
+      "in the clamp        %d fell in the carry (skips), %d slid > 5 mm, %d turned > 5 deg\n",
+      s.seedlings_fell_in_carry, s.seedlings_slid_in_clamp, s.seedlings_turned_in_clamp);
   std::printf("plant spacing       %.1f mm mean, CV %.1f %%   (agronomy: 20-30 mm)\n",
               s.spacing_mean_mm, s.spacing_cv_pct);
   if (s.monitor_fitted) {
@@ -77,16 +84,20 @@ void print_summary(const Summary& s) {
 std::string seedlings_csv(const SeedlingProcess& process) {
   std::ostringstream csv;
   // tilt_deg: + top forward, 90 lodged; sigma_at_release empty when released standing.
+  // fell_in_carry 1: dropped from the clamp before the soil (a skip; no position or tilt).
   csv << "x_m,release_t,diameter_mm,length_mm,strength_N,peak_force_N,damaged,tilt_deg,sigma_"
-         "at_release,burial_mm,clamp_turn_deg,lip_drag_deg,lodged\n";
-  for (const Seedling& s : process.seedlings()) {
-    if (!s.planted) continue;
+         "at_release,burial_mm,clamp_turn_deg,lip_drag_deg,lodged,clamp_slip_mm,fall_deg,"
+         "fell_in_carry\n";
+  for (std::size_t i = 0; i < process.released(); ++i) {
+    const Seedling& s = process.seedlings()[i];
     csv << s.x_m << ',' << s.release_time_s << ',' << s.diameter_mm << ',' << s.length_mm << ','
         << s.strength_N << ',' << s.peak_force_N << ',' << (s.damaged ? 1 : 0) << ',' << s.tilt_deg
         << ',';
     if (std::isfinite(s.sigma_at_release)) csv << s.sigma_at_release;
     csv << ',' << s.release.burial_mm << ',' << s.release.clamp_turn_deg << ','
-        << s.release.lip_drag_deg << ',' << (s.release.lodged ? 1 : 0) << '\n';
+        << s.release.lip_drag_deg << ',' << (s.release.lodged ? 1 : 0) << ','
+        << s.release.clamp_slip_mm << ',' << s.release.fall_deg << ','
+        << (s.release.fell_in_carry ? 1 : 0) << '\n';
   }
   return csv.str();
 }

@@ -140,6 +140,7 @@ void Plant::photo_eye(std::int64_t end_ns, hal::sim::SimEdgeSource& edges) {
   const std::vector<Seedling>& all = seedlings_.seedlings();
   while (photo_eye_seen_ < seedlings_.released()) {
     const Seedling& s = all[photo_eye_seen_++];
+    if (!s.planted) continue;  // it fell from the clamp in the carry: nothing passes the eye
     if (beam_broken_) edges.push({hal::edge_line::kSeedlingSensor, false, end_ns});
     edges.push({hal::edge_line::kSeedlingSensor, true, end_ns});
     // The beam stays broken while the disc carries the stem's diameter past it.

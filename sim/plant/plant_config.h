@@ -40,7 +40,11 @@ struct SoilConfig {
   double slip_mean_pct = 0.0;       // travel reduction of the towed soil wheel
   double slip_variation_pct = 0.0;  // slow variation along the row
   soil::OpenerDraftLaw draft;       // draft on the opener (ASABE D497 form, sim/soil/)
-  soil::CohesionlessSoil ground;    // the tilled soil that holds the planted root (sim/soil/)
+  // The soil that holds the planted root (sim/soil/root_anchorage.h): the loose soil that flows
+  // back into the furrow behind the opener, then the same soil once the covering wheel has
+  // pressed it. Values and sources: sim/plant/model_values.cpp.
+  soil::Soil backflow{14.0, 30.0, 0.5};
+  soil::Soil firmed{16.0, 30.0, 3.0};
 };
 
 struct SeedlingConfig {
@@ -52,33 +56,48 @@ struct SeedlingConfig {
   double feed_pitch_mm = 0.0;
   double feed_miss_pct = 1.0;    // clamps the feed leaves empty
   double feed_double_pct = 0.0;  // clamps the feed fills with two seedlings
-  // Strength: the paper's text mean (140.6 N) with the spread of its six measured peaks.
-  double strength_mean_N = 140.6;
-  double strength_sd_N = 24.9;
+  // Strength: lognormal with the mean and SD of the paper's six measured peaks (Sec. 3.5;
+  // sim/seedling/measured_strength.h); a scenario may set others. Below 0 = from the peaks.
+  double strength_mean_N = -1.0;
+  double strength_sd_N = -1.0;
+  // Strength ~ (diameter / reference)^k: assumed, no measurement ties strength to diameter.
+  double strength_diameter_exponent = 0.0;
+  // The length of seedling the strength test's plates loaded (the paper gives none): the nip
+  // loads the held length, so the line load, not the force, is compared (model_values.cpp).
+  double strength_test_length_mm = 25.0;
   double density_kg_per_m3 = 870.5;  // the paper's Table 2
   // Tilt scatter the release mechanics leave out (crooked seedlings, settling soil, the covering
   // wheel): calibrated to the paper's centre point (seedling_release.h).
   double tilt_noise_deg = 5.0;
-  // From the DEM (planter-dem reduce) when the scenario names one: the mean strength then
-  // follows each seedling's diameter, with the measured spread (strength_sd / strength_mean).
+  // From the DEM (planter-dem reduce) when the scenario names one: the compression a force
+  // gives (peak_compression_mm). Not the strength: that comes from the measured peaks.
   SeedlingForceModel force_model;
   std::string force_model_file;  // as the scenario names it (empty: none)
 };
 
 struct MechanismConfig {
   double contact_area_mm2 = 245.0;
+  // The lips hold the seedling over contact area / diameter along its stem, at most the band of
+  // flexible protrusions (the paper, Sec. 3.1 and 5: 40 mm wide).
+  double protrusion_band_mm = 40.0;
   double carry_angle_deg = 150.0;  // pickup to release
   double nip_time_s = 0.3;         // how long a seedling stays in the roller nip
   // The release (sim/plant/seedling_release.h). None of these is tuned: the first three are set
   // once, before any sweep, as the paper gives no value for them; the rest are the paper's or
   // assumed. (The one calibrated value of the release is the seedlings' tilt_noise_deg.)
   double release_after_lowest_deg = 10.0;  // set: where the lips open, past the lowest point
-  double root_reach_mm = 100.0;  // set to the paper's optimum depth: the root end's depth below
-                                 // the surface at the lowest point (the disc's height on the frame)
-  double residual_grip_share = 0.05;  // set: lip pressure left after release, of the clamp's
-  double root_protrusion_mm = 70.0;   // assumed: root end beyond the disc rim
-  double backflow_fill = 0.5;         // assumed: share of the furrow refilled at the seedling
-  double lip_friction = 0.25;         // seedling on silicone rubber, the paper's 0.2-0.3
+  // The disc rides with the furrow opener on one bracket (the paper, Sec. 2.1, Fig. 2), so the
+  // root end's lowest point keeps its height above the furrow floor whatever the depth.
+  double root_clearance_mm = 5.0;  // assumed: root end's lowest point above the furrow floor
+  // The covering wheel, behind the release, fills the furrow and presses the soil.
+  double covering_wheel_behind_mm = 250.0;  // assumed
+  // The seedling belt hands the seedling to the lips at a speed that differs by this much from
+  // the lips', taken up by friction over the nip time.
+  double handoff_speed_mismatch_mps = 0.05;  // assumed
+  double residual_grip_share = 0.05;         // set: lip pressure left after release, of the clamp's
+  double root_protrusion_mm = 70.0;          // assumed: root end beyond the disc rim
+  double backflow_fill = 0.5;  // assumed: share of the furrow refilled at the seedling
+  double lip_friction = 0.25;  // seedling on silicone rubber, the paper's 0.2-0.3
 };
 
 struct DriveModelConfig {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "sim/seedling/measured_strength.h"
+
 namespace planter::sim {
 namespace {
 constexpr double kDegPerRad = 57.29577951308232;
@@ -14,8 +16,9 @@ SeedlingProcess::SeedlingProcess(const PlantConfig& config, std::uint64_t seed)
   seedlings_.reserve(2048);
 }
 
-double SeedlingProcess::contact_area_factor() const {
-  return sim::contact_area_factor(cfg_.mechanism.contact_area_mm2);
+double nip_load_factor(const PlantConfig& config, double diameter_mm) {
+  return config.seedlings.strength_test_length_mm * 1e-3 /
+         std::max(1e-6, held_length_m(config.mechanism, diameter_mm));
 }
 
 double SeedlingProcess::nip_thickness_mm(double t_s) const {
@@ -32,15 +35,13 @@ Seedling SeedlingProcess::sample(double t_s) {
   Seedling s;
   s.diameter_mm = sc.diameter_min_mm + (sc.diameter_max_mm - sc.diameter_min_mm) * u01(rng_);
   s.length_mm = sc.length_min_mm + (sc.length_max_mm - sc.length_min_mm) * u01(rng_);
-  std::normal_distribution<double> strength(sc.strength_mean_N, sc.strength_sd_N);
-  s.strength_N = std::max(40.0, strength(rng_));
-  if (sc.force_model.loaded) {
-    // The DEM's first peak for this diameter, spread as the measured peaks are.
-    const double cv = sc.strength_sd_N / sc.strength_mean_N;
-    s.strength_N = sc.force_model.peak_force(s.diameter_mm) *
-                   std::max(0.3, 1.0 + cv * (s.strength_N - sc.strength_mean_N) /
-                                           std::max(1e-9, sc.strength_sd_N));
-  }
+  // Lognormal strength (sim/seedling/measured_strength.h), one standard normal draw.
+  std::normal_distribution<double> z(0.0, 1.0);
+  const StrengthFit measured = measured_strength();
+  const double mean = sc.strength_mean_N > 0.0 ? sc.strength_mean_N : measured.mean_N;
+  const double sd = sc.strength_sd_N >= 0.0 ? sc.strength_sd_N : measured.sd_N;
+  s.strength_N = lognormal_strength_N(mean, sd, z(rng_)) *
+                 std::pow(s.diameter_mm / sc.reference_diameter_mm, sc.strength_diameter_exponent);
   s.pickup_angle_rad = next_pickup_angle_rad_;
   s.pickup_time_s = t_s;
   return s;
@@ -78,11 +79,12 @@ void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N,
       seedlings_.push_back(second);
     }
   }
-  // Compression while in the nip: the clamp force times the local contact factor.
+  // Compression while in the nip: the clamp force as the strength test's force.
   if (!seedlings_.empty()) {
     Seedling& s = seedlings_.back();
     if (now.t_s - s.pickup_time_s <= mc.nip_time_s) {
-      s.peak_force_N = std::max(s.peak_force_N, clamp_force_N * contact_area_factor());
+      s.peak_force_N =
+          std::max(s.peak_force_N, clamp_force_N * nip_load_factor(cfg_, s.diameter_mm));
       s.damaged = s.peak_force_N > s.strength_N;
       if (sc.force_model.loaded) {
         // Past its first peak the wall collapses: the compression jumps past delta_p.
@@ -98,7 +100,6 @@ void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N,
   while (next_release_ < seedlings_.size() &&
          disc_angle_rad >= seedlings_[next_release_].pickup_angle_rad + carry_rad) {
     Seedling& s = seedlings_[next_release_++];
-    s.planted = true;
     s.release_time_s = now.t_s;
     s.x_m = now.x_m;
     s.sigma_at_release = now.v_mps > 0.005 ? cfg_.disc_radius_m * now.omega_radps / now.v_mps
@@ -116,6 +117,7 @@ void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N,
     in.scatter_deg = sc.tilt_noise_deg * noise(rng_) + vibration_tilt_deg * noise(rng_);
     s.release = release_seedling(cfg_, in);
     s.tilt_deg = s.release.tilt_deg;
+    s.planted = !s.release.fell_in_carry;  // dropped from the clamp: a skip
   }
 }
 

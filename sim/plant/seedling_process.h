@@ -11,13 +11,12 @@
 
 namespace planter::sim {
 
-// The radial force on a seedling per newton of clamp force, by the clamp's contact area:
-// fewer protrusions concentrate the load, more area brings the rigid disc into contact. A shape
-// after the paper's Fig. 17b (radial force falls then rises with contact area), not mechanics.
-inline double contact_area_factor(double contact_area_mm2) {
-  const double a = (contact_area_mm2 - 255.0) / 150.0;
-  return 1.0 + 0.15 * a * a;
-}
+// The nip's load on a seedling as the strength test's force: the lips spread the clamp force
+// over the held length w (contact area / diameter), the test's plates over their own length, so
+// the wall sees the same line load (N/mm) when F_test = F L_test / w. A thin-walled tube
+// crushed between plates fails at a line load (ring crushing: Timoshenko and Gere, "Theory of
+// Elastic Stability", ch. 7, the ring's collapse load per unit length).
+double nip_load_factor(const PlantConfig& config, double diameter_mm);
 
 struct Seedling {
   double diameter_mm = 0;
@@ -51,8 +50,6 @@ class SeedlingProcess {
             double vibration_tilt_deg);
   // Extra lip compression (mm) from the seedling currently in the nip, for the clamp model.
   [[nodiscard]] double nip_thickness_mm(double t_s) const;
-  // Local compression multiplier for the contact area (flexible protrusions spread the load).
-  [[nodiscard]] double contact_area_factor() const;
 
   [[nodiscard]] const std::vector<Seedling>& seedlings() const { return seedlings_; }
   void set_feed_miss_pct(double pct) { cfg_.seedlings.feed_miss_pct = pct; }

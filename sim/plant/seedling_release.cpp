@@ -10,16 +10,41 @@ constexpr double kRadPerDeg = kPi / 180.0;
 constexpr double kG = 9.81;
 // Steps per radian of disc travel: the held stage spans up to about 60 deg, the release about 40.
 constexpr double kStepsPerRad = 240.0;
+// The standing stage's time step (s): the fall of a 0.2 m rod about its end takes about 0.3 s.
+constexpr double kFallStep_s = 0.002;
+// With the machine stopped the covering wheel does not come: the stage ends after this long.
+constexpr double kLongestWait_s = 60.0;
+
+double seedling_mass_kg(const PlantConfig& config, double length_m, double diameter_m) {
+  return config.seedlings.density_kg_per_m3 * kPi / 4.0 * diameter_m * diameter_m * length_m;
+}
 }  // namespace
+
+double held_length_m(const MechanismConfig& mc, double diameter_mm) {
+  return std::min(mc.contact_area_mm2 / std::max(0.1, diameter_mm), mc.protrusion_band_mm) * 1e-3;
+}
+
+double carry_grip_needed_N(const PlantConfig& config, double length_mm, double diameter_mm,
+                           double omega_radps) {
+  const MechanismConfig& mc = config.mechanism;
+  const double length = length_mm * 1e-3;
+  const double mass = seedling_mass_kg(config, length, diameter_mm * 1e-3);
+  // Its centre of mass sits about half its length inside the rim (the root end protrudes).
+  const double r_cm =
+      std::max(0.0, config.disc_radius_m + mc.root_protrusion_mm * 1e-3 - 0.5 * length);
+  const double accel = kG + omega_radps * omega_radps * r_cm +
+                       mc.handoff_speed_mismatch_mps / std::max(1e-3, mc.nip_time_s);
+  return mass * accel / std::max(1e-9, 2.0 * mc.lip_friction);
+}
 
 ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& in) {
   const MechanismConfig& mc = config.mechanism;
-  const soil::RootAnchorage soil(config.soil.ground);
+  const soil::RootAnchorage backflow(config.soil.backflow);
+  const soil::RootAnchorage firmed(config.soil.firmed);
   const double r_rim = config.disc_radius_m;
-  const double protrusion = mc.root_protrusion_mm * 1e-3;
-  const double r_root = r_rim + protrusion;
-  const double reach = mc.root_reach_mm * 1e-3;
   const double floor = std::max(0.0, in.depth_mm) * 1e-3;
+  // The root end's lowest point below the surface: the disc rides with the opener.
+  const double reach = std::max(0.0, floor - mc.root_clearance_mm * 1e-3);
   const double length = in.length_mm * 1e-3;
   const double diameter = in.diameter_mm * 1e-3;
   const double omega = std::max(1e-3, in.omega_radps);
@@ -27,15 +52,25 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
   const double theta_r = mc.release_after_lowest_deg * kRadPerDeg;
   const double dtheta = 1.0 / kStepsPerRad;
   const double dt = dtheta / omega;
+  const double clamp_N = std::max(0.0, in.clamp_force_N);
   ReleaseOutcome out;
 
+  // 0. Carried: the grip against the seedling's weight and accelerations.
+  if (clamp_N < carry_grip_needed_N(config, in.length_mm, in.diameter_mm, omega)) {
+    out.fell_in_carry = true;
+    return out;
+  }
+
+  double protrusion = mc.root_protrusion_mm * 1e-3;  // changes when the seedling slides
   // Depth of the root end below the surface at disc angle theta (0 at the lowest point), on the
   // floor at most.
   auto burial = [&](double theta) {
-    return std::clamp(reach - r_root * (1.0 - std::cos(theta)), 0.0, floor);
+    const double r_root = r_rim + protrusion;
+    const double lowest = reach + (protrusion - mc.root_protrusion_mm * 1e-3);
+    return std::clamp(lowest - r_root * (1.0 - std::cos(theta)), 0.0, floor);
   };
   // The opener leaves the furrow open; the returning soil has refilled a share of it where the
-  // seedling goes in. The root holds in that soil only.
+  // seedling goes in. The root holds in that soil only until the covering wheel.
   const double backflow_level = mc.backflow_fill * floor;  // above the floor
   auto embedded = [&](double theta) {
     return std::max(0.0, backflow_level - (floor - burial(theta)));
@@ -44,10 +79,10 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
   // 1. Held: from where the root end reaches the surface to the release. The lips are a
   // distributed spring over the held length w: the clamp law's local stiffness dF/dx = n F / x
   // ([plant] clamp_k_N, clamp_n) spread over w resists turning with k w^2 / 12.
-  const double entry = -std::acos(std::clamp(1.0 - reach / r_root, -1.0, 1.0));
-  const double held_length = mc.contact_area_mm2 * 1e-6 / std::max(1e-4, diameter);
-  const double clamp_N = std::max(0.0, in.clamp_force_N);
-  const double hold_Nm = mc.lip_friction * clamp_N * held_length / 4.0;
+  const double entry = -std::acos(std::clamp(1.0 - reach / (r_rim + protrusion), -1.0, 1.0));
+  const double held_length = held_length_m(mc, in.diameter_mm);
+  const double grip_N = 2.0 * mc.lip_friction * clamp_N;  // both faces
+  const double hold_Nm = grip_N * held_length / 4.0;      // mu N w / 2
   const DriveModelConfig& dr = config.drive;
   const double lip_compression_mm = std::pow(clamp_N / dr.clamp_k_N, 1.0 / dr.clamp_n);
   const double lip_N_per_m = 1e3 * dr.clamp_n * clamp_N / std::max(0.1, lip_compression_mm);
@@ -56,26 +91,40 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
   double elastic = 0.0;  // the lips' elastic give, at the release
   for (double theta = entry; theta < theta_r; theta += dtheta) {
     const double b = embedded(theta);
-    const double u_root = v - r_root * omega * std::cos(theta);  // root end's ground speed
-    // The soil pushes the root against its travel: travelling backwards (sigma > 1 near the
-    // lowest point) the root is pushed forwards, ahead of the clamp, and the top turns back.
-    const double moment = soil.plowing_force_N(diameter, b) * std::max(0.0, protrusion - b / 3.0) *
-                          (u_root < 0.0 ? -1.0 : 1.0);
+    if (b <= 0.0) continue;
+    const double r_root = r_rim + protrusion;
+    // The root end's ground velocity, across the rod (+ forward at the bottom) and along it
+    // (+ outwards from the hub): the machine's travel and the disc's turn.
+    const double u_across = v * std::cos(theta) - r_root * omega;
+    const double u_along = -v * std::sin(theta);
+    const double speed = std::hypot(u_across, u_along);
+    if (speed <= 0.0) continue;
+    // The soil resists the root's motion: plowed against it. Its share across the rod turns it
+    // about the clamp; its share along the rod pushes it along the clamp.
+    const double plow = backflow.plowing_force_N(diameter, b);
+    const double arm = std::max(0.0, protrusion - (b - backflow.plowing_depth_m(diameter, b)));
+    const double moment = plow * std::abs(u_across) / speed * arm * (u_across < 0.0 ? -1.0 : 1.0);
     elastic = std::clamp(moment, -hold_Nm, hold_Nm) / lip_Nm_per_rad;
     // Past the grip the root stays where the soil holds it while the clamp moves on.
-    if (std::abs(moment) > hold_Nm) slipped += u_root * dt / protrusion;
+    if (std::abs(moment) > hold_Nm) slipped += u_across * dt / protrusion;
+    if (plow * std::abs(u_along) / speed > grip_N) {
+      const double slide = -u_along * dt;  // the clamp moves on along the rod, the root stays
+      protrusion = std::clamp(protrusion + slide, 0.01, length);
+      out.clamp_slip_mm += slide * 1e3;
+    }
   }
   const double turn = slipped + elastic;
   out.clamp_turn_deg = turn / kRadPerDeg;
 
   // 2. Released: the rod about its root end, (x, y) with y up from the soil surface.
   const double b = embedded(theta_r);
+  const double r_root = r_rim + protrusion;
   out.burial_mm = burial(theta_r) * 1e3;
   double phi = theta_r + turn;  // + top forward
-  const double hub_height = r_root - reach;
+  const double hub_height = r_root - (reach + (protrusion - mc.root_protrusion_mm * 1e-3));
   const double root_x = -r_root * std::sin(theta_r);  // hub at x = 0 at release
   const double root_y = -burial(theta_r);
-  const double grip_N = mc.lip_friction * mc.residual_grip_share * std::max(0.0, in.clamp_force_N);
+  const double drag_N = mc.lip_friction * mc.residual_grip_share * clamp_N;
   const double phi_release = phi;
   for (double t = 0.0; t < 2.0 * kPi / omega; t += dt) {
     const double hub_x = v * t;
@@ -93,15 +142,32 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
     const double vx = v + omega * py, vy = -omega * px;
     const double across = vx * uy - vy * ux;  // along (cos phi, -sin phi): + top forward
     const double lips_height = root_y + s_c * uy + (floor - backflow_level);
-    if (grip_N > soil.holding_force_N(diameter, b, lips_height)) phi += across * dt / s_c;
+    if (drag_N > backflow.holding_force_N(diameter, b, lips_height)) phi += across * dt / s_c;
   }
   out.lip_drag_deg = (phi - phi_release) / kRadPerDeg;
   phi += in.scatter_deg * kRadPerDeg;
 
-  // 3. Standing: the weight's moment about the root end against the soil's.
-  const double mass = config.seedlings.density_kg_per_m3 * kPi / 4.0 * diameter * diameter * length;
-  const double weight_Nm = mass * kG * 0.5 * length * std::abs(std::sin(phi));
-  if (weight_Nm > soil.holding_moment_Nm(diameter, b)) {
+  // 3. Standing: the rod about its root end under its weight, the returned soil resisting, until
+  // the covering wheel comes; then the firmed soil over the whole burial.
+  const double mass = seedling_mass_kg(config, length, diameter);
+  const double inertia = mass * length * length / 3.0;
+  const double weight_arm_Nm = mass * kG * 0.5 * length;
+  const double loose_Nm = backflow.holding_moment_Nm(diameter, b);
+  const double cover_s =
+      v > 1e-4 ? std::min(kLongestWait_s, mc.covering_wheel_behind_mm * 1e-3 / v) : kLongestWait_s;
+  const double phi_standing = phi;
+  double rate = 0.0;  // rad/s
+  for (double t = 0.0; t < cover_s && std::abs(phi) < 0.5 * kPi; t += kFallStep_s) {
+    const double tipping = weight_arm_Nm * std::sin(phi);
+    if (rate == 0.0 && std::abs(tipping) <= loose_Nm) break;  // it stands
+    const double direction = rate != 0.0 ? std::copysign(1.0, rate) : std::copysign(1.0, phi);
+    rate += (tipping - direction * loose_Nm) / inertia * kFallStep_s;
+    if (rate * direction < 0.0) break;  // the soil has stopped it
+    phi += rate * kFallStep_s;
+  }
+  out.fall_deg = (phi - phi_standing) / kRadPerDeg;
+  const double covered_Nm = firmed.holding_moment_Nm(diameter, burial(theta_r));
+  if (std::abs(phi) >= 0.5 * kPi || weight_arm_Nm * std::abs(std::sin(phi)) > covered_Nm) {
     out.lodged = true;
     phi = std::copysign(90.0 * kRadPerDeg, phi);
   }

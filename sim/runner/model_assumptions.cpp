@@ -4,7 +4,9 @@
 
 #include "sim/plant/effect_keys.h"
 #include "sim/plant/seedling_process.h"
+#include "sim/plant/seedling_release.h"
 #include "sim/runner/summary.h"
+#include "sim/seedling/measured_strength.h"
 
 namespace planter::sim {
 namespace {
@@ -19,24 +21,24 @@ std::string format(const char* fmt, Args... args) {
 }
 
 std::string strength(const SeedlingConfig& c) {
-  const double cv_pct = 100.0 * c.strength_sd_N / c.strength_mean_N;
-  if (c.force_model.loaded) {
-    const SeedlingForceModel& m = c.force_model;
-    return format(
-        "Seedling strength: the first peak of the DEM's reduced-order model (%s): %.1f N at "
-        "%.1f mm of compression for a %.1f mm seedling, %+.1f N per mm of diameter, so it "
-        "follows each seedling's diameter (%.1f-%.1f mm); spread with a coefficient of variation "
-        "of %.1f %% (strength_sd_N / strength_mean_N = %.1f / %.1f N). A seedling is damaged "
-        "when the radial force in the roller nip exceeds its strength.",
-        c.force_model_file.c_str(), m.peak_force_N, m.peak_displacement_mm, m.reference_diameter_mm,
-        m.peak_force_slope_N_per_mm, c.diameter_min_mm, c.diameter_max_mm, cv_pct, c.strength_sd_N,
-        c.strength_mean_N);
-  }
+  const StrengthFit m = measured_strength();
+  const double mean = c.strength_mean_N > 0.0 ? c.strength_mean_N : m.mean_N;
+  const double sd = c.strength_sd_N >= 0.0 ? c.strength_sd_N : m.sd_N;
   return format(
-      "Seedling strength: normal, mean %.1f N, SD %.1f N, the same for every diameter (no DEM "
-      "force model named in [seedlings]). A seedling is damaged when the radial force in the "
-      "roller nip exceeds its strength.",
-      c.strength_mean_N, c.strength_sd_N);
+      "Seedling strength: lognormal with mean %.1f N and SD %.1f N (the paper's six measured "
+      "peaks, Sec. 3.5, are %.1f-%.1f N with mean %.1f N, SD %.1f N, the mean's 95 %% interval "
+      "%.1f-%.1f N; its text's %.1f N is shown for comparison only); the lognormal form is "
+      "assumed, as six values cannot choose it; strength ~ (diameter / %.0f mm)^%.2g (assumed). "
+      "A seedling is damaged when the nip's line load (clamp force over the held length, contact "
+      "area / diameter, at most the %.0f mm band) exceeds the test's (its strength over %.0f mm, "
+      "assumed).%s",
+      mean, sd, m.min_N, m.max_N, m.mean_N, m.sd_N, m.mean_lo_N, m.mean_hi_N,
+      kPaperStatedStrength_N, c.reference_diameter_mm, c.strength_diameter_exponent, 40.0,
+      c.strength_test_length_mm,
+      c.force_model.loaded ? (" The DEM's reduced-order model (" + c.force_model_file +
+                              ") gives each seedling's compression, not its strength.")
+                                 .c_str()
+                           : "");
 }
 
 std::string effects(const Effects& e) {
@@ -59,27 +61,34 @@ std::vector<std::string> model_assumptions(const Scenario& sc) {
   const DriveModelConfig& dr = p.drive;
   return {
       strength(p.seedlings),
-      format("Radial force on a seedling = clamp force x a contact-area factor "
-             "1 + 0.15 ((A - 255 mm^2) / 150 mm^2)^2, a shape after the paper's Fig. 17b (2 "
-             "values read from it, not mechanics); here A = %.0f mm^2, a factor of %.3f. Thicker "
-             "seedlings compress the lips further.",
-             m.contact_area_mm2, contact_area_factor(m.contact_area_mm2)),
+      format("Contact area acts through mechanics: the lips hold the stem over contact area / "
+             "diameter (%.0f mm^2 here: %.1f mm of a 10 mm stem, at most the %.0f mm band), which "
+             "spreads the nip's load (damage) and sets the friction moment that keeps the "
+             "seedling from turning in the clamp. Nothing in the model penalises a large area (the "
+             "paper's rigid-disc contact is not modelled), so the model's best area is at the top "
+             "of any range it is given.",
+             m.contact_area_mm2, held_length_m(m, 10.0) * 1e3, m.protrusion_band_mm),
       format("Tilt from the release mechanics (sim/plant/seedling_release.h): a rigid seedling "
-             "(density %.1f kg/m^3) held radially, root end %.0f mm beyond the rim; the root "
-             "plowed through the soil turns it in the clamp when the soil's moment beats the "
-             "lips' friction moment (mu %.2f, the paper's); released %.1f deg past the lowest "
-             "point, the leaves dragged by the lips with %.3f of the clamp force until the top "
-             "leaves the disc, against the root's anchorage (Broms' short pile, soil %.1f kN/m^3, "
-             "phi %.0f deg, both assumed); lodged when its weight's moment beats the soil's. "
-             "Set once, not tuned, as the paper gives none: the release angle, the residual "
-             "grip and the root reach (%.0f mm below the surface at the lowest point, the "
-             "paper's optimum depth). Calibrated to the paper's centre point (1 value): the "
-             "scatter the stages leave out, %.1f deg. Uprightness = mean of (1 - |tilt| / 90 "
-             "deg), the paper's definition.",
-             p.seedlings.density_kg_per_m3, m.root_protrusion_mm, m.lip_friction,
-             m.release_after_lowest_deg, m.residual_grip_share,
-             1e-3 * p.soil.ground.unit_weight_N_per_m3, p.soil.ground.friction_angle_deg,
-             m.root_reach_mm, p.seedlings.tilt_noise_deg),
+             "(density %.1f kg/m^3) held radially, root end %.0f mm beyond the rim; the disc rides "
+             "with the opener (the paper, Fig. 2), the root end's lowest point %.0f mm above the "
+             "furrow floor. Carried by friction on both lip faces (mu %.2f, the paper's 0.2-0.3); "
+             "the root plowed through the returned soil turns it in the clamp when the soil's "
+             "moment beats mu N w / 2, and slides it along the clamp when the soil's push beats "
+             "2 mu N; released %.1f deg past the lowest point, the leaves dragged by the lips with "
+             "%.3f of the clamp force until the top leaves the disc, against the root's anchorage "
+             "in c-phi soil (Broms' short pile with Rankine-Bell's passive pressure: returned soil "
+             "%.1f kN/m^3, phi %.0f deg, c %.1f kPa); it falls under its weight where that beats "
+             "the returned soil, until the covering wheel (%.0f mm behind) fills and firms the "
+             "furrow (%.1f kN/m^3, c %.1f kPa) and holds it where it is, or it lodges. Every value "
+             "and its source: the table of model values. Calibrated to the paper's centre point "
+             "(1 value): the scatter the stages leave out, %.1f deg. Uprightness = mean of (1 - "
+             "|tilt| / 90 deg), the paper's definition.",
+             p.seedlings.density_kg_per_m3, m.root_protrusion_mm, m.root_clearance_mm,
+             m.lip_friction, m.release_after_lowest_deg, m.residual_grip_share,
+             p.soil.backflow.unit_weight_kN_per_m3, p.soil.backflow.friction_angle_deg,
+             p.soil.backflow.cohesion_kPa, m.covering_wheel_behind_mm,
+             p.soil.firmed.unit_weight_kN_per_m3, p.soil.firmed.cohesion_kPa,
+             p.seedlings.tilt_noise_deg),
       format("Clamp (the disc lips): F = k (x - x0)^n with k = %.2f, x0 = %.2f mm, n = %.2f "
              "([plant]); load-cell noise %.1f N.",
              dr.clamp_k_N, dr.clamp_x0_mm, dr.clamp_n, dr.force_noise_N),

@@ -72,14 +72,17 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
   };
   const double ceiling = s.clamp_ceiling_N;
   row("uprightness", s.uprightness_pct, 2, "%",
-      "paper: 94.8 % predicted, 93.86 % field; goal: within 2 points of the field (the paper's "
-      "own criterion)",
-      goal(std::abs(s.uprightness_pct - 93.86) <= 2.0));
+      "paper: 94.8 % predicted, 93.86 % field (a comparison, not a target: the model's values "
+      "and their sources are under Model assumptions)",
+      Goal::none);
   row("seedlings lodged", s.seedlings_lodged, 0, "", "lying in the furrow (tilt 90 deg)",
       Goal::none);
   row("damage rate", s.damage_pct, 2, "%",
-      "paper: 3 % predicted, 2.76 % field; goal: within 2 points of the field",
-      goal(std::abs(s.damage_pct - 2.76) <= 2.0));
+      "paper: 3 % predicted, 2.76 % field (a comparison, not a target)", Goal::none);
+  row("seedlings fell from the clamp", s.seedlings_fell_in_carry, 0, "",
+      "in the carry, too little grip for their weight and accelerations: skips", Goal::none);
+  row("seedlings turned in the clamp", s.seedlings_turned_in_clamp, 0, "",
+      "by more than 5 deg, the soil's moment beating the lips' friction", Goal::none);
   row("plant spacing, mean", s.spacing_mean_mm, 1, "mm", "agronomy: 20-30 mm",
       goal(s.spacing_mean_mm >= 20.0 && s.spacing_mean_mm <= 30.0));
   row("plant spacing, CV", s.spacing_cv_pct, 1, "%", "", Goal::none);

@@ -104,10 +104,16 @@ Scenario load_scenario(const std::string& path) {
     d.c_N_per_cm_kmh2 =
         t->number("draft_c_N_per_cm_kmh2", d.c_N_per_cm_kmh2, 0.0, 1e4, "N/(cm (km/h)^2)");
     d.depth_exponent = t->number("draft_depth_exponent", d.depth_exponent, 1.0, 2.0);
-    soil::CohesionlessSoil& g = p.soil.ground;
-    g.unit_weight_N_per_m3 = 1e3 * t->number("unit_weight_kN_per_m3", 1e-3 * g.unit_weight_N_per_m3,
-                                             5.0, 25.0, "kN/m^3");
+    soil::Soil& g = p.soil.backflow;
+    soil::Soil& f = p.soil.firmed;
+    g.unit_weight_kN_per_m3 =
+        t->number("unit_weight_kN_per_m3", g.unit_weight_kN_per_m3, 5.0, 25.0, "kN/m^3");
     g.friction_angle_deg = t->number("friction_angle_deg", g.friction_angle_deg, 10.0, 50.0, "deg");
+    f.friction_angle_deg = g.friction_angle_deg;
+    g.cohesion_kPa = t->number("cohesion_kPa", g.cohesion_kPa, 0.0, 100.0, "kPa");
+    f.unit_weight_kN_per_m3 =
+        t->number("firmed_unit_weight_kN_per_m3", f.unit_weight_kN_per_m3, 5.0, 25.0, "kN/m^3");
+    f.cohesion_kPa = t->number("firmed_cohesion_kPa", f.cohesion_kPa, 0.0, 100.0, "kPa");
     t->reject_unknown_keys();
   }
   if (auto t = root.table("seedlings")) {
@@ -124,8 +130,14 @@ Scenario load_scenario(const std::string& path) {
     c.feed_miss_pct = t->number("feed_miss_pct", c.feed_miss_pct, 0.0, 100.0, "%");
     c.feed_double_pct =
         t->number("feed_double_pct", c.feed_double_pct, 0.0, 100.0 - c.feed_miss_pct, "%");
-    c.strength_mean_N = t->number("strength_mean_N", c.strength_mean_N, 10.0, 1000.0, "N");
-    c.strength_sd_N = t->number("strength_sd_N", c.strength_sd_N, 0.0, 500.0, "N");
+    // Unset: the measured peaks' (sim/seedling/measured_strength.h).
+    if (t->has("strength_mean_N"))
+      c.strength_mean_N = t->number("strength_mean_N", 0.0, 10.0, 1000.0, "N");
+    if (t->has("strength_sd_N")) c.strength_sd_N = t->number("strength_sd_N", 0.0, 0.0, 500.0, "N");
+    c.strength_diameter_exponent =
+        t->number("strength_diameter_exponent", c.strength_diameter_exponent, -3.0, 3.0);
+    c.strength_test_length_mm =
+        t->number("strength_test_length_mm", c.strength_test_length_mm, 1.0, 200.0, "mm");
     c.tilt_noise_deg = t->number("tilt_noise_deg", c.tilt_noise_deg, 0.0, 45.0, "deg");
     c.density_kg_per_m3 =
         t->number("density_kg_per_m3", c.density_kg_per_m3, 100.0, 2000.0, "kg/m^3");
@@ -146,12 +158,22 @@ Scenario load_scenario(const std::string& path) {
       if (t->has(old_key))
         t->fail(old_key,
                 "belonged to the tilt formula the release mechanics replaced; the release is "
-                "set by release_after_lowest_deg, root_reach_mm, residual_grip_share, "
+                "set by release_after_lowest_deg, root_clearance_mm, residual_grip_share, "
                 "root_protrusion_mm and lip_friction");
+    if (t->has("root_reach_mm"))
+      t->fail("root_reach_mm",
+              "was typed to the paper's optimum depth and is gone: the disc rides with the "
+              "opener, so the root's reach follows from the depth and root_clearance_mm");
     m.carry_angle_deg = t->number("carry_angle_deg", m.carry_angle_deg, 30.0, 300.0, "deg");
     m.release_after_lowest_deg =
         t->number("release_after_lowest_deg", m.release_after_lowest_deg, -60.0, 60.0, "deg");
-    m.root_reach_mm = t->number("root_reach_mm", m.root_reach_mm, 0.0, 300.0, "mm");
+    m.root_clearance_mm = t->number("root_clearance_mm", m.root_clearance_mm, 0.0, 100.0, "mm");
+    m.covering_wheel_behind_mm =
+        t->number("covering_wheel_behind_mm", m.covering_wheel_behind_mm, 0.0, 2000.0, "mm");
+    m.handoff_speed_mismatch_mps =
+        t->number("handoff_speed_mismatch_mps", m.handoff_speed_mismatch_mps, 0.0, 2.0, "m/s");
+    m.protrusion_band_mm = t->number("protrusion_band_mm", m.protrusion_band_mm, 5.0, 200.0, "mm");
+    m.nip_time_s = t->number("nip_time_s", m.nip_time_s, 0.01, 5.0, "s");
     m.residual_grip_share = t->number("residual_grip_share", m.residual_grip_share, 0.0, 1.0);
     m.root_protrusion_mm = t->number("root_protrusion_mm", m.root_protrusion_mm, 10.0, 200.0, "mm");
     m.lip_friction = t->number("lip_friction", m.lip_friction, 0.0, 2.0);

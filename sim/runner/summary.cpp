@@ -4,6 +4,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "sim/seedling/measured_strength.h"
+
 namespace planter::sim {
 
 void SummaryBuilder::add(const Telemetry& c, const PlantTruth& t, bool running,
@@ -48,9 +50,18 @@ Summary SummaryBuilder::finish(const SeedlingProcess& process, double plot_lengt
   s.depth_rms_error_mm = depth_n_ ? std::sqrt(depth_err2_ / static_cast<double>(depth_n_)) : 0.0;
 
   std::vector<double> xs;
-  double upright_sum = 0, peak_sum = 0;
-  for (const Seedling& sd : process.seedlings()) {
+  double upright_sum = 0, peak_sum = 0, damaged_strength_sum = 0;
+  const double weakest_measured_N = measured_strength().min_N;
+  for (std::size_t i = 0; i < process.released(); ++i) {
+    const Seedling& sd = process.seedlings()[i];
+    if (sd.release.fell_in_carry) ++s.seedlings_fell_in_carry;
     if (!sd.planted) continue;
+    if (std::abs(sd.release.clamp_slip_mm) > 5.0) ++s.seedlings_slid_in_clamp;
+    if (std::abs(sd.release.clamp_turn_deg) > 5.0) ++s.seedlings_turned_in_clamp;
+    if (sd.damaged) {
+      damaged_strength_sum += sd.strength_N;
+      if (sd.strength_N < weakest_measured_N) ++s.damaged_below_measured;
+    }
     xs.push_back(sd.x_m);
     upright_sum += std::max(0.0, 1.0 - std::abs(sd.tilt_deg) / 90.0);
     peak_sum += sd.peak_force_N;
@@ -58,6 +69,8 @@ Summary SummaryBuilder::finish(const SeedlingProcess& process, double plot_lengt
     if (sd.release.lodged) ++s.seedlings_lodged;
   }
   s.seedlings_planted = static_cast<int>(xs.size());
+  if (s.seedlings_damaged > 0)
+    s.damaged_strength_mean_N = damaged_strength_sum / s.seedlings_damaged;
   if (!xs.empty()) {
     s.uprightness_pct = 100.0 * upright_sum / static_cast<double>(xs.size());
     s.damage_pct = 100.0 * s.seedlings_damaged / static_cast<double>(xs.size());
@@ -98,6 +111,11 @@ std::string Summary::to_json() const {
   j["sigma_ctrl_rms_error_pct"] = sigma_ctrl_rms_error_pct;
   j["uprightness_pct"] = uprightness_pct;
   j["seedlings_lodged"] = seedlings_lodged;
+  j["seedlings_fell_in_carry"] = seedlings_fell_in_carry;
+  j["seedlings_slid_in_clamp"] = seedlings_slid_in_clamp;
+  j["seedlings_turned_in_clamp"] = seedlings_turned_in_clamp;
+  j["damaged_strength_mean_N"] = damaged_strength_mean_N;
+  j["damaged_below_weakest_measured"] = damaged_below_measured;
   j["damage_pct"] = damage_pct;
   j["spacing_mean_mm"] = spacing_mean_mm;
   j["spacing_cv_pct"] = spacing_cv_pct;

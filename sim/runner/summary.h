@@ -19,6 +19,12 @@ struct Summary {
   double sigma_true_mean = 0, sigma_true_rms_error_pct = 0, sigma_ctrl_rms_error_pct = 0;
   double uprightness_pct = 0, damage_pct = 0;
   int seedlings_lodged = 0;  // lying in the furrow (tilt 90 deg)
+  // In the clamp (sim/plant/seedling_release.h): dropped in the carry (a skip), slid along the
+  // clamp by more than 5 mm, turned in it by more than 5 deg.
+  int seedlings_fell_in_carry = 0, seedlings_slid_in_clamp = 0, seedlings_turned_in_clamp = 0;
+  // The damaged seedlings' strengths against the measured peaks' range (127.2-191.6 N).
+  double damaged_strength_mean_N = 0;
+  int damaged_below_measured = 0;
   double spacing_mean_mm = 0, spacing_cv_pct = 0;
   double clamp_force_mean_N = 0, clamp_force_max_N = 0, clamp_ceiling_N = 0;
   double seedling_peak_force_mean_N = 0;

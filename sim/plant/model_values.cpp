@@ -1,0 +1,151 @@
+#include "sim/plant/model_values.h"
+
+#include <array>
+#include <cstdio>
+
+#include "sim/seedling/measured_strength.h"
+
+namespace planter::sim {
+namespace {
+
+using O = ValueOrigin;
+// The strength's mean and SD default to the measured peaks' (below 0 in the config): the table
+// shows and varies the value in use.
+double& strength_mean(PlantConfig& c) {
+  if (c.seedlings.strength_mean_N <= 0.0) c.seedlings.strength_mean_N = measured_strength().mean_N;
+  return c.seedlings.strength_mean_N;
+}
+double& strength_sd(PlantConfig& c) {
+  if (c.seedlings.strength_sd_N < 0.0) c.seedlings.strength_sd_N = measured_strength().sd_N;
+  return c.seedlings.strength_sd_N;
+}
+
+// Ranges: a measured value's is its uncertainty (the mean's 95 % interval from six specimens,
+// the SD's chi-square interval on 5 df); an assumed value's is what a reader of the soil or
+// rubber literature would accept for this machine and field; nothing here was chosen to land on
+// a figure of the paper.
+const std::array kValues{
+    ModelValue{"seedlings.density_kg_per_m3", "kg/m^3", O::measured, 826.5, 914.5,
+               "the paper, Sec. 3.3: 870.5 +- 22.0 (range: +-2 SD)",
+               [](PlantConfig& c) -> double& { return c.seedlings.density_kg_per_m3; }},
+    ModelValue{"seedlings.strength_mean_N", "N", O::measured, 134.6, 189.2,
+               "the paper, Sec. 3.5: mean of the six measured peaks (range: its 95 % interval)",
+               strength_mean},
+    ModelValue{"seedlings.strength_sd_N", "N", O::measured, 15.7, 61.6,
+               "the paper, Sec. 3.5: SD of the six peaks (range: chi-square 95 %, 5 df); "
+               "lognormal form assumed",
+               strength_sd},
+    ModelValue{"seedlings.strength_diameter_exponent", "", O::assumed, 0.0, 2.0,
+               "assumed: no measurement ties strength to diameter (the DEM's slope is its "
+               "particle scaling, not data)",
+               [](PlantConfig& c) -> double& { return c.seedlings.strength_diameter_exponent; }},
+    ModelValue{"seedlings.strength_test_length_mm", "mm", O::assumed, 15.0, 50.0,
+               "assumed: the paper does not give the compressed specimen's length",
+               [](PlantConfig& c) -> double& { return c.seedlings.strength_test_length_mm; }},
+    ModelValue{"seedlings.tilt_noise_deg", "deg", O::calibrated, 2.0, 8.0,
+               "calibrated once to the paper's centre point (1 value); the centre point's "
+               "uprightness is therefore no validation",
+               [](PlantConfig& c) -> double& { return c.seedlings.tilt_noise_deg; }},
+    ModelValue{"mechanism.lip_friction", "", O::measured, 0.2, 0.3,
+               "the paper, Sec. 3.4: seedling on silicone rubber, static friction 0.2-0.3",
+               [](PlantConfig& c) -> double& { return c.mechanism.lip_friction; }},
+    ModelValue{"mechanism.protrusion_band_mm", "mm", O::design, 20.0, 40.0,
+               "the paper, Sec. 3.1 and 5: protrusions over a 40 mm band (20 mm the other "
+               "arrangement tried)",
+               [](PlantConfig& c) -> double& { return c.mechanism.protrusion_band_mm; }},
+    ModelValue{"mechanism.root_protrusion_mm", "mm", O::assumed, 40.0, 100.0,
+               "assumed: how far the root end reaches beyond the rim (the belt's placement)",
+               [](PlantConfig& c) -> double& { return c.mechanism.root_protrusion_mm; }},
+    ModelValue{"mechanism.root_clearance_mm", "mm", O::assumed, 0.0, 20.0,
+               "assumed: the root end's lowest point above the furrow floor; the disc rides "
+               "with the opener (the paper, Sec. 2.1, Fig. 2)",
+               [](PlantConfig& c) -> double& { return c.mechanism.root_clearance_mm; }},
+    ModelValue{"mechanism.release_after_lowest_deg", "deg", O::assumed, 0.0, 20.0,
+               "assumed: where the roller leaves the lips, past the lowest point",
+               [](PlantConfig& c) -> double& { return c.mechanism.release_after_lowest_deg; }},
+    ModelValue{"mechanism.residual_grip_share", "", O::assumed, 0.0, 0.15,
+               "assumed: lip pressure left after the release, of the clamp's",
+               [](PlantConfig& c) -> double& { return c.mechanism.residual_grip_share; }},
+    ModelValue{"mechanism.backflow_fill", "", O::assumed, 0.3, 0.7,
+               "assumed: share of the furrow the returning soil refills at the seedling",
+               [](PlantConfig& c) -> double& { return c.mechanism.backflow_fill; }},
+    ModelValue{"mechanism.covering_wheel_behind_mm", "mm", O::assumed, 150.0, 400.0,
+               "assumed: the covering wheel's distance behind the release (the paper's Fig. 5b "
+               "shows it, without a dimension)",
+               [](PlantConfig& c) -> double& { return c.mechanism.covering_wheel_behind_mm; }},
+    ModelValue{"mechanism.handoff_speed_mismatch_mps", "m/s", O::assumed, 0.0, 0.15,
+               "assumed: belt against lips at the hand-off",
+               [](PlantConfig& c) -> double& { return c.mechanism.handoff_speed_mismatch_mps; }},
+    ModelValue{"mechanism.nip_time_s", "s", O::assumed, 0.15, 0.5,
+               "assumed: how long a seedling stays in the roller's nip",
+               [](PlantConfig& c) -> double& { return c.mechanism.nip_time_s; }},
+    ModelValue{"soil.unit_weight_kN_per_m3", "kN/m^3", O::assumed, 12.0, 16.0,
+               "assumed: the returned, loose loam",
+               [](PlantConfig& c) -> double& { return c.soil.backflow.unit_weight_kN_per_m3; }},
+    ModelValue{"soil.friction_angle_deg", "deg", O::assumed, 25.0, 35.0,
+               "assumed: loam's friction angle, loose and firmed alike",
+               [](PlantConfig& c) -> double& { return c.soil.backflow.friction_angle_deg; }},
+    ModelValue{"soil.cohesion_kPa", "kPa", O::assumed, 0.0, 2.0,
+               "assumed: apparent cohesion of the loose returned soil (its structure broken)",
+               [](PlantConfig& c) -> double& { return c.soil.backflow.cohesion_kPa; }},
+    ModelValue{"soil.firmed_unit_weight_kN_per_m3", "kN/m^3", O::assumed, 14.0, 18.0,
+               "assumed: the loam after the covering wheel",
+               [](PlantConfig& c) -> double& { return c.soil.firmed.unit_weight_kN_per_m3; }},
+    ModelValue{"soil.firmed_cohesion_kPa", "kPa", O::assumed, 1.0, 10.0,
+               "assumed: apparent cohesion of moist loam pressed by the covering wheel",
+               [](PlantConfig& c) -> double& { return c.soil.firmed.cohesion_kPa; }},
+    ModelValue{"plant.seedling_thickness_gain", "", O::assumed, 0.25, 1.0,
+               "assumed: extra lip compression per mm of seedling over the reference",
+               [](PlantConfig& c) -> double& { return c.drive.seedling_thickness_gain; }},
+};
+
+std::string number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", v);
+  return b;
+}
+
+}  // namespace
+
+const char* origin_name(ValueOrigin o) {
+  switch (o) {
+    case ValueOrigin::measured:
+      return "measured";
+    case ValueOrigin::design:
+      return "design";
+    case ValueOrigin::assumed:
+      return "assumed";
+    case ValueOrigin::calibrated:
+      return "calibrated";
+  }
+  return "?";
+}
+
+std::span<const ModelValue> model_values() { return kValues; }
+
+std::string model_values_text(const PlantConfig& c) {
+  std::string out;
+  char line[512];
+  for (const ModelValue& v : kValues) {
+    std::snprintf(line, sizeof line, "%-40s %9s %-7s %9s-%-9s %-10s %s\n", v.key,
+                  number(v.value(c)).c_str(), v.unit, number(v.low).c_str(), number(v.high).c_str(),
+                  origin_name(v.origin), v.source);
+    out += line;
+  }
+  return out;
+}
+
+std::string model_values_html(const PlantConfig& c) {
+  std::string h =
+      "<table><tr><th>value</th><th>in use</th><th>unit</th><th>plausible range</th>"
+      "<th>origin</th><th>source</th></tr>";
+  for (const ModelValue& v : kValues) {
+    h += std::string("<tr><td style='text-align:left'>") + v.key + "</td><td>" +
+         number(v.value(c)) + "</td><td>" + v.unit + "</td><td>" + number(v.low) + " - " +
+         number(v.high) + "</td><td>" + origin_name(v.origin) +
+         "</td><td style='text-align:left'>" + v.source + "</td></tr>";
+  }
+  return h + "</table>";
+}
+
+}  // namespace planter::sim

@@ -18,12 +18,14 @@
 #ifdef PLANTER_WITH_CONSOLE
 #include "sim/apps/live.h"
 #endif
+#include "sim/apps/sensitivity.h"
 #include "sim/apps/sweep.h"
 #include "sim/hil/realtime_devices.h"
 #ifdef PLANTER_WITH_REPLAY
 #include "sim/analysis/recording.h"
 #endif
 #include "sim/plant/effect_keys.h"
+#include "sim/plant/model_values.h"
 #include "sim/runner/lockstep_runner.h"
 #include "sim/runner/model_assumptions.h"
 #include "sim/runner/recording_writer.h"
@@ -214,7 +216,28 @@ int main(int argc, char** argv) {
   sweep->add_option("--jobs", sweep_options.jobs, "runs at a time (0: one per core)")
       ->capture_default_str()
       ->check(CLI::Range(0, 256));
+  SensitivityOptions sensitivity_options;
+  auto* sensitivity = app.add_subcommand(
+      "sensitivity",
+      "which model values the figures rest on: Morris elementary effects over their ranges");
+  sensitivity->add_option("scenario", scenario, "base scenario file (TOML)")->required();
+  sensitivity->add_option("--out", out, "output directory")->capture_default_str();
+  sensitivity->add_flag("--force", sensitivity_options.force,
+                        "replace --out even if it holds something other than an analysis");
+  sensitivity->add_option("--trajectories", sensitivity_options.trajectories, "Morris's r")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 100));
+  sensitivity->add_option("--distance", sensitivity_options.distance_m, "metres per run")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 1000.0));
+  sensitivity->add_option("--jobs", sensitivity_options.jobs, "runs at a time (0: one per core)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 256));
 #endif
+  auto* values = app.add_subcommand(
+      "values", "every model value the conclusions rest on: value, unit, range, origin, source");
+  std::string values_scenario;
+  values->add_option("scenario", values_scenario, "scenario file (default: the built-in values)");
   auto* effects =
       app.add_subcommand("effects", "list the [effects] keys a scenario may set to hide physics");
   RealtimeDevicesOptions devices_options;
@@ -279,7 +302,16 @@ int main(int argc, char** argv) {
           std::max(sweep_options.max_replicates, sweep_options.replicates);
       return run_sweep(scenario, out, sweep_options);
     }
+    if (*sensitivity) return run_sensitivity(scenario, out, sensitivity_options);
 #endif
+    if (*values) {
+      const PlantConfig plant =
+          values_scenario.empty() ? PlantConfig{} : load_scenario(values_scenario).plant;
+      std::printf("%-40s %9s %-7s %19s %-10s %s\n", "value", "in use", "unit", "plausible range",
+                  "origin", "source");
+      std::fputs(model_values_text(plant).c_str(), stdout);
+      return 0;
+    }
     if (*effects) return print_effect_keys();
     if (*devices) return run_devices(scenario, devices_board, devices_options);
 #ifdef PLANTER_WITH_CONSOLE

@@ -13,9 +13,11 @@
 #include "config/output_set.h"
 #include "sim/doe/doe.h"
 #include "sim/doe/doe_report.h"
+#include "sim/plant/model_values.h"
 #include "sim/report/html_text.h"
 #include "sim/runner/lockstep_runner.h"
 #include "sim/runner/model_assumptions.h"
+#include "sim/runner/run_many.h"
 #include "sim/runner/scenario.h"
 
 namespace planter::sim {
@@ -40,6 +42,7 @@ const std::vector<std::string> kPaperSignificant{"A", "B", "C", "BC", "A^2", "B^
 constexpr double kPaperOptimum[3] = {255.0, 0.278, 102.0};
 constexpr double kPaperCentreUprightness_pct = 94.8, kPaperCentreDamage_pct = 3.0;
 constexpr int kCentrePoints = 3;
+constexpr double kForceCurve_N[] = {40.0, 60.0, 80.0, 90.0, 100.0, 120.0};
 
 struct Run {
   int point = 0, replicate = 0;
@@ -269,6 +272,22 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
   for (int p = 0; p < points; ++p)
     worst_se = std::max(worst_se, damage_standard_error_pts(runs, p));
 
+  // The grip's trade-off at the design's centre: the clamp force set-point from 40 to 120 N
+  // (issue 27: both sides, slipping and crushing, before anyone optimises the force).
+  std::vector<Scenario> force_runs;
+  for (double f : kForceCurve_N) {
+    Scenario s = base;
+    s.plant.route.distance_m = o.distance_m;
+    s.plant.route.stops.clear();
+    const double sigma =
+        kFactors[1].centre * s.board.controller.sigma.disc_radius_m / s.plant.route.speed_mps;
+    set_operating_point(s, sigma, kFactors[2].centre, kFactors[0].centre);
+    s.board.controller.clamp.setpoint_N = f;
+    s.board.controller.clamp.ceiling_N = std::max(s.board.controller.clamp.ceiling_N, f + 20.0);
+    force_runs.push_back(std::move(s));
+  }
+  const std::vector<Summary> force_curve = run_many(force_runs, jobs);
+
   // Interior maxima of uprightness along disc speed and depth, through the optimum: where the
   // surface's slope along the factor is zero, if it curves down.
   auto interior_max = [&](int f) {
@@ -331,6 +350,19 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
   j["terms_differing_from_paper"] = differ;
   j["centre_uprightness_pct"] = centre_up;
   j["centre_damage_pct"] = centre_dmg;
+  j["paper_centre"] = {{"uprightness_pct", kPaperCentreUprightness_pct},
+                       {"damage_pct", kPaperCentreDamage_pct}};
+  for (std::size_t i = 0; i < force_curve.size(); ++i) {
+    const Summary& f = force_curve[i];
+    j["force_curve"].push_back({{"clamp_force_N", kForceCurve_N[i]},
+                                {"uprightness_pct", f.uprightness_pct},
+                                {"damage_pct", f.damage_pct},
+                                {"skips", f.truth_skips},
+                                {"fell_in_carry", f.seedlings_fell_in_carry},
+                                {"turned_in_clamp", f.seedlings_turned_in_clamp},
+                                {"slid_in_clamp", f.seedlings_slid_in_clamp},
+                                {"planted", f.seedlings_planted}});
+  }
 
   std::ostringstream html;
   html << "<!doctype html><html><head><meta charset='utf-8'><title>Sweep: "
@@ -358,7 +390,20 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
        << "<h2>Response surfaces (coded factors A area, B disc speed, C depth)</h2>"
        << anova_html("Uprightness", "%", a_up, l_up) << anova_html("Damage rate", "%", a_dmg, l_dmg)
        << anova_html("Peak radial force on the seedling", "N", a_force, l_force)
-       << "<h2>Model assumptions</h2><ul>";
+       << "<h2>Clamp force: grip against crushing, at the design's centre</h2>"
+       << "<table><tr><th>set-point [N]</th><th>uprightness [%]</th><th>damage [%]</th>"
+          "<th>skips</th><th>fell from the clamp</th><th>turned in the clamp</th><th>slid in "
+          "the clamp</th><th>planted</th></tr>";
+  for (std::size_t i = 0; i < force_curve.size(); ++i) {
+    const Summary& f = force_curve[i];
+    html << "<tr><td>" << kForceCurve_N[i] << "</td><td>" << fmt("%.2f", f.uprightness_pct)
+         << "</td><td>" << fmt("%.2f", f.damage_pct) << "</td><td>" << f.truth_skips << "</td><td>"
+         << f.seedlings_fell_in_carry << "</td><td>" << f.seedlings_turned_in_clamp << "</td><td>"
+         << f.seedlings_slid_in_clamp << "</td><td>" << f.seedlings_planted << "</td></tr>";
+  }
+  html << "</table><h2>Model values</h2><p>Every value the figures rest on, its origin and "
+          "plausible range; <code>planter-sim sensitivity</code> ranks them.</p>"
+       << model_values_html(base.plant) << "<h2>Model assumptions</h2><ul>";
   for (const std::string& a : model_assumptions(base))
     html << "<li>" << report::html_escape(a) << "</li>";
   html << "</ul></body></html>";
@@ -387,8 +432,16 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
   std::printf("terms of uprightness differing from the paper: %s\n", differ_text.c_str());
   std::printf("interior maximum of uprightness in disc speed: %s\n", interior_max(1).c_str());
   std::printf("interior maximum of uprightness in depth: %s\n", interior_max(2).c_str());
-  std::printf("centre point: uprightness %.2f %% (paper %.1f), damage %.2f %% (paper %.0f)\n",
-              centre_up, kPaperCentreUprightness_pct, centre_dmg, kPaperCentreDamage_pct);
+  std::printf(
+      "centre point: uprightness %.2f %% (paper %.1f; the tilt scatter is calibrated to it), "
+      "damage %.2f %% (paper %.0f)\n",
+      centre_up, kPaperCentreUprightness_pct, centre_dmg, kPaperCentreDamage_pct);
+  std::printf(
+      "clamp force at the centre: set-point, uprightness, damage, skips, turned in clamp\n");
+  for (std::size_t i = 0; i < force_curve.size(); ++i)
+    std::printf("  %5.0f N  %6.2f %%  %5.2f %%  %3d  %4d\n", kForceCurve_N[i],
+                force_curve[i].uprightness_pct, force_curve[i].damage_pct,
+                force_curve[i].truth_skips, force_curve[i].seedlings_turned_in_clamp);
   std::printf("wrote %s/{sweep.csv,sweep.json,report.html}\n", out_dir.c_str());
   std::printf(
       "optimum: %.0f mm^2, %.3f rad/s, %.0f mm (desirability %.3f); paper: 255 mm^2, "

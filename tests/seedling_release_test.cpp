@@ -77,10 +77,14 @@ TEST(SeedlingRelease, TooLittleGripDropsTheSeedlingInTheCarry) {
 TEST(SeedlingRelease, AWeakGripLetsTheSoilSlideTheSeedlingAlongTheClamp) {
   PlantConfig config;
   config.soil.backflow.cohesion_kPa = 2.0;
+  // A short root end and a wide grip: the soil's moment about the lips is small, so its push
+  // along the rod is what beats a weak grip (with 70 mm the seedling turns first).
+  config.mechanism.root_protrusion_mm = 12.0;
+  config.mechanism.contact_area_mm2 = 400.0;
   ReleaseInput in = centre(1.5);
   in.clamp_force_N = 90.0;
   const double firm = release_seedling(config, in).clamp_slip_mm;
-  in.clamp_force_N = 2.0;
+  in.clamp_force_N = 5.0;
   const double weak = release_seedling(config, in).clamp_slip_mm;
   EXPECT_EQ(firm, 0.0);
   EXPECT_LT(weak, -1.0) << "the soil pushes the root back into the clamp";

@@ -1,6 +1,7 @@
 #include "sim/plant/seedling_release.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace planter::sim {
@@ -44,7 +45,6 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
   const double r_rim = config.disc_radius_m;
   const double floor = std::max(0.0, in.depth_mm) * 1e-3;
   // The root end's lowest point below the surface: the disc rides with the opener.
-  const double reach = std::max(0.0, floor - mc.root_clearance_mm * 1e-3);
   const double length = in.length_mm * 1e-3;
   const double diameter = in.diameter_mm * 1e-3;
   const double omega = std::max(1e-3, in.omega_radps);
@@ -61,14 +61,24 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
     return out;
   }
 
-  double protrusion = mc.root_protrusion_mm * 1e-3;  // changes when the seedling slides
-  // Depth of the root end below the surface at disc angle theta (0 at the lowest point), on the
-  // floor at most.
-  auto burial = [&](double theta) {
-    const double r_root = r_rim + protrusion;
-    const double lowest = reach + (protrusion - mc.root_protrusion_mm * 1e-3);
-    return std::clamp(lowest - r_root * (1.0 - std::cos(theta)), 0.0, floor);
+  // The held seedling's geometry, relative to the hub: the lips at the rim at disc angle theta
+  // (0 at the lowest point), the rod from them to the root end along the radius turned by the
+  // seedling's own turn in the clamp (+ top forward), `protrusion` long. Both change when the
+  // soil beats the grip, and the root's depth follows from them, so a seedling that turns or
+  // slides reaches the soil where its new geometry puts it.
+  double protrusion = mc.root_protrusion_mm * 1e-3;
+  double slipped = 0.0;  // turned by slipping in the clamp, + top forward
+  // The hub above the original surface: the root end's lowest point (untouched seedling) sits
+  // root_clearance_mm above the floor, the disc riding with the opener.
+  const double hub_height = r_rim + protrusion + mc.root_clearance_mm * 1e-3 - floor;
+  auto radial = [](double a) { return std::array<double, 2>{-std::sin(a), -std::cos(a)}; };
+  auto root_at = [&](double theta) {
+    const auto rim = radial(theta), rod = radial(theta + slipped);
+    return std::array<double, 2>{r_rim * rim[0] + protrusion * rod[0],
+                                 hub_height + r_rim * rim[1] + protrusion * rod[1]};
   };
+  // Depth of the root end below the surface, on the floor at most.
+  auto burial = [&](double theta) { return std::clamp(-root_at(theta)[1], 0.0, floor); };
   // The opener leaves the furrow open; the returning soil has refilled a share of it where the
   // seedling goes in. The root holds in that soil only until the covering wheel.
   const double backflow_level = mc.backflow_fill * floor;  // above the floor
@@ -79,7 +89,7 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
   // 1. Held: from where the root end reaches the surface to the release. The lips are a
   // distributed spring over the held length w: the clamp law's local stiffness dF/dx = n F / x
   // ([plant] clamp_k_N, clamp_n) spread over w resists turning with k w^2 / 12.
-  const double entry = -std::acos(std::clamp(1.0 - reach / (r_rim + protrusion), -1.0, 1.0));
+  const double entry = -std::acos(std::clamp((hub_height) / (r_rim + protrusion), -1.0, 1.0));
   const double held_length = held_length_m(mc, in.diameter_mm);
   const double grip_N = 2.0 * mc.lip_friction * clamp_N;  // both faces
   const double hold_Nm = grip_N * held_length / 4.0;      // mu N w / 2
@@ -87,16 +97,17 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
   const double lip_compression_mm = std::pow(clamp_N / dr.clamp_k_N, 1.0 / dr.clamp_n);
   const double lip_N_per_m = 1e3 * dr.clamp_n * clamp_N / std::max(0.1, lip_compression_mm);
   const double lip_Nm_per_rad = std::max(1e-6, lip_N_per_m * held_length * held_length / 12.0);
-  double slipped = 0.0;  // turned by slipping in the clamp, + top forward
   double elastic = 0.0;  // the lips' elastic give, at the release
   for (double theta = entry; theta < theta_r; theta += dtheta) {
     const double b = embedded(theta);
     if (b <= 0.0) continue;
-    const double r_root = r_rim + protrusion;
-    // The root end's ground velocity, across the rod (+ forward at the bottom) and along it
-    // (+ outwards from the hub): the machine's travel and the disc's turn.
-    const double u_across = v * std::cos(theta) - r_root * omega;
-    const double u_along = -v * std::sin(theta);
+    // The root end's ground velocity if the seedling moved with the lips: the machine's travel
+    // and the disc's turn. Across the rod (+ where the turn grows) and along it (+ outwards).
+    const double a = theta + slipped;
+    const double ux = v - omega * (r_rim * std::cos(theta) + protrusion * std::cos(a));
+    const double uy = omega * (r_rim * std::sin(theta) + protrusion * std::sin(a));
+    const double u_across = -(ux * -std::cos(a) + uy * std::sin(a));  // + top forward
+    const double u_along = ux * -std::sin(a) + uy * -std::cos(a);
     const double speed = std::hypot(u_across, u_along);
     if (speed <= 0.0) continue;
     // The soil resists the root's motion: plowed against it. Its share across the rod turns it
@@ -118,11 +129,9 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
 
   // 2. Released: the rod about its root end, (x, y) with y up from the soil surface.
   const double b = embedded(theta_r);
-  const double r_root = r_rim + protrusion;
   out.burial_mm = burial(theta_r) * 1e3;
-  double phi = theta_r + turn;  // + top forward
-  const double hub_height = r_root - (reach + (protrusion - mc.root_protrusion_mm * 1e-3));
-  const double root_x = -r_root * std::sin(theta_r);  // hub at x = 0 at release
+  double phi = theta_r + turn;                // + top forward
+  const double root_x = root_at(theta_r)[0];  // hub at x = 0 at release
   const double root_y = -burial(theta_r);
   const double drag_N = mc.lip_friction * mc.residual_grip_share * clamp_N;
   const double phi_release = phi;

@@ -23,8 +23,8 @@ fail = []
 k = len(j["values"])
 if [v["key"] for v in j["values"]] != listed:
     fail.append("planter-sim values and the analysis list different values")
-if j["runs"] != 2 * (k + 1) or len(rows) != j["runs"]:
-    fail.append("%d runs for %d values and 2 trajectories" % (len(rows), k))
+if j["points"] != 2 * (k + 1) or len(rows) != j["points"] or j["runs"] != j["points"]:
+    fail.append("%d points for %d values and 2 trajectories" % (len(rows), k))
 for fig in ("uprightness", "damage", "turned in the clamp"):
     ranks = sorted(v[fig]["rank"] for v in j["values"])
     if ranks != list(range(1, k + 1)):

@@ -230,6 +230,9 @@ int main(int argc, char** argv) {
   sensitivity->add_option("--distance", sensitivity_options.distance_m, "metres per run")
       ->capture_default_str()
       ->check(CLI::Range(0.5, 1000.0));
+  sensitivity->add_flag(
+      "--optimum", sensitivity_options.optimum,
+      "also run the paper's design (15 runs) at each point: the optimum's spread");
   sensitivity->add_option("--jobs", sensitivity_options.jobs, "runs at a time (0: one per core)")
       ->capture_default_str()
       ->check(CLI::Range(0, 256));

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "config/output_set.h"
+#include "sim/apps/sweep.h"
 #include "sim/plant/model_values.h"
 #include "sim/report/html_text.h"
 #include "sim/runner/run_many.h"
@@ -27,18 +28,27 @@ constexpr double kStep = kLevels / (2.0 * (kLevels - 1));
 struct Response {
   const char* name;
   const char* unit;
-  double (*of)(const Summary&);
 };
-const Response kResponses[] = {
-    {"uprightness", "%", [](const Summary& s) { return s.uprightness_pct; }},
-    {"damage", "%", [](const Summary& s) { return s.damage_pct; }},
-    {"turned in the clamp", "%",
-     [](const Summary& s) {
-       return s.seedlings_planted > 0 ? 100.0 * s.seedlings_turned_in_clamp / s.seedlings_planted
-                                      : 0.0;
-     }},
-};
+// The figures at the operating point, then (with --optimum) the design's optimum.
+const Response kResponses[] = {{"uprightness", "%"},
+                               {"damage", "%"},
+                               {"turned in the clamp", "%"},
+                               {"optimum contact area", "mm^2"},
+                               {"optimum disc speed", "rad/s"},
+                               {"optimum depth", "mm"}};
 constexpr std::size_t kResponseCount = sizeof kResponses / sizeof kResponses[0];
+constexpr std::size_t kPointResponses = 3;
+// How far a finding may move across the plausible ranges (5-95 % of the points) and still hold.
+constexpr double kHoldsWithin[kResponseCount] = {5.0, 5.0, 5.0, 60.0, 0.04, 24.0};
+using Figures = std::array<double, kResponseCount>;
+
+Figures figures_of(const Summary& s) {
+  Figures f{};
+  f[0] = s.uprightness_pct;
+  f[1] = s.damage_pct;
+  f[2] = s.seedlings_planted > 0 ? 100.0 * s.seedlings_turned_in_clamp / s.seedlings_planted : 0.0;
+  return f;
+}
 
 struct Effect {
   double mu_star = 0, mu = 0, sigma = 0;  // of the elementary effects, per the whole range
@@ -95,24 +105,48 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
       values[f].ref(s.plant) = values[f].low + points[i][f] * (values[f].high - values[f].low);
     runs.push_back(std::move(s));
   }
-  std::fprintf(
-      stderr,
-      "planter-sim sensitivity: %zu runs of %.0f m (%d trajectories x %zu values + 1), %d jobs\n",
-      runs.size(), o.distance_m, r, k, jobs);
-  const std::vector<Summary> results = run_many(runs, jobs);
+  // With --optimum each point also runs the paper's design (one replicate) around it.
+  const std::size_t per_point = o.optimum ? 1 + design_scenarios(base, o.distance_m).size() : 1;
+  if (o.optimum) {
+    std::vector<Scenario> with_designs;
+    for (const Scenario& s : runs) {
+      with_designs.push_back(s);
+      for (Scenario& d : design_scenarios(s, o.distance_m)) with_designs.push_back(std::move(d));
+    }
+    runs = std::move(with_designs);
+  }
+  std::fprintf(stderr,
+               "planter-sim sensitivity: %zu runs of %.0f m (%zu points: %d trajectories x (%zu "
+               "values + 1)), %d jobs\n",
+               runs.size(), o.distance_m, points.size(), r, k, jobs);
+  const std::vector<Summary> all = run_many(runs, jobs);
+  const std::size_t responses = o.optimum ? kResponseCount : kPointResponses;
+  std::vector<Figures> y;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    Figures f = figures_of(all[i * per_point]);
+    if (o.optimum) {
+      const auto first = all.begin() + static_cast<std::ptrdiff_t>(i * per_point + 1);
+      const DesignOptimum best = design_optimum(
+          std::vector<Summary>(first, first + static_cast<std::ptrdiff_t>(per_point - 1)));
+      f[3] = best.contact_area_mm2;
+      f[4] = best.disc_speed_radps;
+      f[5] = best.depth_mm;
+    }
+    y.push_back(f);
+  }
 
   // Elementary effects: the change of a response over the whole range, (y1 - y0) / step.
   std::vector<std::array<Effect, kResponseCount>> effects(k);
   std::vector<std::array<std::vector<double>, kResponseCount>> ee(k);
   for (std::size_t i = 1; i < points.size(); ++i) {
     if (moved[i] == k) continue;
-    for (std::size_t q = 0; q < kResponseCount; ++q) {
-      const double d = (kResponses[q].of(results[i]) - kResponses[q].of(results[i - 1])) / kStep;
+    for (std::size_t q = 0; q < responses; ++q) {
+      const double d = (y[i][q] - y[i - 1][q]) / kStep;
       ee[moved[i]][q].push_back(d);
     }
   }
   for (std::size_t f = 0; f < k; ++f) {
-    for (std::size_t q = 0; q < kResponseCount; ++q) {
+    for (std::size_t q = 0; q < responses; ++q) {
       const std::vector<double>& v = ee[f][q];
       Effect& e = effects[f][q];
       for (double d : v) {
@@ -125,7 +159,7 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
   }
   // Ranks by mu* of each response (1: most influential).
   std::vector<std::array<int, kResponseCount>> rank(k);
-  for (std::size_t q = 0; q < kResponseCount; ++q) {
+  for (std::size_t q = 0; q < responses; ++q) {
     std::vector<std::size_t> by(k);
     std::iota(by.begin(), by.end(), 0);
     std::sort(by.begin(), by.end(), [&](std::size_t a, std::size_t b) {
@@ -135,33 +169,38 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
   }
   // The figures' spread over every run: across the plausible ranges.
   auto spread = [&](std::size_t q) {
-    std::vector<double> y;
-    for (const Summary& s : results) y.push_back(kResponses[q].of(s));
-    std::sort(y.begin(), y.end());
+    std::vector<double> v;
+    for (const Figures& f : y) v.push_back(f[q]);
+    std::sort(v.begin(), v.end());
     const auto at = [&](double p) {
-      return y[static_cast<std::size_t>(std::lround(p * static_cast<double>(y.size() - 1)))];
+      return v[static_cast<std::size_t>(std::lround(p * static_cast<double>(v.size() - 1)))];
     };
-    return std::array<double, 5>{y.front(), at(0.05), at(0.5), at(0.95), y.back()};
+    return std::array<double, 5>{v.front(), at(0.05), at(0.5), at(0.95), v.back()};
   };
 
   std::ostringstream csv;
   csv << "run,trajectory,moved";
   for (const ModelValue& v : values) csv << ',' << v.key;
   csv << ",uprightness_pct,damage_pct,turned_in_clamp_pct,seedlings_planted,seedlings_lodged,"
-         "seedlings_fell_in_carry\n";
+         "seedlings_fell_in_carry";
+  if (o.optimum) csv << ",optimum_contact_area_mm2,optimum_disc_speed_radps,optimum_depth_mm";
+  csv << '\n';
   for (std::size_t i = 0; i < points.size(); ++i) {
     csv << i + 1 << ',' << trajectory_of[i] + 1 << ','
         << (moved[i] == k ? "base" : values[moved[i]].key);
-    for (const ModelValue& v : values) csv << ',' << v.value(runs[i].plant);
-    csv << ',' << results[i].uprightness_pct << ',' << results[i].damage_pct << ','
-        << kResponses[2].of(results[i]) << ',' << results[i].seedlings_planted << ','
-        << results[i].seedlings_lodged << ',' << results[i].seedlings_fell_in_carry << '\n';
+    const Summary& run = all[i * per_point];
+    for (const ModelValue& v : values) csv << ',' << v.value(runs[i * per_point].plant);
+    csv << ',' << y[i][0] << ',' << y[i][1] << ',' << y[i][2] << ',' << run.seedlings_planted << ','
+        << run.seedlings_lodged << ',' << run.seedlings_fell_in_carry;
+    if (o.optimum) csv << ',' << y[i][3] << ',' << y[i][4] << ',' << y[i][5];
+    csv << '\n';
   }
   nlohmann::json j;
   j["scenario"] = base.name;
   j["method"] = "Morris elementary effects, 4 levels, step 2/3";
   j["trajectories"] = r;
   j["runs"] = runs.size();
+  j["points"] = points.size();
   j["distance_m_per_run"] = o.distance_m;
   for (std::size_t f = 0; f < k; ++f) {
     nlohmann::json v;
@@ -169,19 +208,28 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
     v["origin"] = origin_name(values[f].origin);
     v["range"] = {values[f].low, values[f].high};
     v["in_use"] = values[f].value(base.plant);
-    for (std::size_t q = 0; q < kResponseCount; ++q)
+    for (std::size_t q = 0; q < responses; ++q)
       v[kResponses[q].name] = {{"mu_star", effects[f][q].mu_star},
                                {"mu", effects[f][q].mu},
                                {"sigma", effects[f][q].sigma},
                                {"rank", rank[f][q]}};
     j["values"].push_back(v);
   }
-  for (std::size_t q = 0; q < kResponseCount; ++q) {
+  for (std::size_t q = 0; q < responses; ++q) {
     const auto s = spread(q);
-    j["spread"][kResponses[q].name] = {
-        {"min", s[0]}, {"p5", s[1]}, {"median", s[2]}, {"p95", s[3]}, {"max", s[4]}};
+    j["spread"][kResponses[q].name] = {{"min", s[0]},
+                                       {"p5", s[1]},
+                                       {"median", s[2]},
+                                       {"p95", s[3]},
+                                       {"max", s[4]},
+                                       {"holds_within", kHoldsWithin[q]},
+                                       {"holds", s[3] - s[1] <= kHoldsWithin[q]}};
   }
-  j["paper"] = {{"uprightness_pct", 94.8}, {"damage_pct", 3.0}};
+  j["paper"] = {{"uprightness_pct", 94.8},
+                {"damage_pct", 3.0},
+                {"optimum_contact_area_mm2", 255.0},
+                {"optimum_disc_speed_radps", 0.278},
+                {"optimum_depth_mm", 102.0}};
 
   std::vector<std::size_t> order(k);
   std::iota(order.begin(), order.end(), 0);
@@ -201,26 +249,28 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
           "the value crosses its whole plausible range (in points); sigma its spread "
           "(interactions or non-linearity).</p><table><tr><th>value</th><th>origin</th><th>range"
           "</th>";
-  for (const Response& q : kResponses)
-    html << "<th>" << q.name << " mu* [" << q.unit << "]</th><th>sigma</th><th>rank</th>";
+  for (std::size_t q = 0; q < responses; ++q)
+    html << "<th>" << kResponses[q].name << " mu* [" << kResponses[q].unit
+         << "]</th><th>sigma</th><th>rank</th>";
   html << "</tr>";
   for (std::size_t f : order) {
     html << "<tr><td style='text-align:left'>" << values[f].key << "</td><td>"
          << origin_name(values[f].origin) << "</td><td>" << fmt("%.4g", values[f].low) << " - "
          << fmt("%.4g", values[f].high) << "</td>";
-    for (std::size_t q = 0; q < kResponseCount; ++q)
-      html << "<td>" << fmt("%.2f", effects[f][q].mu_star) << "</td><td>"
-           << fmt("%.2f", effects[f][q].sigma) << "</td><td>" << rank[f][q] << "</td>";
+    for (std::size_t q = 0; q < responses; ++q)
+      html << "<td>" << fmt("%.3g", effects[f][q].mu_star) << "</td><td>"
+           << fmt("%.3g", effects[f][q].sigma) << "</td><td>" << rank[f][q] << "</td>";
     html << "</tr>";
   }
   html << "</table><h2>The figures across the plausible ranges</h2><ul>";
-  for (std::size_t q = 0; q < kResponseCount; ++q) {
+  for (std::size_t q = 0; q < responses; ++q) {
     const auto s = spread(q);
-    html << "<li>" << kResponses[q].name << ": " << fmt("%.2f", s[1]) << " - " << fmt("%.2f", s[3])
-         << " % (5-95 % of the runs; median " << fmt("%.2f", s[2]) << ")</li>";
+    html << "<li>" << kResponses[q].name << ": " << fmt("%.4g", s[1]) << " - " << fmt("%.4g", s[3])
+         << " " << kResponses[q].unit << " (5-95 % of the points; median " << fmt("%.4g", s[2])
+         << ")</li>";
   }
-  html << "</ul><p>The paper: 94.8 % upright and 3 % damaged at its optimum, a comparison and "
-          "not a target.</p><h2>The model's values</h2>"
+  html << "</ul><p>The paper: 94.8 % upright and 3 % damaged at its optimum of 255 mm^2, 0.278 "
+          "rad/s and 102 mm, a comparison and not a target.</p><h2>The model's values</h2>"
        << model_values_html(base.plant) << "</body></html>";
 
   out.write("sensitivity.csv", csv.str());
@@ -228,8 +278,8 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
   out.write("report.html", html.str());
   out.commit();
 
-  std::printf("%zu runs of %.0f m: Morris, %d trajectories over %zu values\n", runs.size(),
-              o.distance_m, r, k);
+  std::printf("%zu points, %zu runs of %.0f m: Morris, %d trajectories over %zu values\n",
+              points.size(), runs.size(), o.distance_m, r, k);
   std::printf("%-40s %-10s %8s %5s %8s %5s %8s %5s\n", "value (by uprightness mu*)", "origin",
               "upright", "rank", "damage", "rank", "turned", "rank");
   for (std::size_t f : order)
@@ -237,6 +287,23 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
                 origin_name(values[f].origin), effects[f][0].mu_star, rank[f][0],
                 effects[f][1].mu_star, rank[f][1], effects[f][2].mu_star, rank[f][2]);
   std::printf("wrote %s/{sensitivity.csv,sensitivity.json,report.html}\n", out_dir.c_str());
+  // A finding holds when 90 % of the points across the plausible ranges keep it within a fifth of
+  // the design's span (area 300 mm^2, speed 0.2 rad/s, depth 120 mm) or 5 points of a figure.
+  for (std::size_t q = 0; q < responses; ++q) {
+    const auto sp = spread(q);
+    const double tolerance = kHoldsWithin[q];
+    const bool holds = sp[3] - sp[1] <= tolerance;
+    std::printf("%-22s %s across the ranges: %.4g-%.4g %s (holds if within %.3g)\n",
+                kResponses[q].name, holds ? "holds  " : "DOES NOT HOLD", sp[1], sp[3],
+                kResponses[q].unit, tolerance);
+  }
+  if (o.optimum) {
+    const auto area = spread(3), speed = spread(4), depth = spread(5);
+    std::printf(
+        "optimum across the plausible ranges (5-95 %% of points): %.0f-%.0f mm^2, %.3f-%.3f rad/s, "
+        "%.0f-%.0f mm; paper: 255 mm^2, 0.278 rad/s, 102 mm\n",
+        area[1], area[3], speed[1], speed[3], depth[1], depth[3]);
+  }
   const auto up = spread(0), dmg = spread(1);
   std::printf(
       "across the plausible ranges (5-95 %% of runs): uprightness %.1f-%.1f %%, damage %.2f-%.2f "

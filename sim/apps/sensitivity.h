@@ -14,6 +14,7 @@ struct SensitivityOptions {
   int trajectories = 6;      // r; runs = r (k + 1)
   double distance_m = 10.0;  // per run
   int jobs = 0;              // runs at a time (0: one per core)
+  bool optimum = false;      // also the paper's design at each point: where the optimum goes
   bool force = false;
 };
 

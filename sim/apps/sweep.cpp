@@ -1,10 +1,8 @@
 #include "sim/apps/sweep.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
@@ -15,7 +13,6 @@
 #include "sim/doe/doe_report.h"
 #include "sim/plant/model_values.h"
 #include "sim/report/html_text.h"
-#include "sim/runner/lockstep_runner.h"
 #include "sim/runner/model_assumptions.h"
 #include "sim/runner/run_many.h"
 #include "sim/runner/scenario.h"
@@ -63,50 +60,44 @@ double damage_standard_error_pts(const std::vector<Run>& runs, int point) {
   return 100.0 * std::sqrt(p * (1.0 - p) / (n + 4.0));
 }
 
+// The base scenario at one coded point of the design, on `distance_m` without stops.
+Scenario design_point(const Scenario& base, const Eigen::RowVector3d& coded, double distance_m,
+                      std::uint64_t seed) {
+  Scenario s = base;
+  s.plant.route.distance_m = distance_m;
+  s.plant.route.stops.clear();
+  s.seed = seed;
+  const double omega = kFactors[1].value(coded(1));
+  const double sigma = omega * s.board.controller.sigma.disc_radius_m / s.plant.route.speed_mps;
+  set_operating_point(s, sigma, kFactors[2].value(coded(2)), kFactors[0].value(coded(0)));
+  return s;
+}
+
+// Desirability as Design-Expert sets it by default: each goal over the observed range of its
+// response; uprightness up, the peak radial force on the seedling down.
+doe::Optimum optimum_of(const doe::Anova& upright_fit, const Eigen::VectorXd& upright,
+                        const doe::Anova& force_fit, const Eigen::VectorXd& force) {
+  return doe::desirability_optimum_3({{&upright_fit, upright.minCoeff(), upright.maxCoeff()},
+                                      {&force_fit, force.maxCoeff(), force.minCoeff()}});
+}
+
 // Runs the (point, replicate) pairs `todo`, `jobs` at a time; each its own runner and seed.
 std::vector<Run> run_all(const Scenario& base, const Eigen::MatrixXd& design,
                          const std::vector<std::pair<int, int>>& todo, double distance_m,
                          int jobs) {
-  std::vector<Run> out(todo.size());
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto worker = [&] {
-    for (std::size_t i = next++; i < todo.size(); i = next++) {
-      try {
-        const auto [point, replicate] = todo[i];
-        Scenario s = base;
-        s.plant.route.distance_m = distance_m;
-        s.plant.route.stops.clear();
-        s.seed = base.seed + 1000u * static_cast<std::uint64_t>(replicate) +
-                 static_cast<std::uint64_t>(point);
-        const double area = kFactors[0].value(design(point, 0));
-        const double omega = kFactors[1].value(design(point, 1));
-        const double depth = kFactors[2].value(design(point, 2));
-        const double sigma =
-            omega * s.board.controller.sigma.disc_radius_m / s.plant.route.speed_mps;
-        set_operating_point(s, sigma, depth, area);
-        LockstepRunner runner(s);
-        const Summary r = runner.run();
-        out[i] = {point,
-                  replicate,
-                  r.uprightness_pct,
-                  r.damage_pct,
-                  r.seedling_peak_force_mean_N,
-                  r.clamp_force_max_N,
-                  r.seedlings_planted,
-                  r.seedlings_damaged};
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> threads;
-  for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
-  worker();
-  for (auto& t : threads) t.join();
-  if (error) std::rethrow_exception(error);
+  std::vector<Scenario> scenarios;
+  for (const auto& [point, replicate] : todo)
+    scenarios.push_back(design_point(base, design.row(point), distance_m,
+                                     base.seed + 1000u * static_cast<std::uint64_t>(replicate) +
+                                         static_cast<std::uint64_t>(point)));
+  const std::vector<Summary> results = run_many(scenarios, jobs);
+  std::vector<Run> out;
+  for (std::size_t i = 0; i < todo.size(); ++i) {
+    const Summary& r = results[i];
+    out.push_back({todo[i].first, todo[i].second, r.uprightness_pct, r.damage_pct,
+                   r.seedling_peak_force_mean_N, r.clamp_force_max_N, r.seedlings_planted,
+                   r.seedlings_damaged});
+  }
   return out;
 }
 
@@ -198,6 +189,29 @@ std::string surface_map(const std::string& title, const std::string& unit, const
 
 }  // namespace
 
+std::vector<Scenario> design_scenarios(const Scenario& base, double distance_m) {
+  const Eigen::MatrixXd design = doe::box_behnken_3(kCentrePoints);
+  std::vector<Scenario> out;
+  for (Eigen::Index p = 0; p < design.rows(); ++p)
+    out.push_back(
+        design_point(base, design.row(p), distance_m, base.seed + static_cast<std::uint64_t>(p)));
+  return out;
+}
+
+DesignOptimum design_optimum(const std::vector<Summary>& results) {
+  const Eigen::MatrixXd design = doe::box_behnken_3(kCentrePoints);
+  const Eigen::Index n = design.rows();
+  Eigen::VectorXd upright(n), force(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    upright(i) = results[static_cast<std::size_t>(i)].uprightness_pct;
+    force(i) = results[static_cast<std::size_t>(i)].seedling_peak_force_mean_N;
+  }
+  const doe::Optimum best = optimum_of(doe::fit_quadratic_3(design, upright, kTermNames), upright,
+                                       doe::fit_quadratic_3(design, force, kTermNames), force);
+  return {kFactors[0].value(best.coded(0)), kFactors[1].value(best.coded(1)),
+          kFactors[2].value(best.coded(2)), best.desirability};
+}
+
 int run_sweep(const std::string& scenario_path, const std::string& out_dir, const SweepOptions& o) {
   Scenario base = load_scenario(scenario_path);
   for (const auto& w : base.board.warnings)
@@ -246,11 +260,7 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
   const doe::LackOfFit l_dmg = doe::lack_of_fit(coded, damage, a_dmg);
   const doe::LackOfFit l_force = doe::lack_of_fit(coded, force, a_force);
 
-  // Desirability as Design-Expert sets it by default: each goal over the observed range of
-  // its response; uprightness up, the peak radial force on the seedling down.
-  const doe::Optimum best =
-      doe::desirability_optimum_3({{&a_up, upright.minCoeff(), upright.maxCoeff()},
-                                   {&a_force, force.maxCoeff(), force.minCoeff()}});
+  const doe::Optimum best = optimum_of(a_up, upright, a_force, force);
   const Eigen::Vector3d paper(kFactors[0].coded(kPaperOptimum[0]),
                               kFactors[1].coded(kPaperOptimum[1]),
                               kFactors[2].coded(kPaperOptimum[2]));

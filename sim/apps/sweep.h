@@ -3,6 +3,10 @@
 // disc speed and depth, each point run with replicates until its damage rate is resolved, the
 // quadratic response surfaces with their analysis of variance, and the desirability optimum.
 #include <string>
+#include <vector>
+
+#include "sim/runner/scenario.h"
+#include "sim/runner/summary.h"
 
 namespace planter::sim {
 
@@ -17,5 +21,14 @@ struct SweepOptions {
 
 // Writes OUT/{sweep.csv,sweep.json,report.html}; prints the figures, the optimum last.
 int run_sweep(const std::string& scenario_path, const std::string& out_dir, const SweepOptions& o);
+
+// The paper's design, one replicate, as scenarios: what the sensitivity analysis runs to see
+// where the optimum goes when a model value changes.
+std::vector<Scenario> design_scenarios(const Scenario& base, double distance_m);
+struct DesignOptimum {
+  double contact_area_mm2 = 0, disc_speed_radps = 0, depth_mm = 0, desirability = 0;
+};
+// The desirability optimum of design_scenarios' results, in the same order.
+DesignOptimum design_optimum(const std::vector<Summary>& results);
 
 }  // namespace planter::sim

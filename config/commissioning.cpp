@@ -47,8 +47,8 @@ bool write_commissioning_stamp(const std::string& stamp_path, const std::string&
   const std::string text = "# planter-can check: every item passed\nboard: " + board_name +
                            "\nboard_file: " + board_path + "\nboard_fingerprint: " + fingerprint +
                            "\npassed_at: " + std::to_string(passed_at_unix_s) + "\n";
-  if (!write_file_atomic(stamp_path, text)) {
-    error = stamp_path + ": cannot be written";
+  if (std::string why; !write_file_atomic(stamp_path, text, &why)) {
+    error = stamp_path + ": " + why;
     return false;
   }
   return true;

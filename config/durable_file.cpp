@@ -1,10 +1,12 @@
 #include "config/durable_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 namespace planter::config {
@@ -41,15 +43,48 @@ bool replace_file(const std::string& from, const std::string& to) {
   return true;
 }
 
-bool write_file_atomic(const std::string& path, const std::string& data) {
-  const std::string tmp = path + ".tmp";
-  if (write_file_synced(tmp, data) && replace_file(tmp, path)) return true;
+std::string output_target_refusal(const std::string& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return "";  // a new file
+  if (S_ISLNK(st.st_mode))
+    return "is a symbolic link; outputs do not follow links: give the file itself";
+  if (S_ISDIR(st.st_mode)) return "is a directory";
+  if (!S_ISREG(st.st_mode))
+    return "is a device, FIFO or socket, not a file: outputs replace only regular files";
+  return "";
+}
+
+bool write_file_atomic(const std::string& path, const std::string& data, std::string* why) {
+  const auto say = [&](const std::string& words) {
+    if (why != nullptr) *why = words;
+    return false;
+  };
+  if (const std::string refusal = output_target_refusal(path); !refusal.empty())
+    return say(refusal);
+  const std::string tmp = write_temporary_beside(path, data);
+  if (tmp.empty()) return say(std::string("cannot be written: ") + std::strerror(errno));
+  if (replace_file(tmp, path)) return true;
+  const int err = errno;
   ::unlink(tmp.c_str());
-  return false;
+  return say(std::string("cannot be written: ") + std::strerror(err));
+}
+
+std::string write_temporary_beside(const std::string& path, const std::string& data) {
+  std::string tmp = path + ".XXXXXX";
+  const int fd = ::mkostemp(tmp.data(), O_CLOEXEC);
+  if (fd < 0) return "";
+  ::fchmod(fd, 0644);
+  const bool written = write_all(fd, data.data(), data.size()) && ::fsync(fd) == 0;
+  const int err = errno;
+  if (::close(fd) == 0 && written) return tmp;
+  ::unlink(tmp.c_str());
+  errno = err;
+  return "";
 }
 
 void write_output_file(const std::string& path, const std::string& data) {
-  if (!write_file_atomic(path, data)) throw std::runtime_error(path + ": cannot be written");
+  std::string why;
+  if (!write_file_atomic(path, data, &why)) throw std::runtime_error(path + ": " + why);
 }
 
 }  // namespace planter::config

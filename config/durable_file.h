@@ -12,10 +12,19 @@ bool write_all(int fd, const char* data, std::size_t size);
 bool write_file_synced(const std::string& path, const std::string& data);
 // Renames `from` over `to` and fsyncs the directory so the rename itself is durable.
 bool replace_file(const std::string& from, const std::string& to);
-// Writes `data` to `path` + ".tmp", fsyncs it and renames it over `path`: a reader sees the
-// old file or the new one, never half of one. The temporary is removed on failure.
-bool write_file_atomic(const std::string& path, const std::string& data);
-// The same for a tool's output file: throws std::runtime_error "<path>: cannot be written".
+// Why `path` may not be replaced by an output ("" when it may): it replaces only a regular
+// file or makes a new one; a device, FIFO, socket or directory is refused, and so is a
+// symbolic link (outputs do not follow links: the link would become a plain file).
+std::string output_target_refusal(const std::string& path);
+// Writes `data` to a temporary of its own beside `path` (PATH.XXXXXX, made exclusively),
+// fsyncs it and renames it over `path`: a reader sees the old file or the new one, never half of
+// one. The temporary is removed on failure; `why` (if given) gets the reason.
+bool write_file_atomic(const std::string& path, const std::string& data,
+                       std::string* why = nullptr);
+// Writes `data` to a new temporary beside `path` (PATH.XXXXXX, made exclusively, fsynced) and
+// returns its name, or "" (errno set) when it cannot.
+std::string write_temporary_beside(const std::string& path, const std::string& data);
+// The same for a tool's output file: throws std::runtime_error "<path>: <why>".
 void write_output_file(const std::string& path, const std::string& data);
 
 }  // namespace planter::config

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,8 @@ namespace planter::config {
 namespace fs = std::filesystem;
 
 namespace {
+
+constexpr long kPidMax = 4194304;  // Linux's PID_MAX_LIMIT
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
   throw std::runtime_error(path + ": " + what);
@@ -49,9 +52,14 @@ void remove_abandoned_staging(const std::string& dir) {
     const std::string name = e.path().filename().string();
     if (name.rfind(prefix, 0) != 0) continue;
     const std::string pid_text = name.substr(prefix.size());
-    if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos) continue;
-    const long pid = std::stol(pid_text);
-    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+    // Only a process number this machine can have: anything else is not ours (issue 28, 10).
+    long pid = 0;
+    const auto [end, err] =
+        std::from_chars(pid_text.data(), pid_text.data() + pid_text.size(), pid);
+    if (pid_text.empty() || err != std::errc() || end != pid_text.data() + pid_text.size() ||
+        pid <= 0 || pid > kPidMax)
+      continue;
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
       fs::remove_all(e.path(), ec);
     }
   }
@@ -59,27 +67,47 @@ void remove_abandoned_staging(const std::string& dir) {
 
 }  // namespace
 
-bool output_dir_is_replaceable(const std::string& dir, const std::string& tool) {
+std::string output_dir_refusal(const std::string& dir, const std::string& tool) {
   std::error_code ec;
-  if (!fs::exists(dir, ec)) return true;
-  if (!fs::is_directory(dir, ec)) return false;
-  if (fs::is_empty(dir, ec)) return true;
+  if (fs::is_symlink(dir, ec))
+    return "is a symbolic link; outputs do not follow links: give the directory itself";
+  if (!fs::exists(dir, ec)) return "";
+  if (!fs::is_directory(dir, ec)) return "exists and is not a directory";
+  if (fs::is_empty(dir, ec)) return "";
+  const std::string other = "holds files that are not the output of '" + tool +
+                            "' (no run.json of it); choose another --out, or give --force to "
+                            "replace the directory";
   std::ifstream in(dir + "/" + kRunManifest);
-  if (!in) return false;
+  if (!in) return other;
   const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
-  return manifest.is_object() && manifest.value("tool", std::string()) == tool;
+  if (!manifest.is_object() || manifest.value("tool", std::string()) != tool) return other;
+  // Every file in it must be one the earlier run wrote: a file someone left there is theirs.
+  const nlohmann::json files = manifest.value("files", nlohmann::json::object());
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name != kRunManifest && !(files.is_object() && files.contains(name)))
+      return "holds " + name +
+             ", which the earlier run did not write; move it, or give --force "
+             "to replace the directory";
+  }
+  return "";
+}
+
+bool output_dir_is_replaceable(const std::string& dir, const std::string& tool) {
+  return output_dir_refusal(dir, tool).empty();
 }
 
 OutputSet::OutputSet(std::string dir, std::string tool, bool force)
     : dir_(std::move(dir)), tool_(std::move(tool)) {
   while (dir_.size() > 1 && dir_.back() == '/') dir_.pop_back();
   std::error_code ec;
+  if (fs::is_symlink(dir_, ec))
+    fail(dir_, "is a symbolic link; outputs do not follow links: give the directory itself");
   if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec))
     fail(dir_, "exists and is not a directory");
-  if (!force && !output_dir_is_replaceable(dir_, tool_)) {
-    fail(dir_, "holds files that are not the output of '" + tool_ +
-                   "' (no run.json of it); choose another --out, or give --force to replace "
-                   "the directory");
+  if (!force) {
+    if (const std::string refusal = output_dir_refusal(dir_, tool_); !refusal.empty())
+      fail(dir_, refusal);
   }
   const std::string parent = parent_of(dir_);
   fs::create_directories(parent, ec);

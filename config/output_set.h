@@ -7,8 +7,9 @@
 // (RENAME_EXCHANGE when DIR exists), then removes the old set. A run killed before commit()
 // leaves DIR untouched; its staging directory is removed by the next run into DIR.
 //
-// DIR is replaced only when it is empty or holds an earlier run of the same tool (its
-// manifest says so); anything else is refused unless `force` is given.
+// DIR is replaced only when it is empty or holds an earlier run of the same tool and nothing
+// else (its manifest lists every file); anything else is refused unless `force` is given. DIR
+// as a symbolic link is refused even with `force`.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -41,7 +42,10 @@ class OutputSet {
   bool committed_ = false;
 };
 
-// True when `dir` is missing, empty, or its run.json names `tool`.
+// Why `dir` may not be replaced by a run of `tool` ("" when it may): it is missing, empty, or
+// holds an earlier run of the same tool and nothing else (every file in its run.json). A
+// symbolic link is refused (outputs do not follow links).
+[[nodiscard]] std::string output_dir_refusal(const std::string& dir, const std::string& tool);
 [[nodiscard]] bool output_dir_is_replaceable(const std::string& dir, const std::string& tool);
 
 // The manifest's file name.

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "config/input_file.h"
+#include "config/toml_bounds.h"
 
 namespace planter::config {
 namespace {
@@ -176,6 +177,7 @@ void TomlSection::reject_unknown_keys(const std::string& hint) const {
 
 TomlDocument::TomlDocument(const std::string& file) : file_(file) {
   const std::string text = read_input_file(file);
+  check_toml_bounds(text, file);
   try {
     table_ = std::make_unique<toml::table>(toml::parse(text, file));
   } catch (const toml::parse_error& e) {

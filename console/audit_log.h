@@ -2,8 +2,10 @@
 // The console's audit log: one line per login and per command, accepted or refused, appended
 // with one write and an fdatasync (they are rare and rate-limited): the UTC time, the client's
 // address, the session (a short name, never the token), what was asked, the value, the result.
-// A log that cannot be written is said once on stderr, and from then the console refuses
-// commands: a command that would leave no trace is not given.
+// A log that cannot be written is said once on stderr, the line it cut taken back, and from
+// then the console refuses every command but stop: a command that would leave no trace is not
+// given, and stopping the machine is never refused for want of a log. The file must be a
+// regular file (a FIFO or a device is refused at the start, with its name).
 #include <mutex>
 #include <string>
 

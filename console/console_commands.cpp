@@ -80,6 +80,15 @@ bool ConsoleServer::may_view(const httplib::Request& req, httplib::Response& res
   return false;
 }
 
+bool ConsoleServer::audit(const std::string& address, const std::string& session,
+                          const std::string& what, const std::string& value,
+                          const std::string& result) {
+  if (!audit_) return true;
+  if (const auto s = refused_logins_.take(console_now_ns()))
+    audit_->append(s->address, "-", "login_refused", s->value, s->words);
+  return audit_->append(address, session, what, value, result);
+}
+
 void ConsoleServer::login(const httplib::Request& req, httplib::Response& res) {
   const auto secret = login_secret(req.body);
   if (!secret) return error(res, 400, "send {\"secret\": \"...\"}");
@@ -90,6 +99,11 @@ void ConsoleServer::login(const httplib::Request& req, httplib::Response& res) {
     res.set_header("Retry-After", std::to_string(wait));
     said = "too many wrong secrets: wait " + std::to_string(wait) + " s";
     error(res, 429, said);
+  } else if (r.status == LoginResult::Status::kTooManyLogins) {
+    const long wait = std::lround(r.retry_after_s);
+    res.set_header("Retry-After", std::to_string(wait));
+    said = "too many logins from this address: wait " + std::to_string(wait) + " s";
+    error(res, 429, said);
   } else if (r.status == LoginResult::Status::kWrongSecret) {
     said = "wrong secret";
     error(res, 401, "wrong secret (the pairing secret is on the machine's label)");
@@ -99,7 +113,21 @@ void ConsoleServer::login(const httplib::Request& req, httplib::Response& res) {
                    std::string(kCookie) + "=" + r.token + "; HttpOnly; SameSite=Strict; Path=/");
     answer(res, 200, {{"role", role_name(r.role)}, {"csrf", r.csrf}});
   }
-  if (audit_) audit_->append(req.remote_addr, r.id.empty() ? "-" : r.id, "login", "-", said);
+  if (r.status != LoginResult::Status::kOk) {
+    // Counted, and said once a minute: a flood of wrong secrets cannot fill the disk.
+    if (const auto s = refused_logins_.add(req.remote_addr, said, console_now_ns()); s && audit_)
+      audit_->append(s->address, "-", s->value == "1" ? "login" : "login_refused",
+                     s->value == "1" ? "-" : s->value, s->words);
+    return;
+  }
+  if (!audit(req.remote_addr, r.id, "login", "-", said)) {
+    // Logged in all the same: the operator may need to stop the machine. Said on the page.
+    answer(res, 200,
+           {{"role", role_name(r.role)},
+            {"csrf", r.csrf},
+            {"warning",
+             "the audit log " + audit_->path() + " cannot be written: only stop is taken"}});
+  }
 }
 
 void ConsoleServer::command(const httplib::Request& req, httplib::Response& res) {
@@ -112,19 +140,22 @@ void ConsoleServer::command(const httplib::Request& req, httplib::Response& res)
   // Every answer below is also written to the audit log.
   const auto refuse = [&](int status, const std::string& words) {
     error(res, status, words);
-    audit_->append(req.remote_addr, who, what, value, words);
+    audit(req.remote_addr, who, what, value, words);
   };
   if (!session) return refuse(401, "log in with the pairing secret to give commands");
   if (req.get_header_value("X-CSRF-Token") != session->csrf)
     return refuse(403, "refused: the request has no valid CSRF token (reload the page)");
   if (session->role != Role::kOperator)
     return refuse(403, "refused: a viewer cannot give commands; log in with the pairing secret");
-  if (!audit_->ok()) {
-    error(res, 503, "refused: the audit log " + audit_->path() + " cannot be written");
-    return;
-  }
   if (!body.ok) return refuse(400, body.error);
   const ConsoleCommandKind kind = body.kind;
+  // Without an audit log no command is given, but stop: safety first.
+  const bool stopping = kind == ConsoleCommandKind::kStop;
+  if (!audit_->ok() && !stopping) {
+    error(res, 503,
+          "refused: the audit log " + audit_->path() + " cannot be written (stop is still taken)");
+    return;
+  }
   const bool recording =
       kind == ConsoleCommandKind::kRecordStart || kind == ConsoleCommandKind::kRecordStop;
   if (recording && options_.recording == nullptr)
@@ -145,8 +176,9 @@ void ConsoleServer::command(const httplib::Request& req, httplib::Response& res)
                                                    : range_text(info_.clamp_force_range_N, "N")) +
             ": nothing changed";
   const int status = http_status(reply.result);
-  if (!audit_->append(req.remote_addr, who, what, value, words))
-    words += " (the audit log cannot be written: further commands are refused)";
+  if (!audit(req.remote_addr, who, what, value, words))
+    words +=
+        " (the audit log " + audit_->path() + " cannot be written: only stop is taken from now)";
   answer(res, status,
          {{"result", status == 200 ? "accepted" : "refused"},
           {"message", words},
@@ -172,7 +204,7 @@ void ConsoleServer::install_command_routes(httplib::Server& srv) {
   srv.Post("/api/command", [this](const httplib::Request& req, httplib::Response& res) {
     const std::string refused = refused_origin(req, res);
     if (refused.empty()) return command(req, res);
-    audit_->append(req.remote_addr, "-", "command", "-", refused);
+    audit(req.remote_addr, "-", "command", "-", refused);
   });
 }
 

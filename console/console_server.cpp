@@ -29,11 +29,9 @@ ConsoleServer::ConsoleServer(const ConsoleOptions& options, const ConsoleInfo& i
     : options_(options),
       info_(info),
       queue_(1024),
-      sessions_(std::make_unique<OperatorSessions>(options.secrets, options.policy, [] {
-        return std::chrono::duration_cast<std::chrono::nanoseconds>(
-                   std::chrono::steady_clock::now().time_since_epoch())
-            .count();
-      })) {
+      sessions_(
+          std::make_unique<OperatorSessions>(options.secrets, options.policy, console_now_ns)),
+      host_names_(options.host_names) {
   if (options_.commands != nullptr &&
       OperatorSessions::normalise(options_.secrets.pairing).size() < kSecretLettersMin)
     throw std::runtime_error("console: commands need a pairing secret of at least 12 letters");
@@ -139,6 +137,18 @@ void ConsoleServer::start() {
   srv.Get("/api/history", [this](const httplib::Request& req, httplib::Response& res) {
     if (may_view(req, res)) res.set_content(history_json(), "application/json");
   });
+  // Every request names this machine in Host, or it is refused before any route (DNS
+  // rebinding: another site's page that made its own name resolve here).
+  srv.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    std::lock_guard<std::mutex> lock(host_names_mutex_);
+    if (host_names_.allowed(req.get_header_value("Host")))
+      return httplib::Server::HandlerResponse::Unhandled;
+    res.status = 421;
+    res.set_content("refused: this console is reached as one of " + host_names_.known() +
+                        ", not as '" + req.get_header_value("Host").substr(0, 100) + "'\n",
+                    "text/plain");
+    return httplib::Server::HandlerResponse::Handled;
+  });
   install_command_routes(srv);
   if (!options_.recordings_dir.empty()) install_recording_routes(srv);
   // Every other method and path is refused, said in words.
@@ -160,6 +170,9 @@ void ConsoleServer::start() {
 void ConsoleServer::stop() {
   if (server_) server_->stop();
   if (thread_.joinable()) thread_.join();
+  // The refused logins not yet said are said before the log closes.
+  if (const auto s = refused_logins_.take(console_now_ns()); s && audit_)
+    audit_->append(s->address, "-", "login_refused", s->value, s->words);
 }
 
 }  // namespace planter::console

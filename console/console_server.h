@@ -12,12 +12,15 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "console/audit_log.h"
 #include "console/command_channel.h"
+#include "console/host_names.h"
 #include "console/live_sample.h"
 #include "console/operator_sessions.h"
 #include "console/recording_control.h"
+#include "console/refused_logins.h"
 #include "console/spsc_queue.h"
 #include "firmware/controller/setpoint_rules.h"
 
@@ -40,6 +43,9 @@ struct ConsoleOptions {
   SessionPolicy policy;
   std::string recordings_dir;             // recordings offered for download; empty: none
   RecordingControl* recording = nullptr;  // record_start and record_stop; nullptr: refused
+  // Names besides the machine's own (host name, addresses, localhost) a browser may reach it
+  // by, as in Host: a name given in the farm's DNS, say.
+  std::vector<std::string> host_names;
 };
 
 // What the page shows beside the live values: the machine and its limits.
@@ -94,6 +100,10 @@ class ConsoleServer {
   bool may_view(const httplib::Request& req, httplib::Response& res);
   void command(const httplib::Request& req, httplib::Response& res);
   void login(const httplib::Request& req, httplib::Response& res);
+  // One audit line, after the summary of the refused logins not yet said; false when the log
+  // cannot be written.
+  bool audit(const std::string& address, const std::string& session, const std::string& what,
+             const std::string& value, const std::string& result);
 
   ConsoleOptions options_;
   ConsoleInfo info_;
@@ -104,6 +114,9 @@ class ConsoleServer {
   std::deque<LiveSample> history_;
   std::unique_ptr<OperatorSessions> sessions_;
   std::unique_ptr<AuditLog> audit_;
+  std::mutex host_names_mutex_;
+  HostNames host_names_;
+  RefusedLoginTally refused_logins_{60.0};  // one summary line a minute at most
   std::unique_ptr<httplib::Server> server_;
   std::thread thread_;
   int port_ = 0;

@@ -11,7 +11,19 @@
 
 namespace planter::console {
 namespace {
-constexpr std::size_t kSessionsMax = 64;  // a phone per person on the field is plenty
+// A phone per person on the field is plenty; operators have their own slots.
+constexpr std::size_t kOperatorSessionsMax = 8;
+constexpr std::size_t kViewerSessionsMax = 56;
+
+// Forgets the addresses whose times have all left the window, once there are many.
+void prune(std::map<std::string, std::deque<std::int64_t>>& by_address,
+           const std::function<void(std::deque<std::int64_t>&)>& forget) {
+  if (by_address.size() <= 4096) return;
+  for (auto it = by_address.begin(); it != by_address.end();) {
+    forget(it->second);
+    it = it->second.empty() ? by_address.erase(it) : std::next(it);
+  }
+}
 
 std::string random_text(std::size_t n, const char* alphabet, std::size_t alphabet_size) {
   std::string out;
@@ -91,26 +103,22 @@ void OperatorSessions::forget_old(std::deque<std::int64_t>& times, double window
 LoginResult OperatorSessions::login(const std::string& address, const std::string& secret) {
   std::lock_guard<std::mutex> lock(mutex_);
   const std::int64_t now = now_ns_();
-  if (failed_by_address_.size() > 4096) {  // many addresses: keep only those still counted
-    for (auto it = failed_by_address_.begin(); it != failed_by_address_.end();) {
-      forget_old(it->second, policy_.login_window_s, now);
-      it = it->second.empty() ? failed_by_address_.erase(it) : std::next(it);
-    }
-  }
+  const auto forget = [&](std::deque<std::int64_t>& t) {
+    forget_old(t, policy_.login_window_s, now);
+  };
+  prune(failed_by_address_, forget);
+  prune(logins_by_address_, forget);
   auto& mine = failed_by_address_[address];
-  forget_old(mine, policy_.login_window_s, now);
-  forget_old(failed_all_, policy_.login_window_s, now);
+  forget(mine);
+  forget(failed_all_);
   LoginResult result;
-  result.status = LoginResult::Status::kWrongSecret;
-  const bool limited = static_cast<int>(mine.size()) >= policy_.failed_logins_per_address ||
-                       static_cast<int>(failed_all_.size()) >= policy_.failed_logins_total;
-  if (limited) {
-    const std::int64_t oldest = static_cast<int>(mine.size()) >= policy_.failed_logins_per_address
-                                    ? mine.front()
-                                    : failed_all_.front();
+  const auto wait_from = [&](std::int64_t oldest) {
+    return std::max(1.0, policy_.login_window_s - static_cast<double>(now - oldest) * 1e-9);
+  };
+  // This address has guessed enough: refused whatever it sends, until its window has passed.
+  if (static_cast<int>(mine.size()) >= policy_.failed_logins_per_address) {
     result.status = LoginResult::Status::kRateLimited;
-    result.retry_after_s =
-        std::max(1.0, policy_.login_window_s - static_cast<double>(now - oldest) * 1e-9);
+    result.retry_after_s = wait_from(mine.front());
     return result;
   }
   const std::string typed = normalise(secret);
@@ -122,16 +130,33 @@ LoginResult OperatorSessions::login(const std::string& address, const std::strin
   }
   if (role == Role::kNone) {
     mine.push_back(now);
-    failed_all_.push_back(now);
+    if (static_cast<int>(failed_all_.size()) >= policy_.failed_logins_total) {
+      result.status = LoginResult::Status::kRateLimited;
+      result.retry_after_s = wait_from(failed_all_.front());
+    } else {
+      result.status = LoginResult::Status::kWrongSecret;
+      failed_all_.push_back(now);
+    }
     return result;
   }
-  // The oldest session gives way when there are too many.
-  if (sessions_.size() >= kSessionsMax) {
-    auto oldest = std::min_element(sessions_.begin(), sessions_.end(), [](auto& a, auto& b) {
-      return a.second.last_ns < b.second.last_ns;
-    });
-    sessions_.erase(oldest);
+  auto& logins = logins_by_address_[address];
+  forget(logins);
+  if (static_cast<int>(logins.size()) >= policy_.logins_per_address) {
+    result.status = LoginResult::Status::kTooManyLogins;
+    result.retry_after_s = wait_from(logins.front());
+    return result;
   }
+  logins.push_back(now);
+  // The oldest session of the same role gives way when its slots are full.
+  const std::size_t slots = role == Role::kOperator ? kOperatorSessionsMax : kViewerSessionsMax;
+  std::size_t same_role = 0;
+  auto oldest = sessions_.end();
+  for (auto it = sessions_.begin(); it != sessions_.end(); ++it) {
+    if (it->second.role != role) continue;
+    ++same_role;
+    if (oldest == sessions_.end() || it->second.last_ns < oldest->second.last_ns) oldest = it;
+  }
+  if (same_role >= slots && oldest != sessions_.end()) sessions_.erase(oldest);
   result.status = LoginResult::Status::kOk;
   result.role = role;
   result.token = token();

@@ -4,8 +4,12 @@
 // at installation, shown on the machine: never a default). A session is a random token in an
 // HttpOnly, SameSite=Strict cookie, with its own CSRF token that every command must carry. It
 // ends after `idle_s` without use and `max_s` after login. Failed logins are limited per
-// address and in total, and a limited address is refused even the right secret until its
-// window has passed, so guessing gains nothing by going on. Commands are limited per session.
+// address, and a limited address is refused even the right secret until its window has passed,
+// so guessing gains nothing by going on. Past the limit on failures from all addresses, a wrong
+// secret is refused as rate-limited, but the right one still opens a session: a flood from
+// other addresses cannot lock the operator out (issue 28, item 3). Successful logins are limited
+// per address too, and operators and viewers have their own session slots, so viewer logins
+// never end an operator's session (item 5). Commands are limited per session.
 // Time comes from the clock given, so the rules can be tested without waiting.
 #include <cstddef>
 #include <cstdint>
@@ -28,6 +32,8 @@ struct SessionPolicy {
   double max_s = 12 * 3600;           // one working day
   int failed_logins_per_address = 5;  // in each window
   int failed_logins_total = 20;       // from all addresses, in each window
+  // Successful, in each window: an operator who logs in and stops every 5 s stays under it.
+  int logins_per_address = 20;
   double login_window_s = 60;
   int commands_per_window = 10;  // per session
   double command_window_s = 10;
@@ -42,7 +48,8 @@ struct LoginResult {
   enum class Status : std::uint8_t {
     kOk,
     kWrongSecret,
-    kRateLimited
+    kRateLimited,
+    kTooManyLogins
   } status = Status::kWrongSecret;
   Role role = Role::kNone;
   std::string token;  // the session cookie's value
@@ -93,6 +100,7 @@ class OperatorSessions {
   std::mutex mutex_;
   std::map<std::string, Session> sessions_;
   std::map<std::string, std::deque<std::int64_t>> failed_by_address_;
+  std::map<std::string, std::deque<std::int64_t>> logins_by_address_;
   std::deque<std::int64_t> failed_all_;
 };
 

@@ -1,4 +1,6 @@
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -8,8 +10,12 @@
 
 #include "config/board_config.h"
 #include "config/config_error.h"
+#include "config/durable_file.h"
+#include "config/output_set.h"
+#include "config/toml_bounds.h"
 #include "sim/plant/effect_keys.h"
 #include "sim/runner/model_assumptions.h"
+#include "sim/runner/recording_writer.h"
 #include "sim/runner/scenario.h"
 
 using namespace planter;
@@ -272,3 +278,156 @@ TEST(BoardConfig, BusLoadOverTheBitRateIsRefusedAndOverHalfWarned) {
   ASSERT_EQ(busy.warnings.size(), 1u);
   EXPECT_NE(busy.warnings[0].find("over the 50 % guideline"), std::string::npos);
 }
+
+namespace planter {
+namespace {
+
+// Issue 28, item 8: a dotted key of 40,000 parts crashed every tool inside the TOML parser
+// (stack overflow). Refused before the parser, with the file, the line and the limit.
+std::string scratch_toml(const std::string& text) {
+  const std::string path = std::filesystem::temp_directory_path() /
+                           ("planter-bounds-" + std::to_string(getpid()) + ".toml");
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(TomlBounds, AKeyOfFortyThousandPartsIsRefusedNotACrash) {
+  std::string key = "a";
+  for (int i = 0; i < 40000; ++i) key += ".a";
+  const std::string path = scratch_toml("[board]\nname = \"x\"\n" + key + " = 1\n");
+  try {
+    config::load_board(path);
+    FAIL() << "loaded";
+  } catch (const config::ConfigError& e) {
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_NE(std::string(e.what()).find("more than 64 dotted parts"), std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(TomlBounds, DeepNestingIsRefusedAndOrdinaryValuesPass) {
+  const std::string path =
+      scratch_toml("x = " + std::string(10000, '[') + std::string(10000, ']') + "\n");
+  try {
+    sim::load_scenario(path);
+    FAIL() << "loaded";
+  } catch (const config::ConfigError& e) {
+    EXPECT_EQ(e.line(), 1);
+    EXPECT_NE(std::string(e.what()).find("nested more than 32 deep"), std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(path);
+  // Floats, dotted keys of a few parts, quoted parts with dots and comments with many dots.
+  EXPECT_NO_THROW(config::check_toml_bounds(
+      "a.\"b.c.d.e\".f = [1.5, 2.5, 3.5] # ....................................................."
+      "...........\n[x.y]\nz = { p.q = 0.25, r = \"1.2.3.4.5\" }\n",
+      "t.toml"));
+}
+
+}  // namespace
+}  // namespace planter
+
+namespace planter {
+namespace {
+
+// Issue 28, item 7: a recording is created, never opened for truncation.
+TEST(RecordingWriter, AnExistingFileIsNotOverwritten) {
+  const std::string path =
+      std::filesystem::temp_directory_path() / ("planter-rec-" + std::to_string(getpid()) + ".csv");
+  std::ofstream(path) << "someone's rows\n";
+  try {
+    sim::RecordingWriter w(path, path, {});
+    FAIL() << "opened";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("File exists"), std::string::npos) << e.what();
+  }
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "someone's rows");
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace planter
+
+namespace planter {
+namespace {
+
+// Issue 28, item 9: `decode -o /dev/full` as root replaced the device node with a CSV, a
+// symlink given to -o became a plain file, and two runs raced on one fixed .tmp name.
+TEST(DurableFile, OutputsReplaceOnlyRegularFilesAndNeverFollowLinks) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("planter-out-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string fifo = dir / "fifo", link = dir / "link", file = dir / "file.csv";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::ofstream(file) << "old\n";
+  fs::create_symlink(file, link);
+  std::string why;
+  EXPECT_FALSE(config::write_file_atomic(fifo, "x", &why));
+  EXPECT_NE(why.find("device, FIFO or socket"), std::string::npos) << why;
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_FALSE(config::write_file_atomic(link, "x", &why));
+  EXPECT_NE(why.find("symbolic link"), std::string::npos) << why;
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_FALSE(config::write_file_atomic(dir.string(), "x", &why));
+  if (geteuid() == 0) {  // a device node of our own, in the scratch folder (root only can make it)
+    const std::string node = dir / "null";
+    ASSERT_EQ(mknod(node.c_str(), S_IFCHR | 0600, makedev(1, 3)), 0);
+    EXPECT_FALSE(config::write_file_atomic(node, "x", &why));
+    EXPECT_TRUE(fs::is_character_file(node));
+  }
+  EXPECT_TRUE(config::write_file_atomic(file, "new\n", &why)) << why;
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "new");
+  // Only the file, the link, the FIFO (and the node): no temporary left.
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
+  EXPECT_EQ(entries, geteuid() == 0 ? 4u : 3u);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace planter
+
+namespace planter {
+namespace {
+
+// Issue 28, item 10: a re-run deleted a file the user had left in the output folder, --out as
+// a symlink became a folder, and a stray out.partial-99999999999999999999 failed every run.
+TEST(OutputSet, ARerunKeepsAUsersFileRefusesALinkAndIgnoresAStrangeStagingName) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / ("planter-set-" + std::to_string(getpid()));
+  fs::create_directories(root);
+  const std::string out = root / "out";
+  fs::create_directories(root / "out.partial-99999999999999999999");
+  {
+    config::OutputSet set(out, "tool", false);
+    set.write("a.csv", "1\n");
+    set.commit();
+  }
+  std::ofstream(out + "/notes.txt") << "mine\n";
+  try {
+    config::OutputSet again(out, "tool", false);
+    FAIL() << "replaced";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("holds notes.txt, which the earlier run did not write"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(fs::exists(out + "/notes.txt"));
+  fs::remove(out + "/notes.txt");
+  EXPECT_NO_THROW(config::OutputSet(out, "tool", false));  // only its own files: replaceable
+  const std::string link = root / "link";
+  fs::create_directory_symlink(out, link);
+  EXPECT_THROW(config::OutputSet(link, "tool", true), std::runtime_error);
+  EXPECT_TRUE(fs::is_symlink(link));
+  fs::remove_all(root);
+}
+
+}  // namespace
+}  // namespace planter

@@ -245,6 +245,9 @@ try:
     check(request(url + "/api/login", b"a" * 100000)[0] == 413, "a 100 kB body gets 413")
     check(request(url + "/api/command", {"command": "run"}, headers={"Origin": "http://evil.example"})[0] == 403,
           "a command from another site gets 403")
+    rebound = request(url + "/api/state", cookie=viewer_cookie,
+                      headers={"Host": "evil.example:" + url.rsplit(":", 1)[1]})[0]
+    check(rebound == 421, "a Host that is not this machine gets 421 (DNS rebinding)", rebound)
     csp = request(url + "/")[2].get("Content-Security-Policy", "")
     check("default-src 'none'" in csp, "a strict content security policy", csp)
     port = url.rsplit(":", 1)[1]
@@ -257,7 +260,8 @@ try:
     for words in ('run value=- result="log in', 'run value=- result="refused: a viewer',
                   'login value=- result="logged in as operator"', 'set_depth_mm value=90 result="accepted"',
                   'set_depth_mm value=300 result="set_depth_mm 300 is outside',
-                  'set_depth_mm value=80 result="refused: the e-stop', 'result="too many wrong secrets',
+                  'set_depth_mm value=80 result="refused: the e-stop', 'login_refused value=',
+                  'too many wrong secrets) from 1 addresses',
                   'record_start value=- result="recording to'):
         check(words in audit, "the audit log has " + words)
     check(os.path.getsize(os.path.join(shots, "console.png")) > 10000, "a screenshot is kept")

@@ -5,14 +5,22 @@
 
 #include <gtest/gtest.h>
 #include <httplib.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <atomic>
+#include <csignal>
+#include <filesystem>
+#include <regex>
 #include <set>
 #include <thread>
 
 #include "console/audit_log.h"
 #include "console/command_channel.h"
 #include "console/console_server.h"
+#include "console/recording_control.h"
+#include "console/refused_logins.h"
 
 namespace planter::console {
 namespace {
@@ -40,13 +48,62 @@ TEST(OperatorSessions, FiveWrongSecretsThenEvenTheRightOneWaitsForTheWindow) {
   EXPECT_EQ(f.sessions.login("10.0.0.9", "abcde-fghij-kmnpq").status, LoginResult::Status::kOk);
 }
 
-TEST(OperatorSessions, GuessesFromManyAddressesAreLimitedInTotal) {
+// Issue 28, item 3: wrong secrets from 8 addresses at 10 a second kept the operator out.
+TEST(OperatorSessions, AFloodFromManyAddressesIsLimitedButNeverLocksTheOperatorOut) {
   Fixture f;
-  for (int i = 0; i < 20; ++i)
-    f.sessions.login("10.0.1." + std::to_string(i),
-                     "guess");  // 1 each: under the per-address limit
-  EXPECT_EQ(f.sessions.login("10.0.2.1", "abcde-fghij-kmnpq").status,
-            LoginResult::Status::kRateLimited);
+  for (int i = 0; i < 8 * 150; ++i) {
+    f.now += kSecond / 10;
+    f.sessions.login("10.0.1." + std::to_string(i % 8), "guess");
+    if (i % 40 == 39) {  // the operator, every 4 s, from the phone's own address
+      const LoginResult r = f.sessions.login("10.0.9.9", "abcde-fghij-kmnpq");
+      ASSERT_EQ(r.status, LoginResult::Status::kOk) << "at " << i;
+      EXPECT_EQ(r.role, Role::kOperator);
+    }
+  }
+  // Past the total, a wrong secret from a fresh address is refused as rate-limited.
+  for (int i = 0; i < 20; ++i) f.sessions.login("10.0.3." + std::to_string(i), "guess");
+  EXPECT_EQ(f.sessions.login("10.0.4.1", "guess").status, LoginResult::Status::kRateLimited);
+  EXPECT_EQ(f.sessions.login("10.0.4.2", "abcde-fghij-kmnpq").status, LoginResult::Status::kOk);
+}
+
+// Issue 28, item 5: 70 viewer logins in 0.85 s evicted an idle operator session.
+TEST(OperatorSessions, ViewerLoginsNeverEndAnOperatorsSessionAndLoginsAreLimited) {
+  Fixture f;
+  const LoginResult op = f.sessions.login("10.0.0.1", "abcde-fghij-kmnpq");
+  ASSERT_EQ(op.status, LoginResult::Status::kOk);
+  int ok = 0, limited = 0;
+  for (int i = 0; i < 700; ++i) {
+    const auto r = f.sessions.login("10.0.5." + std::to_string(i % 70), "viewer-secret-1234");
+    ok += r.status == LoginResult::Status::kOk;
+    limited += r.status == LoginResult::Status::kTooManyLogins;
+  }
+  EXPECT_EQ(ok, 700) << "10 per address, under the 20 a minute allowed";
+  EXPECT_TRUE(f.sessions.find(op.token).has_value()) << "the operator's session was evicted";
+  for (int i = 0; i < 20; ++i) f.sessions.login("10.0.6.1", "viewer-secret-1234");
+  EXPECT_EQ(f.sessions.login("10.0.6.1", "viewer-secret-1234").status,
+            LoginResult::Status::kTooManyLogins);
+  EXPECT_EQ(limited, 0);
+}
+
+TEST(RefusedLoginTally, AFloodIsOneLineAMinuteAndTheFirstRefusalIsSaidAtOnce) {
+  RefusedLoginTally tally(60.0);
+  const auto first = tally.add("10.0.0.1", "wrong secret", 0);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(first->words, "wrong secret");
+  int lines = 1;
+  // 680 refusals a second for 10 minutes, from 8 addresses.
+  for (std::int64_t i = 1; i < 680 * 600; ++i)
+    lines += tally
+                 .add("10.0.1." + std::to_string(i % 8), i % 3 ? "wrong secret" : "too many x",
+                      i * kSecond / 680)
+                 .has_value();
+  const auto rest = tally.take(600 * kSecond);
+  lines += rest.has_value();
+  EXPECT_LE(lines, 12) << "10 minutes";
+  ASSERT_TRUE(rest.has_value());
+  EXPECT_EQ(rest->address, "-");
+  EXPECT_NE(rest->words.find("from 8 addresses"), std::string::npos) << rest->words;
+  EXPECT_FALSE(tally.take(601 * kSecond).has_value());
 }
 
 TEST(OperatorSessions, TheSecretIsTypedAsPeopleTypeIt) {
@@ -83,6 +140,7 @@ TEST(OperatorSessions, TokensAreRandomAndTheAuditNameIsNotPartOfTheToken) {
   Fixture f;
   std::set<std::string> tokens;
   for (int i = 0; i < 50; ++i) {
+    f.now += 10 * kSecond;  // within the limit on logins per address
     const LoginResult r = f.sessions.login("a", "abcde-fghij-kmnpq");
     EXPECT_EQ(r.token.size(), 43u);
     EXPECT_NE(r.token, r.csrf);
@@ -175,14 +233,100 @@ TEST(AuditLog, AFullDiskIsSeenAndThenNoCommandIsGiven) {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
   });
+  EXPECT_NE(login->body.find("only stop is taken"), std::string::npos) << login->body;
+  auto depth = cli.Post("/api/command", headers, R"({"command":"set_depth_mm","value":90})",
+                        "application/json");
+  ASSERT_TRUE(depth);
+  EXPECT_EQ(depth->status, 503);
+  EXPECT_NE(depth->body.find("/dev/full cannot be written"), std::string::npos) << depth->body;
+  EXPECT_EQ(served.load(), 0) << "a command went to the loop with no audit line possible";
+  // Issue 28, item 3: stop is never refused for want of an audit log.
   auto command = cli.Post("/api/command", headers, R"({"command":"stop"})", "application/json");
   stop = true;
   loop.join();
   server.stop();
   ASSERT_TRUE(command);
-  EXPECT_EQ(command->status, 503);
-  EXPECT_NE(command->body.find("/dev/full cannot be written"), std::string::npos) << command->body;
-  EXPECT_EQ(served.load(), 0) << "a command went to the loop with no audit line possible";
+  EXPECT_EQ(command->status, 200) << command->body;
+  EXPECT_NE(command->body.find("cannot be written: only stop is taken"), std::string::npos)
+      << command->body;
+  EXPECT_EQ(served.load(), 1);
+}
+
+// Issue 28, item 3: the log's last line was cut when the disk filled; item 7: a FIFO held the
+// console's start with no word.
+TEST(AuditLog, ALineThatDoesNotFitIsTakenBackAndAFifoIsRefused) {
+  const std::string dir =
+      std::filesystem::temp_directory_path() / ("planter-audit-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string fifo = dir + "/fifo.log";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THROW(AuditLog{fifo}, std::runtime_error);
+  const std::string path = dir + "/audit.log";
+  {
+    AuditLog log(path);
+    ASSERT_TRUE(log.append("10.0.0.1", "-", "login", "-", "logged in as operator"));
+    const auto size = std::filesystem::file_size(path);
+    // A file-size limit just past the first line stands for the full disk: the second line's
+    // write stops part-way (EFBIG).
+    rlimit old{};
+    getrlimit(RLIMIT_FSIZE, &old);
+    signal(SIGXFSZ, SIG_IGN);
+    rlimit small = old;
+    small.rlim_cur = size + 20;
+    setrlimit(RLIMIT_FSIZE, &small);
+    const bool second = log.append("10.0.0.1", "abc", "set_depth_mm", "90", "accepted");
+    setrlimit(RLIMIT_FSIZE, &old);
+    signal(SIGXFSZ, SIG_DFL);
+    EXPECT_FALSE(second);
+    EXPECT_EQ(std::filesystem::file_size(path), size) << "a cut line was left";
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace planter::console
+
+namespace planter::console {
+namespace {
+
+// Issue 28, item 4: with Host and Origin both evil.example:PORT, state, history and the
+// recordings list answered 200 (DNS rebinding).
+TEST(ConsoleServer, AHostThatIsNotThisMachineIsRefusedBeforeAnyRoute) {
+  ConsoleOptions o;
+  o.port = 0;
+  ConsoleInfo info;
+  ConsoleServer server(o, info);
+  server.start();
+  httplib::Client cli("127.0.0.1", server.port());
+  const std::string port = std::to_string(server.port());
+  for (const char* path : {"/api/state", "/api/history", "/api/info", "/"}) {
+    auto evil = cli.Get(
+        path, {{"Host", "evil.example:" + port}, {"Origin", "http://evil.example:" + port}});
+    ASSERT_TRUE(evil);
+    EXPECT_EQ(evil->status, 421) << path;
+    EXPECT_NE(evil->body.find("not as 'evil.example:" + port + "'"), std::string::npos)
+        << evil->body;
+    auto own = cli.Get(path, {{"Host", "127.0.0.1:" + port}});
+    ASSERT_TRUE(own);
+    EXPECT_EQ(own->status, 200) << path;
+  }
+  auto local = cli.Get("/api/info", {{"Host", "LOCALHOST:" + port}});
+  ASSERT_TRUE(local);
+  EXPECT_EQ(local->status, 200);
+  server.stop();
+}
+
+}  // namespace
+}  // namespace planter::console
+
+namespace planter::console {
+namespace {
+
+// Issue 28, item 7: start, stop, start within a second replaced the first recording.
+TEST(Recordings, TwoStartsWithinASecondGetTwoNames) {
+  const std::string a = recording_file_name("live"), b = recording_file_name("live");
+  EXPECT_NE(a, b);
+  EXPECT_TRUE(std::regex_match(a, std::regex(R"(live-\d{8}T\d{6}\.\d{3}Z-\d+\.csv)"))) << a;
 }
 
 }  // namespace

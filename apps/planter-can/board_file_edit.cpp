@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -115,15 +116,15 @@ bool write_board_edits(const std::string& board_path, const std::vector<BoardEdi
   }
   std::string text = original;
   edit_board_text(text, edits);
-  const std::string tmp = path + ".tmp";
   std::string backup = path + ".bak";
   for (int n = 2; std::filesystem::exists(backup, ec) || std::filesystem::is_symlink(backup, ec);
        ++n) {
     backup = path + ".bak." + std::to_string(n);
   }
-  if (!config::write_file_synced(tmp, text)) {
-    error = tmp + ": cannot be written";
-    ::unlink(tmp.c_str());
+  // A temporary of its own beside the board file: two runs never share one.
+  const std::string tmp = config::write_temporary_beside(path, text);
+  if (tmp.empty()) {
+    error = path + ": cannot be written beside (" + std::strerror(errno) + ")";
     return false;
   }
   try {

@@ -369,8 +369,8 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
     last_row_ns = r.time_ns;
   }
   if (!out_path.empty()) {
-    if (!config::write_file_atomic(out_path, file.str())) {
-      err << "planter-can: decode: " << out_path << ": cannot be written\n";
+    if (std::string why; !config::write_file_atomic(out_path, file.str(), &why)) {
+      err << "planter-can: decode: " << out_path << ": " << why << "\n";
       return kExitFailed;
     }
     out << rows << " rows (one per SYNC) from " << records.size() << " frames written to "

@@ -17,17 +17,24 @@ console::ConsoleReply ConsoleRecording::start() {
     return recording_reply(ConsoleResult::kFailed, e.what());
   }
   name_ = name;
+  failed_.clear();
   return recording_reply(ConsoleResult::kAccepted, "recording to " + name_);
 }
 
 console::ConsoleReply ConsoleRecording::stop() {
   std::lock_guard<std::mutex> lock(mutex_);
+  if (!recording_ && !failed_.empty()) {  // it stopped by itself: say why, once
+    const std::string words = failed_;
+    failed_.clear();
+    return recording_reply(ConsoleResult::kFailed, words);
+  }
   if (!recording_) return recording_reply(ConsoleResult::kRefused, "not recording");
   const bool ok = recording_->flush();
   recording_.reset();
   if (!ok)
-    return recording_reply(ConsoleResult::kFailed,
-                           name_ + ": the last rows cannot be written (is the disk full?)");
+    return recording_reply(
+        ConsoleResult::kFailed,
+        console::set_aside_cut(dir_, name_, "the last rows cannot be written (is the disk full?)"));
   return recording_reply(ConsoleResult::kAccepted, "recording " + name_ + " closed");
 }
 
@@ -39,9 +46,9 @@ void ConsoleRecording::add(double t_s, const Telemetry& row) {
 void ConsoleRecording::flush() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (recording_ && !recording_->flush()) {
-    std::fprintf(stderr, "planterd: %s/%s: write failed; the console's recording stopped\n",
-                 dir_.c_str(), name_.c_str());
     recording_.reset();
+    failed_ = console::set_aside_cut(dir_, name_, "cannot be written (is the disk full?)");
+    std::fprintf(stderr, "planterd: the console's %s\n", failed_.c_str());
   }
 }
 

@@ -30,6 +30,7 @@ class ConsoleRecording : public console::RecordingControl {
   std::mutex mutex_;
   std::unique_ptr<CrashSafeRecording> recording_;
   std::string name_;
+  std::string failed_;  // a recording that stopped by itself (full disk), until stop() says it
 };
 
 }  // namespace planter::daemon

@@ -1,10 +1,16 @@
 #include "sim/apps/live.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <limits>
@@ -13,6 +19,7 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "console/operator_sessions.h"
 #include "sim/runner/lockstep_runner.h"
@@ -49,12 +56,25 @@ class LiveRecorder : public console::RecordingControl {
     } catch (const std::exception& e) {
       return console::recording_reply(console::ConsoleResult::kFailed, e.what());
     }
+    // The metadata and header must reach the disk before "accepted" is said.
+    if (!writer_->flush()) {
+      writer_.reset();
+      std::remove(path.c_str());
+      return console::recording_reply(console::ConsoleResult::kFailed,
+                                      name + " cannot be written (is the disk full?)");
+    }
     name_ = name;
+    failed_.clear();
     return console::recording_reply(console::ConsoleResult::kAccepted, "recording to " + name_);
   }
 
   console::ConsoleReply stop() override {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (!writer_ && !failed_.empty()) {  // it stopped by itself: say why, once
+      const std::string words = failed_;
+      failed_.clear();
+      return console::recording_reply(console::ConsoleResult::kFailed, words);
+    }
     if (!writer_)
       return console::recording_reply(console::ConsoleResult::kRefused, "not recording");
     try {
@@ -73,27 +93,61 @@ class LiveRecorder : public console::RecordingControl {
     try {
       writer_->write(r);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "planter-sim live: %s; recording stopped\n", e.what());
-      writer_.reset();
+      fail(e.what());
     }
   }
 
   // A recording that can no longer be written stops, and says so.
   void flush() {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (writer_ && !writer_->flush()) {
-      std::fprintf(stderr, "planter-sim live: %s/%s: cannot be written; recording stopped\n",
-                   dir_.c_str(), name_.c_str());
-      writer_.reset();
-    }
+    if (writer_ && !writer_->flush()) fail("cannot be written (is the disk full?)");
   }
 
  private:
   std::string dir_;
   const Scenario& scenario_;
   std::mutex mutex_;  // the console's thread starts and stops; the simulation's writes
+  // Under mutex_: the recording stops, its file is set aside as cut, and stop() says why.
+  void fail(const std::string& why) {
+    writer_.reset();
+    failed_ = console::set_aside_cut(dir_, name_, why);
+    std::fprintf(stderr, "planter-sim live: %s\n", failed_.c_str());
+  }
+
   std::unique_ptr<RecordingWriter> writer_;
   std::string name_;
+  std::string failed_;  // a recording that stopped by itself, until stop() says it
+};
+
+// An exclusive flock on DIR/.planter-live.lock, held while the program runs (the kernel lets
+// it go when the program ends, however it ends).
+class DirectoryLock {
+ public:
+  DirectoryLock() = default;
+  explicit DirectoryLock(const std::string& dir) {
+    const std::string path = dir + "/.planter-live.lock";
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0600);
+    if (fd_ < 0) throw std::runtime_error(path + ": cannot be opened: " + std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd_);
+      fd_ = -1;
+      throw std::runtime_error(dir +
+                               ": another planter-sim live uses this directory (--dir another)");
+    }
+  }
+  DirectoryLock(DirectoryLock&& o) noexcept : fd_(std::exchange(o.fd_, -1)) {}
+  DirectoryLock& operator=(DirectoryLock&& o) noexcept {
+    std::swap(fd_, o.fd_);
+    return *this;
+  }
+  DirectoryLock(const DirectoryLock&) = delete;
+  DirectoryLock& operator=(const DirectoryLock&) = delete;
+  ~DirectoryLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+
+ private:
+  int fd_ = -1;
 };
 }  // namespace
 
@@ -108,8 +162,11 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
   const std::string recordings = options.dir + "/recordings";
   LiveRecorder recorder(recordings, scenario);
   std::string pairing;
+  DirectoryLock lock;
   if (!options.view_only) {
     std::filesystem::create_directories(recordings);
+    // One live instance per --dir: two would share the audit log and the recordings.
+    lock = DirectoryLock(options.dir);
     pairing = options.pairing_secret_file.empty()
                   ? console::OperatorSessions::new_secret()
                   : console::OperatorSessions::read_secret_file(options.pairing_secret_file);

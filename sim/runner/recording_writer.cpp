@@ -1,5 +1,8 @@
 #include "sim/runner/recording_writer.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -11,7 +14,11 @@ namespace planter::sim {
 
 RecordingWriter::RecordingWriter(const std::string& path, const std::string& shown_path,
                                  const std::vector<std::pair<std::string, std::string>>& metadata)
-    : file_(std::fopen(path.c_str(), "w")), path_(shown_path) {
+    : path_(shown_path) {
+  // Created, never replaced: a recording that exists is not overwritten (issue 28, item 7).
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  file_ = fd >= 0 ? ::fdopen(fd, "w") : nullptr;
+  if (fd >= 0 && file_ == nullptr) ::close(fd);
   if (file_ == nullptr) {
     throw std::runtime_error(path_ + ": cannot be written: " + std::strerror(errno));
   }

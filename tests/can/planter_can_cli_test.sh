@@ -87,7 +87,7 @@ expect 2 "backwards.log:3" -- --board "$board" decode "$work/backwards.log" -o "
 [ "$(cat "$work/existing.csv")" = keep ] || { echo "FAIL: decode -o changed existing.csv"; fails=$((fails + 1)); }
 printf '(1.000000) can0 080#\n(1.010000) can0 080#\n' >"$work/sync.log"
 mkdir "$work/outdir"
-expect 1 "outdir: cannot be written" -- --board "$board" decode "$work/sync.log" -o "$work/outdir"
+expect 1 "outdir: is a directory" -- --board "$board" decode "$work/sync.log" -o "$work/outdir"
 # The session log (--record) on a full disk: exit 1 naming it, not a silent empty log.
 if [ -w /dev/full ]; then
   expect 1 "--record: /dev/full: cannot be written" -- --iface sim --board "$board" --record /dev/full scan

@@ -54,6 +54,12 @@ std::string output_target_refusal(const std::string& path) {
   return "";
 }
 
+std::string new_log_refusal(const std::string& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return "";
+  return "exists: a log is never overwritten; give a new name, or move the old log away";
+}
+
 bool write_file_atomic(const std::string& path, const std::string& data, std::string* why) {
   const auto say = [&](const std::string& words) {
     if (why != nullptr) *why = words;

@@ -24,6 +24,9 @@ bool write_file_atomic(const std::string& path, const std::string& data,
 // Writes `data` to a new temporary beside `path` (PATH.XXXXXX, made exclusively, fsynced) and
 // returns its name, or "" (errno set) when it cannot.
 std::string write_temporary_beside(const std::string& path, const std::string& data);
+// Why a new log may not be started at `path` ("" when it may): a log is never opened for
+// truncation, so a path that exists is refused, whatever it is (issue 28, item 11).
+std::string new_log_refusal(const std::string& path);
 // The same for a tool's output file: throws std::runtime_error "<path>: <why>".
 void write_output_file(const std::string& path, const std::string& data);
 

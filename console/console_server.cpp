@@ -165,11 +165,25 @@ void ConsoleServer::start() {
                              std::to_string(options_.port) +
                              " (in use, or not an address of this machine; --port, --bind)");
   thread_ = std::thread([&srv] { srv.listen_after_bind(); });
+  drainer_ = std::thread([this] {
+    std::unique_lock<std::mutex> lock(drainer_mutex_);
+    while (!drainer_wake_.wait_for(lock, std::chrono::milliseconds(200),
+                                   [this] { return drainer_stop_; })) {
+      const std::lock_guard<std::mutex> history_lock(history_mutex_);
+      drain();
+    }
+  });
 }
 
 void ConsoleServer::stop() {
   if (server_) server_->stop();
   if (thread_.joinable()) thread_.join();
+  {
+    const std::lock_guard<std::mutex> lock(drainer_mutex_);
+    drainer_stop_ = true;
+  }
+  drainer_wake_.notify_all();
+  if (drainer_.joinable()) drainer_.join();
   // The refused logins not yet said are said before the log closes.
   if (const auto s = refused_logins_.take(console_now_ns()); s && audit_)
     audit_->append(s->address, "-", "login_refused", s->value, s->words);

@@ -6,6 +6,7 @@
 // CommandChannel, which the loop serves once a tick; who may give them is OperatorSessions'
 // rule (operator_sessions.h), and each one is written to the AuditLog.
 #include <atomic>
+#include <condition_variable>
 #include <cstddef>
 #include <deque>
 #include <memory>
@@ -119,6 +120,12 @@ class ConsoleServer {
   RefusedLoginTally refused_logins_{60.0};  // one summary line a minute at most
   std::unique_ptr<httplib::Server> server_;
   std::thread thread_;
+  // Moves the loop's samples into the history five times a second whether or not anyone is
+  // looking (issue 28, item 6: with no client the queue filled and new samples were dropped).
+  std::thread drainer_;
+  std::mutex drainer_mutex_;
+  std::condition_variable drainer_wake_;
+  bool drainer_stop_ = false;
   int port_ = 0;
 };
 

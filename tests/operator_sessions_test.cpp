@@ -12,6 +12,7 @@
 #include <atomic>
 #include <csignal>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
 #include <thread>
@@ -327,6 +328,38 @@ TEST(Recordings, TwoStartsWithinASecondGetTwoNames) {
   const std::string a = recording_file_name("live"), b = recording_file_name("live");
   EXPECT_NE(a, b);
   EXPECT_TRUE(std::regex_match(a, std::regex(R"(live-\d{8}T\d{6}\.\d{3}Z-\d+\.csv)"))) << a;
+}
+
+}  // namespace
+}  // namespace planter::console
+
+namespace planter::console {
+namespace {
+
+// Issue 28, item 6: with no client for 150 s, the first state was 48 s old and the history had
+// silent gaps: the loop's samples waited for a request to be moved, and the queue dropped the
+// new ones when full. 3000 samples in 3 s (three queues full) with no client: every one kept.
+TEST(ConsoleServer, SamplesAreKeptWhileNoOneIsLooking) {
+  ConsoleOptions o;
+  o.port = 0;
+  ConsoleInfo info;
+  ConsoleServer server(o, info);
+  server.start();
+  for (int i = 0; i < 3000; ++i) {
+    LiveSample s;
+    s.t_s = 0.001 * i;
+    ASSERT_TRUE(server.publish(s)) << "sample " << i << " dropped";
+    std::this_thread::sleep_for(std::chrono::microseconds(1000));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  httplib::Client cli("127.0.0.1", server.port());
+  auto history = cli.Get("/api/history");
+  server.stop();
+  ASSERT_TRUE(history);
+  const auto j = nlohmann::json::parse(history->body);
+  ASSERT_EQ(j["t_s"].size(), 3000u);
+  EXPECT_DOUBLE_EQ(j["t_s"].back().get<double>(), 2.999);
+  EXPECT_EQ(server.dropped(), 0u);
 }
 
 }  // namespace

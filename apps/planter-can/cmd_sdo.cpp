@@ -74,7 +74,21 @@ std::string execute_cia309(ToolContext& ctx, const Cia309Command& cmd, bool& ok)
   } else if (const ObjectInfo* o = find_object(cmd.index, cmd.sub)) {
     type = *parse_value_type(o->type);
   } else {
-    type = res.data.size() <= 4 ? *parse_value_type("x32") : *parse_value_type("os");
+    // Unknown to the tables: hexadecimal of the size the node sent, or raw bytes.
+    const std::size_t n = res.data.size();
+    type = *parse_value_type(n == 1 || n == 2 || n == 4 || n == 8 ? "x" + std::to_string(8 * n)
+                                                                  : std::string("os"));
+  }
+  // A fixed-size type must match what the node sent (issue 28, item 13: u8 on a 32-bit value
+  // printed its low byte as if it were the value).
+  const bool fixed_size = type.kind != ValueKind::kString && type.kind != ValueKind::kOctets;
+  if (fixed_size && res.data.size() != type.bytes) {
+    ok = false;
+    return "ERROR: the object holds " + std::to_string(res.data.size()) + " bytes, not the " +
+           std::to_string(type.bytes) + " of this type: read it as a " +
+           std::to_string(8 * res.data.size()) + "-bit type (u" +
+           std::to_string(8 * res.data.size()) + ", x" + std::to_string(8 * res.data.size()) +
+           ", or os for raw bytes)";
   }
   return format_value(type, res.data);
 }

@@ -140,7 +140,11 @@ int run_monitor(ToolContext& ctx, const TrafficOptions& opt) {
 
 int run_record(ToolContext& ctx, const std::string& path, const TrafficOptions& opt) {
   if (open_ended_on_sim(ctx, opt, "record")) return kExitBadInput;
-  std::ofstream out(path, std::ios::trunc);
+  if (const std::string refusal = config::new_log_refusal(path); !refusal.empty()) {
+    ctx.err << "planter-can: record: " << path << ": " << refusal << "\n";
+    return kExitBadInput;
+  }
+  std::ofstream out(path, std::ios::app);  // new: appended, never truncated
   if (!out) {
     ctx.err << "planter-can: record: " << path << ": cannot be written\n";
     return kExitBadInput;

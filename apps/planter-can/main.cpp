@@ -19,6 +19,7 @@
 #include "apps/planter-can/sim_link.h"
 #include "apps/planter-can/socket_link.h"
 #include "config/config_error.h"
+#include "config/durable_file.h"
 #include "hal/linux/hal_error.h"
 #include "sim/runner/scenario.h"
 
@@ -143,6 +144,9 @@ int main(int argc, char** argv) {
   auto* c_cal = app.add_subcommand(
       "calibrate", "force | soil-wheel | depth; results into the unit's calibration file");
   c_cal->add_option("what", calibrate.what)->required();
+  bool write_sim = false;
+  c_cal->add_flag("--write-sim", write_sim,
+                  "on --iface sim, write the result into --board's files too (a scratch copy)");
   c_cal->add_option("--known-N", calibrate.known_N, "force: the weight, in newtons")
       ->check(CLI::Range(0.001, 1e5));
   c_cal->add_option("--distance-m", calibrate.distance_m, "soil-wheel: the measured distance")
@@ -246,7 +250,9 @@ int main(int argc, char** argv) {
   std::ofstream session_file;
   std::unique_ptr<LogWriter> session_writer;
   if (!session_log.empty()) {
-    session_file.open(session_log, std::ios::trunc);
+    if (const std::string refusal = config::new_log_refusal(session_log); !refusal.empty())
+      return fail(kExitBadInput, "--record: " + session_log + ": " + refusal);
+    session_file.open(session_log, std::ios::app);  // new: appended, never truncated
     if (!session_file)
       return fail(kExitBadInput, "--record: " + session_log + ": cannot be written");
     session_writer = std::make_unique<LogWriter>(session_file, link->name());
@@ -306,6 +312,14 @@ int main(int argc, char** argv) {
     if (c_replay->parsed()) return run_replay(ctx, replay_path, traffic);
     if (c_cal->parsed()) {
       calibrate.write = !no_write;
+      // A simulated machine's calibration is no machine's, and the sim's board file is usually
+      // the project's own: nothing is written unless asked for (issue 29, the first hour).
+      if (iface == "sim" && calibrate.write && !write_sim) {
+        calibrate.write = false;
+        std::cerr << "planter-can: calibrate on --iface sim: the result is shown, not written into "
+                  << board_path
+                  << " (give --write-sim, with --board a copy of the board, to write it)\n";
+      }
       return run_calibrate(ctx, calibrate, std::cin);
     }
     if (c_check->parsed()) {

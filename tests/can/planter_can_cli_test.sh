@@ -24,6 +24,10 @@ expect 2 "token 3 '0x1g00'" -- --iface sim --board "$board" sdo 2 r 0x1g00 0
 expect 2 "token 2 'rd'" -- --iface sim --board "$board" sdo 2 rd 0x1000 0
 expect 2 "token 6 'abc'" -- --iface sim --board "$board" sdo 2 w 0x1017 0 u16 abc
 expect 1 "no answer from node 77 in 100 ms" -- --iface sim --board "$board" sdo 77 r 0x1000 0
+# Issue 28, item 13: a type that does not fit the object is said, never printed as its low byte.
+expect 1 "the object holds 4 bytes, not the 1 of this type: read it as a 32-bit type" -- --iface sim --board "$board" sdo 2 r 0x1018 2 u8
+expect 1 "the object holds 4 bytes, not the 2 of this type" -- --iface sim --board "$board" sdo 2 r 0x1018 2 u16
+expect 0 "^0x00402001$" -- --iface sim --board "$board" sdo 2 r 0x1018 2 x32
 # On sim with no board the host-sim board is taken, and the tool says so.
 expect 0 "the host-sim board (.*boards/host-sim/board.toml)" -- --iface sim scan
 expect 0 "4 node(s) on sim" -- --iface sim scan
@@ -88,10 +92,20 @@ expect 2 "backwards.log:3" -- --board "$board" decode "$work/backwards.log" -o "
 printf '(1.000000) can0 080#\n(1.010000) can0 080#\n' >"$work/sync.log"
 mkdir "$work/outdir"
 expect 1 "outdir: is a directory" -- --board "$board" decode "$work/sync.log" -o "$work/outdir"
-# The session log (--record) on a full disk: exit 1 naming it, not a silent empty log.
-if [ -w /dev/full ]; then
-  expect 1 "--record: /dev/full: cannot be written" -- --iface sim --board "$board" --record /dev/full scan
+# The session log (--record) on a full disk: exit 1 naming it, not a silent empty log. A file
+# size limit of 1 kB stands for the full disk (SIGXFSZ ignored: the write fails with EFBIG).
+out=$(trap '' XFSZ; ulimit -f 1; timeout 20 "$tool" --no-progress --iface sim --board "$board" \
+  --record "$work/full.log" scan 2>&1 </dev/null)
+rc=$?
+if [ $rc -ne 1 ] || ! grep -q -- "--record: $work/full.log: cannot be written (disk full?)" <<<"$out"; then
+  echo "FAIL: --record on a full disk -> exit $rc, output:"; echo "$out" | sed 's/^/    /'
+  fails=$((fails + 1))
 fi
+# Issue 28, item 11: a log that exists is never truncated: refused, and left as it was.
+printf 'a log of yesterday\n' >"$work/old.log"
+expect 2 "--record: $work/old.log: exists: a log is never overwritten" -- --iface sim --board "$board" --record "$work/old.log" scan
+expect 2 "record: $work/old.log: exists: a log is never overwritten" -- --iface sim --board "$board" record "$work/old.log" --duration 1
+grep -q "a log of yesterday" "$work/old.log" || { echo "FAIL: the old log was changed"; fails=$((fails + 1)); }
 # A board whose TPDO maps an object the node does not have: configure names the step and the
 # abort (the controller's boot runs the same script, so it faults with boot error J).
 source "$src/tests/board_copy.sh"
@@ -99,5 +113,13 @@ board_copy "$src" host-sim "$work/badmap"
 sed -i 's|tpdo2 = \["6064:00:32", "6077:00:16"\]|tpdo2 = ["6064:00:32", "2077:00:16"]|' \
   "$work/badmap/machines/scallion-transplanter.toml"
 expect 1 "2 r 0x2077 0 u16): abort 0x06020000" -- --iface sim --board "$work/badmap/board.toml" configure
+# Issue 29: calibrating the simulated machine as the README shows it rewrote the project's
+# board files. On sim the result is shown and nothing is written unless --write-sim is given.
+board_copy "$src" host-sim "$work/cal"
+before=$(md5sum "$work/cal/calibration.toml" "$work/cal/board.toml")
+expect 0 "not written into $work/cal/board.toml (give --write-sim" -- --iface sim --board "$work/cal/board.toml" calibrate force --known-N 50 --ready-after-s 0
+[ "$before" = "$(md5sum "$work/cal/calibration.toml" "$work/cal/board.toml")" ] && ! ls "$work/cal"/*.bak* >/dev/null 2>&1 ||
+  { echo "FAIL: calibrate on sim changed the board's files"; fails=$((fails + 1)); }
+expect 0 "written to $work/cal/calibration.toml" -- --iface sim --board "$work/cal/board.toml" calibrate force --known-N 50 --ready-after-s 0 --write-sim
 [ "$fails" -eq 0 ] && echo "planter-can command line: all cases behave"
 exit "$fails"

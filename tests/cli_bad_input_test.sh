@@ -88,13 +88,24 @@ want_rc=0 expect route-cut "note: the route was not finished within max_duration
   "$sim" run "$tmp/cut.toml" --quiet --out "$tmp/cut-out"
 grep -q '"route_complete": false' "$tmp/cut-out/summary.json" || {
   echo "FAIL route-cut: summary.json does not say route_complete false"; fail=1; }
-# The same board in a run: the controller's boot fails on it, and the summary says so by name.
+# The same board in a run: the controller's boot fails on it, the summary says so by name, and
+# the run exits 1 (issue 28, item 12: it had simulated the boot fault and exited 0).
 source "$src/tests/board_copy.sh"
 board_copy "$src" host-sim "$tmp/badmap-board"
 sed -i 's|tpdo2 = \["6064:00:32", "6077:00:16"\]|tpdo2 = ["6064:00:32", "2077:00:16"]|' \
   "$tmp/badmap-board/machines/scallion-transplanter.toml"
 sed "s|^board = .*|board = \"$tmp/badmap-board/board.toml\"|; s|^\[scenario\]|[scenario]\nmax_duration_s = 15.0|" \
   "$tmp/bom.toml" >"$tmp/badmap.toml"
-want_rc=0 expect unmapped-object "final state +fault \(faults 0x40: boot failed\)" -- \
+want_rc=1 expect unmapped-object "the machine never moved: final state fault, faults 0x40" -- \
   "$sim" run "$tmp/badmap.toml" --out "$tmp/badmap-out"
+# Issue 28, item 15: a recording with none of the model's channels gave an empty replay.csv
+# and exit 0; issue 29: a refused output folder was found only after all the work.
+{ echo "t,nothing_known"; for i in $(seq 0 99); do echo "$i.5,1"; done; } >"$tmp/unknown.csv"
+printf '[[channel]]\noutput = "omega"\nsubsystem = "disc drive"\nT_d = 0.19\nomega_max = 0.45\n' >"$tmp/model.toml"
+expect replay-no-channel "unknown.csv: has none of the model's channels; nothing to replay" -- \
+  "$sim" replay "$tmp/model.toml" "$tmp/unknown.csv" --out "$tmp/rp"
+[ ! -e "$tmp/rp/replay.csv" ] || { echo "FAIL replay-no-channel: replay.csv written"; fail=1; }
+mkdir -p "$tmp/busy" && echo mine >"$tmp/busy/notes.txt"
+want_rc=1 expect replay-busy-out "busy: holds files that are not the output of 'planter-sim replay'" -- \
+  "$sim" replay "$tmp/model.toml" "$tmp/unknown.csv" --out "$tmp/busy"
 exit $fail

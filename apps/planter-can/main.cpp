@@ -18,6 +18,7 @@
 #include "apps/planter-can/cmd_traffic.h"
 #include "apps/planter-can/sim_link.h"
 #include "apps/planter-can/socket_link.h"
+#include "config/cli_range.h"
 #include "config/config_error.h"
 #include "config/durable_file.h"
 #include "hal/linux/hal_error.h"
@@ -49,7 +50,8 @@ int main(int argc, char** argv) {
   app.add_option("--iface", iface, "SocketCAN interface (can0, vcan0) or 'sim'");
   app.add_option("--board", board_path, "board file (boards/<board>/board.toml)");
   app.add_flag("--json", json, "machine-readable output");
-  app.add_option("--timeout-ms", timeout_ms, "SDO timeout")->check(CLI::Range(1, 60000));
+  app.add_option("--timeout-ms", timeout_ms, "SDO timeout")
+      ->check(planter::config::finite_range(1, 60000));
   app.add_flag("--no-progress", no_progress, "no progress line on stderr");
   app.add_option("--sim-scenario", scenario_path, "sim: the machine and field to simulate");
   app.add_flag("--sim-controller", sim_controller,
@@ -58,13 +60,13 @@ int main(int argc, char** argv) {
   app.add_option("--record", session_log,
                  "log the whole session (every frame seen and sent) to this candump -L file");
   app.add_option("--sim-push-m", push_m, "sim: how far the fixture pushes the machine")
-      ->check(CLI::Range(0.1, 1000.0));
+      ->check(planter::config::finite_range(0.1, 1000.0));
 
   ScanOptions scan;
   int listen_ms = 300;
   auto* c_scan = app.add_subcommand("scan", "list the nodes: listen, then probe IDs 1-127");
   c_scan->add_option("--listen-ms", listen_ms, "passive listening first")
-      ->check(CLI::Range(0, 60000));
+      ->check(planter::config::finite_range(0, 60000));
   bool no_probe = false;
   c_scan->add_flag("--passive", no_probe, "listen only, send nothing");
 
@@ -98,7 +100,7 @@ int main(int argc, char** argv) {
                    "VENDOR PRODUCT REVISION SERIAL instead of a fastscan")
       ->expected(4);
   c_lss->add_option("--lss-timeout-ms", lss_timeout_ms, "silence this long means no")
-      ->check(CLI::Range(1, 10000));
+      ->check(planter::config::finite_range(1, 10000));
 
   ConfigureOptions configure;
   bool no_store = false;
@@ -112,17 +114,17 @@ int main(int argc, char** argv) {
   traffic.stop = &g_stop;
   auto* c_monitor = app.add_subcommand("monitor", "live decode with names, units and rates");
   c_monitor->add_option("--duration", traffic.duration_s, "seconds (default: until Ctrl-C)")
-      ->check(CLI::Range(0.0, 1e7));
+      ->check(planter::config::finite_range(0.0, 1e7));
   c_monitor->add_flag("--raw", traffic.raw, "raw bytes beside the decode");
   c_monitor->add_flag("--summary-only", traffic.summary_only, "the rate table only");
   c_monitor->add_option("--summary-every", traffic.summary_every_s, "rate table every N seconds")
-      ->check(CLI::Range(0.0, 3600.0));
+      ->check(planter::config::finite_range(0.0, 3600.0));
 
   std::string record_path;
   auto* c_record = app.add_subcommand("record", "candump -L log of the bus, own frames included");
   c_record->add_option("file", record_path)->required();
   c_record->add_option("--duration", traffic.duration_s, "seconds (default: until Ctrl-C)")
-      ->check(CLI::Range(0.0, 1e7));
+      ->check(planter::config::finite_range(0.0, 1e7));
 
   std::string replay_path;
   auto* c_replay = app.add_subcommand("replay", "send a candump log back onto the bus, timed");
@@ -130,9 +132,9 @@ int main(int argc, char** argv) {
   c_replay
       ->add_option("--max-gap", traffic.max_gap_s, "silences longer than this (s) are shortened")
       ->capture_default_str()
-      ->check(CLI::Range(0.001, 3600.0));
+      ->check(planter::config::finite_range(0.001, 3600.0));
   c_replay->add_option("--speed", traffic.speed, "time factor (2 = twice as fast)")
-      ->check(CLI::Range(0.001, 1000.0));
+      ->check(planter::config::finite_range(0.001, 1000.0));
 
   std::string decode_log, decode_out;
   auto* c_decode = app.add_subcommand("decode", "candump log -> recording CSV (PRODUCT.md)");
@@ -148,15 +150,15 @@ int main(int argc, char** argv) {
   c_cal->add_flag("--write-sim", write_sim,
                   "on --iface sim, write the result into --board's files too (a scratch copy)");
   c_cal->add_option("--known-N", calibrate.known_N, "force: the weight, in newtons")
-      ->check(CLI::Range(0.001, 1e5));
+      ->check(planter::config::finite_range(0.001, 1e5));
   c_cal->add_option("--distance-m", calibrate.distance_m, "soil-wheel: the measured distance")
-      ->check(CLI::Range(0.01, 1e4));
+      ->check(planter::config::finite_range(0.01, 1e4));
   c_cal->add_option("--samples", calibrate.samples, "force: readings per step")
-      ->check(CLI::Range(1, 10000));
+      ->check(planter::config::finite_range(1, 10000));
   c_cal
       ->add_option("--ready-after-s", calibrate.ready_after_s,
                    "scripts: wait this long instead of asking for Enter")
-      ->check(CLI::Range(0.0, 3600.0));
+      ->check(planter::config::finite_range(0.0, 3600.0));
   c_cal->add_flag("--no-write", no_write, "show the result, leave the calibration file alone");
 
   CheckOptions check;
@@ -164,16 +166,16 @@ int main(int argc, char** argv) {
   bool skip_encoder = false;
   auto* c_check = app.add_subcommand("check", "the commissioning checklist; exit 1 on any fail");
   c_check->add_option("--listen-s", check_listen_s, "how long to watch the bus")
-      ->check(CLI::Range(0.1, 600.0));
+      ->check(planter::config::finite_range(0.1, 600.0));
   c_check->add_option("--max-bus-load", check.max_bus_load_pct, "percent")
-      ->check(CLI::Range(1.0, 100.0));
+      ->check(planter::config::finite_range(1.0, 100.0));
   c_check->add_flag("--skip-encoder", skip_encoder, "do not check the encoder direction");
   c_check->add_option("--mark-commissioned", check.mark_commissioned,
                       "when every item passes, write this stamp (planterd --commissioned-stamp)");
   c_check
       ->add_option("--ready-after-s", check.ready_after_s,
                    "scripts: wait instead of asking for Enter")
-      ->check(CLI::Range(0.0, 3600.0));
+      ->check(planter::config::finite_range(0.0, 3600.0));
 
   try {
     app.parse(argc, argv);

@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "config/cli_range.h"
 #include "config/config_error.h"
 #include "config/durable_file.h"
 #include "sim/dem/calibration.h"
@@ -182,11 +183,11 @@ int main(int argc, char** argv) {
     sub->add_option("--max-steps", common.max_steps,
                     "refuse a compression longer than this many time steps")
         ->capture_default_str()
-        ->check(CLI::Range(1L, 1'000'000'000'000L));
+        ->check(planter::config::finite_range(1L, 1'000'000'000'000L));
     sub->add_option("--speedup", common.speedup, "platen speed over the paper's 0.2 m/min")
-        ->check(CLI::Range(1.0, 500.0));
+        ->check(planter::config::finite_range(1.0, 500.0));
     sub->add_option("--diameter-mm", common.diameter_mm, "seedling diameter")
-        ->check(CLI::Range(3.0, 30.0));
+        ->check(planter::config::finite_range(3.0, 30.0));
   };
   auto* compress_cmd = app.add_subcommand("compress", "the radial compression test");
   add_common(compress_cmd);
@@ -199,23 +200,23 @@ int main(int argc, char** argv) {
   calibrate_cmd
       ->add_option("--target-displacement-mm", target_mm,
                    "also place the first peak here (refinement); 0 = force only")
-      ->check(CLI::Range(0.0, 20.0));
+      ->check(planter::config::finite_range(0.0, 20.0));
   calibrate_cmd->add_option("--target", target_N, "target first-peak force, N")
-      ->check(CLI::Range(1.0, 10000.0));
+      ->check(planter::config::finite_range(1.0, 10000.0));
   calibrate_cmd->add_option("--jobs", jobs, "simulations at once (default: all cores)")
-      ->check(CLI::Range(1, 256));
+      ->check(planter::config::finite_range(1, 256));
   calibrate_cmd
       ->add_option("--max-new-runs", max_new_runs,
                    "stop after this many new simulations (resume later)")
-      ->check(CLI::Range(0, 100000));
+      ->check(planter::config::finite_range(0, 100000));
   auto* reduce_cmd = app.add_subcommand("reduce", "fit the reduced-order force model");
   add_common(reduce_cmd);
   std::vector<double> diameters_mm{8.3, 9.3, 10.35, 11.4};
   reduce_cmd->add_option("--diameters-mm", diameters_mm, "seedling diameters to simulate")
       ->delimiter(',')
-      ->check(CLI::Range(3.0, 30.0));
+      ->check(planter::config::finite_range(3.0, 30.0));
   reduce_cmd->add_option("--jobs", jobs, "simulations at once (default: all cores)")
-      ->check(CLI::Range(1, 256));
+      ->check(planter::config::finite_range(1, 256));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

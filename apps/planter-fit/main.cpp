@@ -10,6 +10,7 @@
 #include <string>
 #include <thread>
 
+#include "config/cli_range.h"
 #include "config/config_error.h"
 #include "config/output_set.h"
 #include "sim/analysis/day_tracks.h"
@@ -126,7 +127,8 @@ int main(int argc, char** argv) {
   app.add_flag("--json", json, "print fit.json instead of the summary");
   bool force = false;
   app.add_flag("--force", force, "replace --out even if it holds something other than a fit");
-  app.add_option("--jobs", jobs, "channels analysed at once")->check(CLI::Range(1, 256));
+  app.add_option("--jobs", jobs, "channels analysed at once")
+      ->check(planter::config::finite_range(1, 256));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

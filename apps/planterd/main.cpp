@@ -20,6 +20,7 @@
 #include "apps/planterd/console_recording.h"
 #include "apps/planterd/crash_safe_recording.h"
 #include "apps/planterd/service_notify.h"
+#include "config/cli_range.h"
 #include "config/commissioning.h"
 #include "config/config_error.h"
 #include "console/command_channel.h"
@@ -380,11 +381,11 @@ int parse_options(int argc, char** argv, Options& opt) {
   app.add_option("--record", opt.record, "record telemetry to this CSV (PRODUCT.md format)");
   app.add_flag("--run", opt.run, "start planting as soon as every node is ready (unattended)");
   app.add_option("--duration", opt.duration_s, "stop safely after this many seconds (tests)")
-      ->check(CLI::Range(0.0, 1e7));
+      ->check(planter::config::finite_range(0.0, 1e7));
   app.add_option("--flush-ms", opt.flush_ms, "recording flush interval: the most a crash loses")
-      ->check(CLI::Range(10, 10000));
+      ->check(planter::config::finite_range(10, 10000));
   app.add_option("--log-period", opt.log_period_s, "status line every N seconds (0 = off)")
-      ->check(CLI::Range(0.0, 3600.0));
+      ->check(planter::config::finite_range(0.0, 3600.0));
   app.add_flag("--resume-after-link-loss", opt.resume_after_link_loss,
                "after the CAN link went down and came back, reset the faults it caused and boot "
                "the nodes again (with --run: plant again)");

@@ -235,7 +235,8 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
   std::ostringstream h;
   h.precision(4);
   report::ChartPage charts;
-  h << "<!doctype html><html><head><meta charset='utf-8'><title>planter-fit</title><style>"
+  h << "<!doctype html><html><head>" << report::kReportHead
+    << "<title>planter-fit</title><style>"
        "body{font-family:sans-serif;max-width:900px;margin:20px auto}td,th{padding:2px 8px}"
        "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style>"
     << report::ChartPage::head() << "</head><body><h1>planter-fit: " << report::html_escape(r.file)

@@ -15,6 +15,9 @@
 namespace planter::analysis {
 namespace {
 
+constexpr std::size_t kMaxLineBytes = 1u << 20;  // 1 MB
+constexpr std::size_t kMaxColumns = 4096;
+
 std::vector<std::string> split_commas(const std::string& line) {
   std::vector<std::string> out;
   std::string cell;
@@ -67,10 +70,34 @@ bool RecordingReader::more() const {
 }
 
 bool RecordingReader::next_line(std::string& line) {
-  if (!std::getline(*source_->in, line)) {
-    if (source_->in->bad()) throw RecordingError(file_, line_no_ + 1, "cannot be read");
-    return false;
+  // Read in pieces, so a line without end cannot take the memory (issue 28, item 14: a 1 GB
+  // line took 2-3 GB before it was refused).
+  std::istream& in = *source_->in;
+  line.clear();
+  char piece[8192];
+  bool any = false;
+  for (;;) {
+    in.getline(piece, sizeof piece);
+    if (in.bad()) throw RecordingError(file_, line_no_ + 1, "cannot be read");
+    const auto n = static_cast<std::size_t>(in.gcount());
+    any = any || n > 0;
+    if (in.eof()) {  // the last line, with no newline after it
+      line.append(piece, n);
+      break;
+    }
+    if (in.fail()) {  // the piece filled before the newline
+      line.append(piece, n);
+      in.clear();
+      if (line.size() > kMaxLineBytes)
+        throw RecordingError(file_, line_no_ + 1,
+                             "a line longer than " + std::to_string(kMaxLineBytes >> 20) +
+                                 " MB (a recording's rows are a few hundred bytes)");
+      continue;
+    }
+    line.append(piece, n - 1);  // the newline was taken and counted
+    break;
   }
+  if (!any) return false;
   ++line_no_;
   // A CSV saved on Windows may start with a UTF-8 byte-order mark: it is not part of "t".
   if (line_no_ == 1) config::strip_utf8_bom(line);
@@ -89,6 +116,10 @@ void RecordingReader::read_header() {
       continue;
     }
     header_ = split_commas(line);
+    if (header_.size() > kMaxColumns)
+      throw RecordingError(file_, line_no_,
+                           "header: " + std::to_string(header_.size()) + " columns, at most " +
+                               std::to_string(kMaxColumns));
     std::set<std::string> seen;
     for (std::size_t c = 0; c < header_.size(); ++c) {
       header_[c] = trim(header_[c]);

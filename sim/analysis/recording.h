@@ -12,11 +12,17 @@ namespace planter::analysis {
 
 class RecordingError : public std::runtime_error {
  public:
+  // Line 0: about the file as a whole (no line to name).
   RecordingError(const std::string& file, int line, const std::string& what)
-      : std::runtime_error(file + ":" + std::to_string(line) + ": " + what), line_(line) {}
+      : std::runtime_error(message(file, line, what)), line_(line) {}
   [[nodiscard]] int line() const { return line_; }
 
  private:
+  static std::string message(const std::string& file, int line, const std::string& what) {
+    std::string m = file;
+    if (line > 0) m.append(":").append(std::to_string(line));
+    return m.append(": ").append(what);
+  }
   int line_;
 };
 

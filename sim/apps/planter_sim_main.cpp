@@ -11,6 +11,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "config/cli_range.h"
 #include "config/config_error.h"
 #include "config/output_set.h"
 #include "hal/linux/hal_error.h"
@@ -141,6 +142,16 @@ int run_scenario(const std::string& scenario_path, const std::string& out_dir, b
   if (!quiet) print_summary(summary);
   for (const auto& note : summary.notes) std::printf("note: %s\n", note.c_str());
   std::printf("wrote %s/{recording.csv,seedlings.csv,summary.json,report.html}\n", out_dir.c_str());
+  // A machine that never moved, with no fault the scenario scripted, is a broken board or
+  // machine file, not a result (issue 28, item 12: an hour of a boot fault exited 0).
+  const FaultEvents& scripted = scenario.faults;
+  if (summary.distance_m <= 0.0 && scripted.estop_at_s < 0.0 && scripted.silent_node.empty()) {
+    std::fprintf(stderr,
+                 "planter-sim: the machine never moved: final state %s, faults 0x%X (the "
+                 "controller did not reach running; recording.csv shows its boot)\n",
+                 summary.final_state.c_str(), summary.faults);
+    return 1;
+  }
   return 0;
 }
 
@@ -199,23 +210,23 @@ int main(int argc, char** argv) {
                   "replace --out even if it holds something other than a sweep");
   sweep->add_option("--distance", sweep_options.distance_m, "metres per run")
       ->capture_default_str()
-      ->check(CLI::Range(0.5, 1000.0));
+      ->check(planter::config::finite_range(0.5, 1000.0));
   sweep->add_option("--replicates", sweep_options.replicates, "runs per design point, at least")
       ->capture_default_str()
-      ->check(CLI::Range(1, 50));
+      ->check(planter::config::finite_range(1, 50));
   sweep
       ->add_option("--max-replicates", sweep_options.max_replicates,
                    "runs per design point, at most, while its damage rate is not resolved")
       ->capture_default_str()
-      ->check(CLI::Range(1, 200));
+      ->check(planter::config::finite_range(1, 200));
   sweep
       ->add_option("--damage-precision", sweep_options.damage_precision_pts,
                    "goal for the standard error of each point's damage rate, in points")
       ->capture_default_str()
-      ->check(CLI::Range(0.01, 50.0));
+      ->check(planter::config::finite_range(0.01, 50.0));
   sweep->add_option("--jobs", sweep_options.jobs, "runs at a time (0: one per core)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 256));
+      ->check(planter::config::finite_range(0, 256));
   SensitivityOptions sensitivity_options;
   auto* sensitivity = app.add_subcommand(
       "sensitivity",
@@ -226,16 +237,16 @@ int main(int argc, char** argv) {
                         "replace --out even if it holds something other than an analysis");
   sensitivity->add_option("--trajectories", sensitivity_options.trajectories, "Morris's r")
       ->capture_default_str()
-      ->check(CLI::Range(2, 100));
+      ->check(planter::config::finite_range(2, 100));
   sensitivity->add_option("--distance", sensitivity_options.distance_m, "metres per run")
       ->capture_default_str()
-      ->check(CLI::Range(0.5, 1000.0));
+      ->check(planter::config::finite_range(0.5, 1000.0));
   sensitivity->add_flag(
       "--optimum", sensitivity_options.optimum,
       "also run the paper's design (15 runs) at each point: the optimum's spread");
   sensitivity->add_option("--jobs", sensitivity_options.jobs, "runs at a time (0: one per core)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 256));
+      ->check(planter::config::finite_range(0, 256));
 #endif
   auto* values = app.add_subcommand(
       "values", "every model value the conclusions rest on: value, unit, range, origin, source");
@@ -254,7 +265,7 @@ int main(int argc, char** argv) {
   devices->add_option("--board", devices_board, "board file (default: the scenario's)");
   devices->add_option("--truth", devices_options.truth_path, "write ground truth CSV here");
   devices->add_option("--duration", devices_options.duration_s, "seconds (0 = whole route)")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(planter::config::finite_range(0.0, 1e6));
 #ifdef PLANTER_WITH_CONSOLE
   LiveOptions live_options;
   auto* live = app.add_subcommand(
@@ -262,16 +273,16 @@ int main(int argc, char** argv) {
   live->add_option("scenario", scenario, "scenario file (TOML)")->required();
   live->add_option("--port", live_options.console.port, "TCP port of the console (0: any free)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 65535));
+      ->check(planter::config::finite_range(0, 65535));
   live->add_option("--bind", live_options.console.bind,
                    "address to serve on (0.0.0.0: every network of this machine)")
       ->capture_default_str();
   live->add_option("--duration", live_options.duration_s, "simulated seconds (0: until Ctrl-C)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(planter::config::finite_range(0.0, 1e6));
   live->add_option("--speed", live_options.speed, "simulated seconds per wall-clock second")
       ->capture_default_str()
-      ->check(CLI::Range(0.1, 100.0));
+      ->check(planter::config::finite_range(0.1, 100.0));
   live->add_option("--dir", live_options.dir,
                    "where the console's recordings (recordings/) and audit.log go")
       ->capture_default_str();

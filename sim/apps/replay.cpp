@@ -13,6 +13,8 @@ namespace planter::sim {
 int run_replay(const std::string& model_path, const std::string& recording_path,
                const std::string& out_dir, bool force) {
   using namespace analysis;
+  // The output folder is checked first: a refusal after all the work would waste it.
+  config::OutputSet out(out_dir, "planter-sim replay", force);
   const std::vector<ModelChannel> model = load_augmented_model(model_path);
   const Recording rec = load_recording(recording_path);
   std::vector<const ModelChannel*> used;
@@ -29,11 +31,20 @@ int run_replay(const std::string& model_path, const std::string& recording_path,
     const auto& meas = rec.at(m.channel->output());
     double ss = 0;
     for (std::size_t k = 0; k < y.size(); ++k) ss += (y[k] - meas[k]) * (y[k] - meas[k]);
+    const double rms = std::sqrt(ss / static_cast<double>(y.size()));
+    if (!std::isfinite(rms))
+      throw RecordingError(recording_path, 0,
+                           "column '" + m.channel->output() +
+                               "': its values overflow the model (a cell far outside the "
+                               "machine's range?); nothing written");
     std::printf("%-12s %zu effect(s), RMS error %.4g\n", m.channel->output().c_str(),
-                m.effects.size(), std::sqrt(ss / static_cast<double>(y.size())));
+                m.effects.size(), rms);
     used.push_back(&m);
     sims.push_back(std::move(y));
   }
+  if (used.empty())
+    throw RecordingError(recording_path, 0,
+                         "has none of the model's channels; nothing to replay, nothing written");
   std::ostringstream csv;
   csv << "t";
   for (const auto* m : used)
@@ -50,7 +61,6 @@ int run_replay(const std::string& model_path, const std::string& recording_path,
     }
     csv << '\n';
   }
-  config::OutputSet out(out_dir, "planter-sim replay", force);
   out.write("replay.csv", csv.str());
   out.commit();
   std::printf("wrote %s/replay.csv\n", out_dir.c_str());

@@ -236,9 +236,8 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return rank[a][0] < rank[b][0]; });
   std::ostringstream html;
-  html << "<!doctype html><html><head><meta charset='utf-8'><meta name='viewport' "
-          "content='width=device-width, initial-scale=1'><title>Sensitivity: "
-       << report::html_escape(base.name)
+  html << "<!doctype html><html><head>" << report::kReportHead
+       << "<title>Sensitivity: " << report::html_escape(base.name)
        << "</title><style>body{font-family:sans-serif;max-width:1000px;margin:auto;padding:0 "
           "8px}table{border-collapse:collapse;display:block;overflow-x:auto}td,th{border:1px "
           "solid #ccc;padding:2px 6px;text-align:right}</style></head><body><h1>Which model "

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
@@ -126,11 +127,19 @@ std::string anova_html(const std::string& title, const std::string& unit, const 
   return h.str();
 }
 
+// Dark blue (low, u = 0) to yellow (high, u = 1).
+std::string colour(double u) {
+  char b[32];
+  std::snprintf(b, sizeof b, "rgb(%d,%d,%d)", static_cast<int>(30 + 220 * u),
+                static_cast<int>(40 + 180 * u), static_cast<int>(120 - 90 * u));
+  return b;
+}
+
 // A filled map of a surface over two factors, the third held at `fixed`, with the paper's
 // optimum (cross) and this sweep's (circle) marked.
 std::string surface_map(const std::string& title, const std::string& unit, const doe::Anova& a,
                         int fx, int fy, const Eigen::Vector3d& fixed, const Eigen::Vector3d& paper,
-                        const Eigen::Vector3d& found) {
+                        const Eigen::Vector3d& found, double physical_min, double physical_max) {
   constexpr int kCells = 40;
   constexpr double kSize = 320, kLeft = 70, kTop = 30;
   std::vector<double> z;
@@ -139,14 +148,18 @@ std::string surface_map(const std::string& title, const std::string& unit, const
       Eigen::Vector3d x = fixed;
       x(fx) = -1.0 + 2.0 * (i + 0.5) / kCells;
       x(fy) = 1.0 - 2.0 * (j + 0.5) / kCells;
-      z.push_back(doe::predict_quadratic_3(a, x));
+      // The quadratic extrapolates past what the quantity can be (uprightness above 100 %):
+      // shown clipped to its physical range, and said under the map.
+      z.push_back(std::clamp(doe::predict_quadratic_3(a, x), physical_min, physical_max));
     }
   }
   const double lo = *std::min_element(z.begin(), z.end());
   const double hi = *std::max_element(z.begin(), z.end());
   std::ostringstream s;
-  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << kLeft + kSize + 220 << "' height='"
-    << kTop + kSize + 50 << "' font-family='sans-serif' font-size='11'>"
+  const double width = kLeft + kSize + 240, height = kTop + kSize + 64;
+  // viewBox: the map scales down whole on a phone instead of being cut.
+  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
+    << "' viewBox='0 0 " << width << ' ' << height << "' font-family='sans-serif' font-size='11'>"
     << "<text x='" << kLeft << "' y='16' font-size='12'>" << report::html_escape(title) << " ["
     << unit << "], " << kFactors[3 - fx - fy].name << " at "
     << fmt("%.4g", kFactors[3 - fx - fy].value(fixed(3 - fx - fy))) << " "
@@ -155,12 +168,8 @@ std::string surface_map(const std::string& title, const std::string& unit, const
   for (int j = 0; j < kCells; ++j) {
     for (int i = 0; i < kCells; ++i) {
       const double u = hi > lo ? (z[static_cast<std::size_t>(j * kCells + i)] - lo) / (hi - lo) : 0;
-      // Dark blue (low) to yellow (high).
-      const int r = static_cast<int>(30 + 220 * u), g = static_cast<int>(40 + 180 * u),
-                b = static_cast<int>(120 - 90 * u);
       s << "<rect x='" << kLeft + i * cell << "' y='" << kTop + j * cell << "' width='"
-        << cell + 0.5 << "' height='" << cell + 0.5 << "' fill='rgb(" << r << ',' << g << ',' << b
-        << ")'/>";
+        << cell + 0.5 << "' height='" << cell + 0.5 << "' fill='" << colour(u) << "'/>";
     }
   }
   auto px = [&](double c) { return kLeft + (c + 1.0) / 2.0 * kSize; };
@@ -177,13 +186,24 @@ std::string surface_map(const std::string& title, const std::string& unit, const
   s << "<path d='M" << px(paper(fx)) - 7 << ',' << py(paper(fy)) - 7 << " l14,14 m0,-14 l-14,14' "
     << "stroke='white' stroke-width='2.5'/><circle cx='" << px(found(fx)) << "' cy='"
     << py(found(fy)) << "' r='6' fill='none' stroke='red' stroke-width='2.5'/>";
+  // The colour scale: a bar from low to high with five labelled steps.
   const double lx = kLeft + kSize + 16;
-  s << "<text x='" << lx << "' y='" << kTop + 10 << "'>high " << fmt("%.4g", hi) << "</text>"
-    << "<text x='" << lx << "' y='" << kTop + kSize << "'>low " << fmt("%.4g", lo) << "</text>"
-    << "<text x='" << lx << "' y='" << kTop + kSize / 2 - 8
+  for (int k = 0; k < 20; ++k) {
+    s << "<rect x='" << lx << "' y='" << kTop + kSize - (k + 1) * kSize / 20 << "' width='14' "
+      << "height='" << kSize / 20 + 0.5 << "' fill='" << colour((k + 0.5) / 20.0) << "'/>";
+  }
+  for (int k = 0; k <= 4; ++k) {
+    s << "<text x='" << lx + 18 << "' y='" << kTop + kSize - k * kSize / 4 + 4 << "'>"
+      << fmt("%.4g", lo + (hi - lo) * k / 4.0) << " " << unit << "</text>";
+  }
+  const double nx = lx + 70;
+  s << "<text x='" << nx << "' y='" << kTop + kSize / 2 - 8
     << "'>x paper's optimum (projected)</text>"
-    << "<text x='" << lx << "' y='" << kTop + kSize / 2 + 8 << "' fill='red'>o this sweep's</text>"
-    << "</svg>";
+    << "<text x='" << nx << "' y='" << kTop + kSize / 2 + 8 << "' fill='red'>o this sweep's</text>"
+    << "<text x='" << kLeft << "' y='" << kTop + kSize + 50 << "'>the quadratic, clipped to "
+    << (std::isfinite(physical_max) ? fmt("%.4g", physical_min) + "-" + fmt("%.4g", physical_max)
+                                    : "at least " + fmt("%.4g", physical_min))
+    << " " << unit << " where it extrapolates past what can be</text></svg>";
   return s.str();
 }
 
@@ -375,8 +395,8 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
   }
 
   std::ostringstream html;
-  html << "<!doctype html><html><head><meta charset='utf-8'><title>Sweep: "
-       << report::html_escape(base.name)
+  html << "<!doctype html><html><head>" << report::kReportHead
+       << "<title>Sweep: " << report::html_escape(base.name)
        << "</title><style>body{font-family:sans-serif;max-width:1000px;margin:auto}"
           "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 6px;"
           "text-align:right}</style></head><body>"
@@ -393,10 +413,10 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
        << report::html_escape(differ_text) << ". Centre point: uprightness "
        << fmt("%.2f", centre_up) << " % (paper 94.8 predicted), damage " << fmt("%.2f", centre_dmg)
        << " % (paper 3).</p>"
-       << surface_map("uprightness", "%", a_up, 1, 2, best.coded, paper, best.coded)
-       << surface_map("uprightness", "%", a_up, 0, 1, best.coded, paper, best.coded)
+       << surface_map("uprightness", "%", a_up, 1, 2, best.coded, paper, best.coded, 0.0, 100.0)
+       << surface_map("uprightness", "%", a_up, 0, 1, best.coded, paper, best.coded, 0.0, 100.0)
        << surface_map("peak radial force on the seedling", "N", a_force, 1, 2, best.coded, paper,
-                      best.coded)
+                      best.coded, 0.0, std::numeric_limits<double>::infinity())
        << "<h2>Response surfaces (coded factors A area, B disc speed, C depth)</h2>"
        << anova_html("Uprightness", "%", a_up, l_up) << anova_html("Damage rate", "%", a_dmg, l_dmg)
        << anova_html("Peak radial force on the seedling", "N", a_force, l_force)

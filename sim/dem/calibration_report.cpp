@@ -9,6 +9,7 @@
 #include "sim/dem/dem_params.h"
 #include "sim/doe/doe_report.h"
 #include "sim/report/chart.h"
+#include "sim/report/html_text.h"
 
 namespace planter::dem {
 namespace {
@@ -73,7 +74,8 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
   std::ostringstream h;
   h.precision(4);
   report::ChartPage charts;
-  h << "<!doctype html><html><head><meta charset='utf-8'><title>planter-dem calibrate</title>"
+  h << "<!doctype html><html><head>" << report::kReportHead
+    << "<title>planter-dem calibrate</title>"
     << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td,th{padding:2px "
        "8px}table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style>"
     << report::ChartPage::head() << "</head><body><h1>Calibration of the seedling model to "

@@ -8,6 +8,7 @@
 #include "config/durable_file.h"
 #include "sim/dem/dem_params.h"
 #include "sim/report/chart.h"
+#include "sim/report/html_text.h"
 
 namespace planter::dem {
 namespace {
@@ -67,7 +68,8 @@ void write_compression_outputs(config::OutputSet& out, const CompressionRun& run
   report::ChartPage charts;
   std::ostringstream html;
   html.precision(4);
-  html << "<!doctype html><html><head><meta charset='utf-8'><title>planter-dem compress</title>"
+  html << "<!doctype html><html><head>" << report::kReportHead
+       << "<title>planter-dem compress</title>"
        << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td{padding:2px "
           "10px}</style>"
        << report::ChartPage::head()

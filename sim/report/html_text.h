@@ -8,6 +8,13 @@ namespace planter::report {
 // Escapes & < > " ' so a name such as "</script>" is shown as text, never parsed as markup.
 std::string html_escape(std::string_view text);
 
+// Every report's head: UTF-8, and laid out for the screen it is read on (a 390 px phone too,
+// instead of a 980 px page shown at 40 %).
+inline constexpr const char* kReportHead =
+    "<meta charset='utf-8'><meta name='viewport' content='width=device-width, initial-scale=1'>"
+    "<style>table{display:block;overflow-x:auto;max-width:100%}svg,img{max-width:100%;"
+    "height:auto}body{padding:0 8px}</style>";
+
 // A figure for a reader: v with the given number of decimals ("91.21").
 std::string fixed(double v, int decimals);
 

@@ -47,8 +47,8 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
   const double strength_N = seeds.force_model.loaded
                                 ? seeds.force_model.peak_force(seeds.reference_diameter_mm)
                                 : seeds.strength_mean_N;
-  out << "<!doctype html><html><head><meta charset='utf-8'><title>planter-sim: "
-      << html_escape(s.scenario) << "</title>"
+  out << "<!doctype html><html><head>" << report::kReportHead
+      << "<title>planter-sim: " << html_escape(s.scenario) << "</title>"
       << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td{padding:2px 10px}"
       << "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style>"
       << report::ChartPage::head() << "</head><body>"

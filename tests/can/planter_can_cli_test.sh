@@ -24,6 +24,9 @@ expect 2 "token 3 '0x1g00'" -- --iface sim --board "$board" sdo 2 r 0x1g00 0
 expect 2 "token 2 'rd'" -- --iface sim --board "$board" sdo 2 rd 0x1000 0
 expect 2 "token 6 'abc'" -- --iface sim --board "$board" sdo 2 w 0x1017 0 u16 abc
 expect 1 "no answer from node 77 in 100 ms" -- --iface sim --board "$board" sdo 77 r 0x1000 0
+# Issue 28, item 14: NaN passed every range check of the command lines.
+expect 2 "'nan' is not a finite number" -- --board "$board" --iface sim replay "$work/none.log" --max-gap nan
+expect 2 "'inf' is not a finite number" -- --board "$board" --iface sim monitor --duration inf
 # Issue 28, item 13: a type that does not fit the object is said, never printed as its low byte.
 expect 1 "the object holds 4 bytes, not the 1 of this type: read it as a 32-bit type" -- --iface sim --board "$board" sdo 2 r 0x1018 2 u8
 expect 1 "the object holds 4 bytes, not the 2 of this type" -- --iface sim --board "$board" sdo 2 r 0x1018 2 u16

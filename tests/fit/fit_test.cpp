@@ -353,3 +353,39 @@ TEST(DayTracks, AChangeAcrossTheRecordingIsFoundWindowByWindow) {
   EXPECT_NEAR(k_c.after / k_c.before, 1.4, 0.28);
   EXPECT_EQ(day.channels[0].verdict.rfind("changed: k_c", 0), 0u) << day.channels[0].verdict;
 }
+
+namespace planter::analysis {
+namespace {
+
+// Issue 28, item 14: a 10-million-column header took 53 s and 1.34 GB before it was refused,
+// and a 1 GB line 2-3 GB. Now a line is read in pieces and refused past 1 MB, a header past
+// 4096 columns; a long line that is within the bound still reads whole.
+TEST(RecordingBounds, AnEndlessLineAndAHugeHeaderAreRefusedEarly) {
+  std::string wide = "t";
+  for (int c = 0; c < 5000; ++c) wide += ",c" + std::to_string(c);
+  try {
+    RecordingReader reader(wide + "\n0" + std::string(5000, ',') + "\n", "wide.csv");
+    FAIL() << "read";
+  } catch (const RecordingError& e) {
+    EXPECT_NE(std::string(e.what()).find("5001 columns, at most 4096"), std::string::npos)
+        << e.what();
+  }
+  try {
+    RecordingReader reader("t,x\n0," + std::string(3u << 20, '1') + "\n", "long.csv");
+    Recording r;
+    reader.read(r, 10);
+    FAIL() << "read";
+  } catch (const RecordingError& e) {
+    EXPECT_NE(std::string(e.what()).find("long.csv:2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("longer than 1 MB"), std::string::npos) << e.what();
+  }
+  // 20,000 bytes on one line (pieces of 8 kB) and a last line with no newline read whole.
+  RecordingReader reader("t,x\n0,0." + std::string(20000, '0') + "1\n1,3", "ok.csv");
+  Recording r;
+  ASSERT_EQ(reader.read(r, 10), 2u);
+  EXPECT_EQ(r.at("x")[1], 3.0);
+  EXPECT_LT(r.at("x")[0], 1e-300);
+}
+
+}  // namespace
+}  // namespace planter::analysis

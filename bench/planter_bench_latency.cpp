@@ -73,10 +73,11 @@ Stats cyclictest_stats(const std::string& histfile, double max_us) {
 // The console's load, as five phones and one guesser would put it on the machine.
 class ConsoleLoad {
  public:
-  ConsoleLoad(const sim::Scenario& scenario, double seconds)
+  ConsoleLoad(const sim::Scenario& scenario, double seconds, int loop_cpu)
       : every_(console::ticks_per_live_sample(scenario.board.controller.can.sync_period_ns)) {
     console::ConsoleOptions o;
     o.port = 0;
+    o.loop_cpu = loop_cpu;
     o.commands = &commands;
     o.audit_log = "/tmp/planter_bench_console_audit.log";
     o.secrets.pairing = console::OperatorSessions::new_secret();
@@ -87,7 +88,8 @@ class ConsoleLoad {
     const int port = server_->port();
     const std::string secret = o.secrets.pairing;
     for (int c = 0; c < 5; ++c) {
-      clients_.emplace_back([this, port, c, secret] {
+      clients_.emplace_back([this, port, c, secret, loop_cpu] {
+        console::leave_the_loop(loop_cpu);  // phones are not on the machine's loop CPU either
         httplib::Client cli("127.0.0.1", port);
         httplib::Headers operator_headers;
         if (c == 0) {
@@ -285,7 +287,7 @@ int main(int argc, char** argv) {
   const Window quiet = measure(scenario, cfg, loops / 3, nullptr);
   if (!report("without console", quiet, cfg)) return 1;
   // 2. With the console and its clients, started before the measured loop, as in the field.
-  ConsoleLoad console_load(scenario, seconds);
+  ConsoleLoad console_load(scenario, seconds, cfg.cpu);
   const Window busy = measure(scenario, cfg, loops, &console_load);
   console_load.stop();
   std::printf(

@@ -1,7 +1,10 @@
 #include "console/console_server.h"
 
 #include <httplib.h>
+#include <pthread.h>
+#include <sched.h>
 #include <sys/socket.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -23,7 +26,21 @@ constexpr const char* kContentSecurityPolicy =
     "frame-ancestors 'none'";
 
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
+
 }  // namespace
+
+void leave_the_loop(int loop_cpu) {
+  sched_param normal{};
+  normal.sched_priority = 0;
+  pthread_setschedparam(pthread_self(), SCHED_OTHER, &normal);
+  const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+  if (loop_cpu < 0 || cpus < 2) return;
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  for (long c = 0; c < cpus && c < CPU_SETSIZE; ++c)
+    if (c != loop_cpu) CPU_SET(static_cast<int>(c), &set);
+  pthread_setaffinity_np(pthread_self(), sizeof set, &set);
+}
 
 ConsoleServer::ConsoleServer(const ConsoleOptions& options, const ConsoleInfo& info)
     : options_(options),
@@ -164,8 +181,12 @@ void ConsoleServer::start() {
     throw std::runtime_error("console: cannot listen on " + options_.bind + ":" +
                              std::to_string(options_.port) +
                              " (in use, or not an address of this machine; --port, --bind)");
-  thread_ = std::thread([&srv] { srv.listen_after_bind(); });
+  thread_ = std::thread([&srv, cpu = options_.loop_cpu] {
+    leave_the_loop(cpu);
+    srv.listen_after_bind();
+  });
   drainer_ = std::thread([this] {
+    leave_the_loop(options_.loop_cpu);
     std::unique_lock<std::mutex> lock(drainer_mutex_);
     while (!drainer_wake_.wait_for(lock, std::chrono::milliseconds(200),
                                    [this] { return drainer_stop_; })) {

@@ -47,6 +47,9 @@ struct ConsoleOptions {
   // Names besides the machine's own (host name, addresses, localhost) a browser may reach it
   // by, as in Host: a name given in the farm's DNS, say.
   std::vector<std::string> host_names;
+  // The control loop's CPU (-1: none pinned). The console's threads keep off it, and never run
+  // at the real-time priority of whatever thread starts the console (issue 30, item 4).
+  int loop_cpu = -1;
 };
 
 // What the page shows beside the live values: the machine and its limits.
@@ -72,6 +75,11 @@ inline ConsoleInfo console_info(std::string title, const ControllerConfig& c, bo
   info.clamp_force_range_N = clamp_force_range_N(c);
   return info;
 }
+
+// The calling thread leaves the loop's CPU (if one is pinned, and another exists) and any
+// real-time policy it inherited; the threads it makes from then (cpp-httplib's pool) inherit
+// that. The console's threads call it first; so may any other helper of the loop's program.
+void leave_the_loop(int loop_cpu);
 
 class ConsoleServer {
  public:

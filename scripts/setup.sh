@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package the project needs (idempotent) and builds into build/.
 # Usage: scripts/setup.sh [build-dir] [extra cmake args...]
+# PLANTER_BUILD_TARGETS="planter-sim ..." builds only those (the main job needs one program,
+# not the 200 targets of tests, fuzzers and benchmarks).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
@@ -12,4 +14,6 @@ packages=(g++ cmake ninja-build clang-format libtomlplusplus-dev libcli11-dev nl
           libcpp-httplib-dev chromium-driver python3-selenium)
 "$root/scripts/apt-install.sh" setup "${packages[@]}"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
-cmake --build "$build" -j "$(nproc)"
+targets=()
+for t in ${PLANTER_BUILD_TARGETS:-}; do targets+=(--target "$t"); done
+cmake --build "$build" -j "$(nproc)" "${targets[@]}"

@@ -316,6 +316,7 @@ class OperatorConsole {
   OperatorConsole(const config::BoardConfig& board, const Options& opt,
                   console::CommandChannel& commands) {
     console::ConsoleOptions o;
+    o.loop_cpu = board.realtime.cpu;
     o.bind = board.console.bind;
     o.port = board.console.port;
     o.secrets.viewer = board.console.viewer_secret;

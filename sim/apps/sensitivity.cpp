@@ -119,7 +119,7 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
                "planter-sim sensitivity: %zu runs of %.0f m (%zu points: %d trajectories x (%zu "
                "values + 1)), %d jobs\n",
                runs.size(), o.distance_m, points.size(), r, k, jobs);
-  const std::vector<Summary> all = run_many(runs, jobs);
+  const std::vector<Summary> all = run_many(runs, jobs, "sensitivity");
   const std::size_t responses = o.optimum ? kResponseCount : kPointResponses;
   std::vector<Figures> y;
   for (std::size_t i = 0; i < points.size(); ++i) {

@@ -91,7 +91,7 @@ std::vector<Run> run_all(const Scenario& base, const Eigen::MatrixXd& design,
     scenarios.push_back(design_point(base, design.row(point), distance_m,
                                      base.seed + 1000u * static_cast<std::uint64_t>(replicate) +
                                          static_cast<std::uint64_t>(point)));
-  const std::vector<Summary> results = run_many(scenarios, jobs);
+  const std::vector<Summary> results = run_many(scenarios, jobs, "sweep");
   std::vector<Run> out;
   for (std::size_t i = 0; i < todo.size(); ++i) {
     const Summary& r = results[i];
@@ -316,7 +316,7 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
     s.board.controller.clamp.ceiling_N = std::max(s.board.controller.clamp.ceiling_N, f + 20.0);
     force_runs.push_back(std::move(s));
   }
-  const std::vector<Summary> force_curve = run_many(force_runs, jobs);
+  const std::vector<Summary> force_curve = run_many(force_runs, jobs, "sweep: clamp force");
 
   // Interior maxima of uprightness along disc speed and depth, through the optimum: where the
   // surface's slope along the factor is zero, if it curves down.

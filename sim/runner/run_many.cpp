@@ -1,6 +1,9 @@
 #include "sim/runner/run_many.h"
 
+#include <unistd.h>
+
 #include <atomic>
+#include <cstdio>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -9,9 +12,19 @@
 
 namespace planter::sim {
 
-std::vector<Summary> run_many(const std::vector<Scenario>& scenarios, int jobs) {
+std::vector<Summary> run_many(const std::vector<Scenario>& scenarios, int jobs,
+                              const std::string& label) {
   std::vector<Summary> out(scenarios.size());
-  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> next{0}, done{0};
+  const bool show = !label.empty() && ::isatty(STDERR_FILENO) == 1;
+  std::mutex show_mutex;
+  const auto finished = [&] {
+    const std::size_t n = ++done;
+    if (!show) return;
+    const std::lock_guard<std::mutex> lock(show_mutex);
+    std::fprintf(stderr, "\r%s: %zu of %zu runs", label.c_str(), n, scenarios.size());
+    if (n == scenarios.size()) std::fprintf(stderr, "\n");
+  };
   std::exception_ptr error;
   std::mutex error_mutex;
   auto worker = [&] {
@@ -19,6 +32,7 @@ std::vector<Summary> run_many(const std::vector<Scenario>& scenarios, int jobs) 
       try {
         LockstepRunner runner(scenarios[i]);
         out[i] = runner.run();
+        finished();
       } catch (...) {
         const std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();

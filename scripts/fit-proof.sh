@@ -27,7 +27,7 @@ spawn() {  # spawn WORKER NAME ARGS...
   "$@" >"$out/$name.line" 2>&1 &
 }
 judge() {  # judge NAME EXPECT: prints the case's line from its fit.json
-  /usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/$1/fit/fit.json" "$1" "$2"
+  /usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/$1-fit/fit.json" "$1" "$2"
 }
 sim_case() {  # sim_case NAME NOISE EXPECT [--base-sed SED_EXPR] [effects lines...]
   local name=$1 noise=$2 expect=$3 base_sed=""
@@ -36,14 +36,15 @@ sim_case() {  # sim_case NAME NOISE EXPECT [--base-sed SED_EXPR] [effects lines.
     base_sed=$2
     shift 2
   fi
-  # The effect keys go at the end, under [effects] (the base's last table).
+  # The effect keys go at the end, under [effects] (the base's last table). The fit's outputs go
+  # beside the run's folder, not in it: a run's folder holds only what the run wrote.
   { base "$noise" | sed -e "$base_sed"; printf '%s\n' "$@"; } >"$out/$name.toml"
   "$sim" run "$out/$name.toml" --out "$out/$name" >/dev/null 2>"$out/$name.sim.err" || {
     echo "FAIL $name: planter-sim failed: $(head -1 "$out/$name.sim.err")"
     return
   }
-  "$fit" "$out/$name/recording.csv" --out "$out/$name/fit" --json --jobs 1 \
-    >"$out/$name/fit.stdout" 2>&1
+  "$fit" "$out/$name/recording.csv" --out "$out/$name-fit" --json --jobs 1 \
+    >"$out/$name-fit.stdout" 2>&1
   judge "$name" "$expect"
 }
 run_case() { spawn sim_case "$@"; }
@@ -109,8 +110,8 @@ outside_case() {  # outside_case NAME EXPECT [outside_machine.py options...]
     echo "FAIL $name: the outside generator failed"
     return
   }
-  "$fit" "$out/$name/recording.csv" --out "$out/$name/fit" --json --jobs 1 \
-    >"$out/$name/fit.stdout" 2>&1
+  "$fit" "$out/$name/recording.csv" --out "$out/$name-fit" --json --jobs 1 \
+    >"$out/$name-fit.stdout" 2>&1
   judge "$name" "$expect"
 }
 run_outside() { spawn outside_case "$@"; }

@@ -1,5 +1,6 @@
 #include "console/console_request.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -55,6 +56,18 @@ CommandBody parse_command_body(const std::string& body) {
   if (!takes_value(c.kind)) c.value = 0.0;
   c.ok = true;
   return c;
+}
+
+std::string host_of(const std::string& host_header) {
+  std::string h;
+  for (char c : host_header)
+    h.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+  if (!h.empty() && h.front() == '[') {
+    const auto end = h.find(']');
+    return end == std::string::npos ? std::string() : h.substr(1, end - 1);
+  }
+  const auto colon = h.find(':');
+  return colon == std::string::npos ? h : h.substr(0, colon);
 }
 
 }  // namespace planter::console

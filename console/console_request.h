@@ -30,4 +30,7 @@ struct CommandBody {
 // {"command": NAME, "value": NUMBER}; the value is needed by the set-points, and must be finite.
 CommandBody parse_command_body(const std::string& body);
 
+// The name in a Host header: "name:port" -> "name", "[::1]:80" -> "::1", in lower case.
+std::string host_of(const std::string& host_header);
+
 }  // namespace planter::console

@@ -8,19 +8,9 @@
 #include <algorithm>
 #include <cctype>
 
-namespace planter::console {
+#include "console/console_request.h"
 
-std::string host_of(const std::string& host_header) {
-  std::string h;
-  for (char c : host_header)
-    h.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
-  if (!h.empty() && h.front() == '[') {
-    const auto end = h.find(']');
-    return end == std::string::npos ? std::string() : h.substr(1, end - 1);
-  }
-  const auto colon = h.find(':');
-  return colon == std::string::npos ? h : h.substr(0, colon);
-}
+namespace planter::console {
 
 HostNames::HostNames(std::vector<std::string> extra) : extra_(std::move(extra)) { refresh(); }
 

@@ -22,7 +22,4 @@ class HostNames {
   std::vector<std::string> extra_, names_;
 };
 
-// "name:port" -> "name", "[::1]:80" -> "::1", lower case.
-std::string host_of(const std::string& host_header);
-
 }  // namespace planter::console

@@ -33,6 +33,14 @@ for name in ("optimum contact area", "optimum disc speed", "optimum depth", "upr
         fail.append("the verdict for %s does not follow its rule" % name)
     if name + " " not in log:
         fail.append("the verdict for %s is not printed" % name)
+terms = j.get("significant_terms", {})
+if sorted(terms) != sorted(["A", "B", "C", "AB", "AC", "BC", "A^2", "B^2", "C^2"]) or \
+        any(not 0 <= v["share_of_points"] <= 1 for v in terms.values()):
+    fail.append("no share of points for every term of the quadratic")
+if len(j.get("paper_terms_holding", [])) + len(j.get("paper_terms_not_holding", [])) != 9:
+    fail.append("every term is not judged")
+if "terms of uprightness significant (paper's: A B C BC A^2 B^2 C^2)" not in log:
+    fail.append("the terms' line is not printed")
 if "paper: 255 mm^2, 0.278 rad/s, 102 mm" not in log:
     fail.append("the paper's optimum is not printed beside the spread")
 print("\n".join("FAIL " + f for f in fail) or "ok   optimum found at %d points" % len(rows))

@@ -226,11 +226,20 @@ DesignOptimum design_optimum(const std::vector<Summary>& results) {
     upright(i) = results[static_cast<std::size_t>(i)].uprightness_pct;
     force(i) = results[static_cast<std::size_t>(i)].seedling_peak_force_mean_N;
   }
-  const doe::Optimum best = optimum_of(doe::fit_quadratic_3(design, upright, kTermNames), upright,
-                                       doe::fit_quadratic_3(design, force, kTermNames), force);
-  return {kFactors[0].value(best.coded(0)), kFactors[1].value(best.coded(1)),
-          kFactors[2].value(best.coded(2)), best.desirability};
+  const doe::Anova upright_fit = doe::fit_quadratic_3(design, upright, kTermNames);
+  const doe::Optimum best =
+      optimum_of(upright_fit, upright, doe::fit_quadratic_3(design, force, kTermNames), force);
+  DesignOptimum o{kFactors[0].value(best.coded(0)),
+                  kFactors[1].value(best.coded(1)),
+                  kFactors[2].value(best.coded(2)),
+                  best.desirability,
+                  {}};
+  for (const auto& t : upright_fit.terms)
+    if (t.p_value < 0.05) o.significant_terms.push_back(t.name);
+  return o;
 }
+
+const std::vector<std::string>& paper_significant_terms() { return kPaperSignificant; }
 
 int run_sweep(const std::string& scenario_path, const std::string& out_dir, const SweepOptions& o) {
   Scenario base = load_scenario(scenario_path);

@@ -27,7 +27,12 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
 std::vector<Scenario> design_scenarios(const Scenario& base, double distance_m);
 struct DesignOptimum {
   double contact_area_mm2 = 0, disc_speed_radps = 0, depth_mm = 0, desirability = 0;
+  // The terms of uprightness's quadratic significant at p < 0.05 ("A", "BC", "C^2", ...), with
+  // the paper's list for comparison.
+  std::vector<std::string> significant_terms;
 };
+// The terms of uprightness the paper found significant (its Tables 5-6).
+const std::vector<std::string>& paper_significant_terms();
 // The desirability optimum of design_scenarios' results, in the same order.
 DesignOptimum design_optimum(const std::vector<Summary>& results);
 

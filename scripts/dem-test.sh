@@ -13,6 +13,15 @@ echo "-- compression, the paper's parameters (S = 4.842e9 N/m^3, sigma_c = 5.643
 "$dem" compress --out "$out/paper" | tail -2
 echo "-- compression, models/seedling_dem.toml"
 "$dem" compress --params "$root/models/seedling_dem.toml" --out "$out/calibrated" | tail -2
+# The calibrated bonds hold at the particle size they were tuned at (1.5 mm radius) only: the
+# same parameters with finer or coarser particles give another seedling (issue 27, item 5).
+echo "-- the same parameters at other particle radii (the calibration's resolution: 1.5 mm)"
+for r in 1.0 1.25 2.0; do
+  { cat "$root/models/seedling_dem.toml"; printf '\n[seedling]\nparticle_radius_mm = %s\n' "$r"; } \
+    >"$out/particles-$r.toml"
+  printf 'particle radius %s mm: ' "$r"
+  "$dem" compress --params "$out/particles-$r.toml" --out "$out/particles-$r" --force | tail -1
+done
 echo "-- calibration workflow to 140.6 N (all cores; resumes from $out/calibrate/runs)"
 "$dem" calibrate --target 140.6 --target-displacement-mm 4 --out "$out/calibrate" 2>/dev/null
 echo "-- reduced-order model over the paper's diameters"

@@ -64,7 +64,7 @@ int report(ToolContext& ctx, const CalibrateOptions& opt, const std::vector<Chan
     }
     if (written)
       ctx.out << "written to " << written_file << " (previous kept as " << backup << ")\n";
-    if (!opt.write) ctx.out << "not written (--no-write)\n";
+    if (!opt.write) ctx.out << "not written (" << opt.not_written_because << ")\n";
   }
   if (!write_error.empty()) {
     ctx.err << "planter-can: calibrate: " << write_error << "\n";

@@ -20,6 +20,7 @@ struct CalibrateOptions {
   double max_wait_s = 600.0;    // soil-wheel: give up after this
   double ready_after_s = -1.0;  // scripts: wait this long instead of asking for Enter
   bool write = true;            // write the result into the board file
+  const char* not_written_because = "--no-write";  // said when write is false
 };
 
 int run_calibrate(ToolContext& ctx, const CalibrateOptions& options, std::istream& in);

@@ -318,6 +318,7 @@ int main(int argc, char** argv) {
       // the project's own: nothing is written unless asked for (issue 29, the first hour).
       if (iface == "sim" && calibrate.write && !write_sim) {
         calibrate.write = false;
+        calibrate.not_written_because = "a simulated machine: --write-sim writes";
         std::cerr << "planter-can: calibrate on --iface sim: the result is shown, not written into "
                   << board_path
                   << " (give --write-sim, with --board a copy of the board, to write it)\n";

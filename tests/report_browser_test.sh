@@ -2,7 +2,8 @@
 # Every report, opened in a real browser (Debian's chromium, headless): planter-sim's run and
 # sweep, planter-fit's and planter-dem's. For each: the page loads with no script error, every
 # chart is drawn (a dygraphs canvas with its title and legend under each chart element), nothing
-# is fetched from the network, and a screenshot is kept in SHOTS (the build directory).
+# is fetched from the network, and a screenshot is kept in SHOTS (the build directory). Then each
+# on a phone (390 x 844, tests/report_phone_test.py): the page fits the screen's width.
 # Usage: report_browser_test.sh PLANTER_SIM PLANTER_FIT PLANTER_DEM SOURCE_DIR SHOTS
 set -u
 sim=$1 fit=$2 dem=$3 src=$4 shots=$5
@@ -59,4 +60,7 @@ print("\n".join("FAIL %s: %s" % (name, f) for f in fail) or
 sys.exit(1 if fail else 0)
 PY
 done
-[ "$fails" -eq 0 ] && echo "reports in a browser: all drawn" || exit 1
+timeout 120 /usr/bin/python3 "$src/tests/report_phone_test.py" "$shots" run="$work/run/report.html" \
+  fit="$work/fit/report.html" dem="$work/dem/report.html" sweep="$work/sweep/report.html" ||
+  fails=$((fails + 1))
+[ "$fails" -eq 0 ] && echo "reports in a browser: all drawn, and each fits a phone" || exit 1

@@ -156,7 +156,7 @@ std::string surface_map(const std::string& title, const std::string& unit, const
   const double lo = *std::min_element(z.begin(), z.end());
   const double hi = *std::max_element(z.begin(), z.end());
   std::ostringstream s;
-  const double width = kLeft + kSize + 240, height = kTop + kSize + 64;
+  const double width = kLeft + kSize + 300, height = kTop + kSize + 64;
   // viewBox: the map scales down whole on a phone instead of being cut.
   s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
     << "' viewBox='0 0 " << width << ' ' << height << "' font-family='sans-serif' font-size='11'>"

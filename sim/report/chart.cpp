@@ -99,7 +99,7 @@ function planterChart(id, o) {
 
 constexpr const char* kPageStyle = R"css(
 .chart { margin: 8px 0 22px 0; }
-.chart .plot { width: 900px; height: 260px; }
+.chart .plot { width: 100%; max-width: 900px; height: 260px; }
 .chart .legend { font: 12px sans-serif; min-height: 16px; margin-left: 70px; }
 .chart .caption { font: 12px sans-serif; color: #444; margin-left: 70px; }
 .dygraph-title { font-size: 15px; }

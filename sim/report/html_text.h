@@ -13,7 +13,7 @@ std::string html_escape(std::string_view text);
 inline constexpr const char* kReportHead =
     "<meta charset='utf-8'><meta name='viewport' content='width=device-width, initial-scale=1'>"
     "<style>table{display:block;overflow-x:auto;max-width:100%}svg,img{max-width:100%;"
-    "height:auto}body{padding:0 8px}</style>";
+    "height:auto}body{padding:0 8px;overflow-wrap:anywhere}</style>";
 
 // A figure for a reader: v with the given number of decimals ("91.21").
 std::string fixed(double v, int decimals);

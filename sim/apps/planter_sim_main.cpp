@@ -30,6 +30,7 @@
 #include "sim/runner/lockstep_runner.h"
 #include "sim/runner/model_assumptions.h"
 #include "sim/runner/recording_writer.h"
+#include "sim/seedling/measured_strength.h"
 
 namespace fs = std::filesystem;
 using namespace planter;
@@ -49,8 +50,8 @@ void print_summary(const Summary& s) {
   std::printf("damage rate         %.2f %%   (paper: 3 predicted, 2.76 field)\n", s.damage_pct);
   if (s.seedlings_damaged > 0)
     std::printf(
-        "damaged seedlings   mean strength %.1f N, %d below the weakest measured (127.2 N)\n",
-        s.damaged_strength_mean_N, s.damaged_below_measured);
+        "damaged seedlings   mean strength %.1f N, %d below the weakest measured (%.1f N)\n",
+        s.damaged_strength_mean_N, s.damaged_below_measured, measured_strength().min_N);
   std::printf(
       "in the clamp        %d fell in the carry (skips), %d slid > 5 mm, %d turned > 5 deg\n",
       s.seedlings_fell_in_carry, s.seedlings_slid_in_clamp, s.seedlings_turned_in_clamp);

@@ -3,20 +3,18 @@
 #include <array>
 #include <cstdio>
 
-#include "sim/seedling/measured_strength.h"
-
 namespace planter::sim {
 namespace {
 
 using O = ValueOrigin;
-// The strength's mean and SD default to the measured peaks' (below 0 in the config): the table
-// shows and varies the value in use.
+// The strength's mean and SD default to the measured peaks' (unset in the config): the table
+// shows and varies the value in use, so it is written into the config first.
 double& strength_mean(PlantConfig& c) {
-  if (c.seedlings.strength_mean_N <= 0.0) c.seedlings.strength_mean_N = measured_strength().mean_N;
+  c.seedlings.strength_mean_N = c.seedlings.strength_mean();
   return c.seedlings.strength_mean_N;
 }
 double& strength_sd(PlantConfig& c) {
-  if (c.seedlings.strength_sd_N < 0.0) c.seedlings.strength_sd_N = measured_strength().sd_N;
+  c.seedlings.strength_sd_N = c.seedlings.strength_sd();
   return c.seedlings.strength_sd_N;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/seedling/measured_strength.h"
 #include "sim/seedling/seedling_force_model.h"
 #include "sim/soil/opener_draft.h"
 #include "sim/soil/root_anchorage.h"
@@ -60,6 +61,13 @@ struct SeedlingConfig {
   // sim/seedling/measured_strength.h); a scenario may set others. Below 0 = from the peaks.
   double strength_mean_N = -1.0;
   double strength_sd_N = -1.0;
+  // The strength in use: the scenario's, or the measured peaks'.
+  [[nodiscard]] double strength_mean() const {
+    return strength_mean_N > 0.0 ? strength_mean_N : measured_strength().mean_N;
+  }
+  [[nodiscard]] double strength_sd() const {
+    return strength_sd_N >= 0.0 ? strength_sd_N : measured_strength().sd_N;
+  }
   // Strength ~ (diameter / reference)^k: assumed, no measurement ties strength to diameter.
   double strength_diameter_exponent = 0.0;
   // The length of seedling the strength test's plates loaded (the paper gives none): the nip

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include "sim/seedling/measured_strength.h"
-
 namespace planter::sim {
 namespace {
 constexpr double kDegPerRad = 57.29577951308232;
@@ -37,10 +35,7 @@ Seedling SeedlingProcess::sample(double t_s) {
   s.length_mm = sc.length_min_mm + (sc.length_max_mm - sc.length_min_mm) * u01(rng_);
   // Lognormal strength (sim/seedling/measured_strength.h), one standard normal draw.
   std::normal_distribution<double> z(0.0, 1.0);
-  const StrengthFit measured = measured_strength();
-  const double mean = sc.strength_mean_N > 0.0 ? sc.strength_mean_N : measured.mean_N;
-  const double sd = sc.strength_sd_N >= 0.0 ? sc.strength_sd_N : measured.sd_N;
-  s.strength_N = lognormal_strength_N(mean, sd, z(rng_)) *
+  s.strength_N = lognormal_strength_N(sc.strength_mean(), sc.strength_sd(), z(rng_)) *
                  std::pow(s.diameter_mm / sc.reference_diameter_mm, sc.strength_diameter_exponent);
   s.pickup_angle_rad = next_pickup_angle_rad_;
   s.pickup_time_s = t_s;

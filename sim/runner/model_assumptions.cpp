@@ -20,10 +20,8 @@ std::string format(const char* fmt, Args... args) {
   return out;
 }
 
-std::string strength(const SeedlingConfig& c) {
-  const StrengthFit m = measured_strength();
-  const double mean = c.strength_mean_N > 0.0 ? c.strength_mean_N : m.mean_N;
-  const double sd = c.strength_sd_N >= 0.0 ? c.strength_sd_N : m.sd_N;
+std::string strength(const SeedlingConfig& c, const MechanismConfig& mc) {
+  const StrengthFit& m = measured_strength();
   return format(
       "Seedling strength: lognormal with mean %.1f N and SD %.1f N (the paper's six measured "
       "peaks, Sec. 3.5, are %.1f-%.1f N with mean %.1f N, SD %.1f N, the mean's 95 %% interval "
@@ -32,9 +30,9 @@ std::string strength(const SeedlingConfig& c) {
       "A seedling is damaged when the nip's line load (clamp force over the held length, contact "
       "area / diameter, at most the %.0f mm band) exceeds the test's (its strength over %.0f mm, "
       "assumed).%s",
-      mean, sd, m.min_N, m.max_N, m.mean_N, m.sd_N, m.mean_lo_N, m.mean_hi_N,
-      kPaperStatedStrength_N, c.reference_diameter_mm, c.strength_diameter_exponent, 40.0,
-      c.strength_test_length_mm,
+      c.strength_mean(), c.strength_sd(), m.min_N, m.max_N, m.mean_N, m.sd_N, m.mean_lo_N,
+      m.mean_hi_N, kPaperStatedStrength_N, c.reference_diameter_mm, c.strength_diameter_exponent,
+      mc.protrusion_band_mm, c.strength_test_length_mm,
       c.force_model.loaded ? (" The DEM's reduced-order model (" + c.force_model_file +
                               ") gives each seedling's compression, not its strength.")
                                  .c_str()
@@ -60,7 +58,7 @@ std::vector<std::string> model_assumptions(const Scenario& sc) {
   const MechanismConfig& m = p.mechanism;
   const DriveModelConfig& dr = p.drive;
   return {
-      strength(p.seedlings),
+      strength(p.seedlings, p.mechanism),
       format("Contact area acts through mechanics: the lips hold the stem over contact area / "
              "diameter (%.0f mm^2 here: %.1f mm of a 10 mm stem, at most the %.0f mm band), which "
              "spreads the nip's load (damage) and sets the friction moment that keeps the "

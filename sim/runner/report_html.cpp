@@ -44,9 +44,8 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
     if (g < 0.5 * spacing_target_mm) ++multiples;
   }
   const SeedlingConfig& seeds = sc.plant.seedlings;
-  const double strength_N = seeds.force_model.loaded
-                                ? seeds.force_model.peak_force(seeds.reference_diameter_mm)
-                                : seeds.strength_mean_N;
+  // The strength is the measured peaks' (or the scenario's), never the DEM's (issue 27).
+  const double strength_N = seeds.strength_mean();
   out << "<!doctype html><html><head>" << report::kReportHead
       << "<title>planter-sim: " << html_escape(s.scenario) << "</title>"
       << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td{padding:2px 10px}"

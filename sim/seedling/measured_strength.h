@@ -24,7 +24,7 @@ struct StrengthFit {
   double mean_lo_N = 0, mean_hi_N = 0;
 };
 
-inline StrengthFit measured_strength() {
+inline StrengthFit fit_measured_strength() {
   StrengthFit f;
   double sum = 0, sq = 0;
   f.min_N = kMeasuredPeaks_N[0];
@@ -42,6 +42,12 @@ inline StrengthFit measured_strength() {
   f.mean_lo_N = f.mean_N - half;
   f.mean_hi_N = f.mean_N + half;
   return f;
+}
+
+// The fit, made once.
+inline const StrengthFit& measured_strength() {
+  static const StrengthFit fit = fit_measured_strength();
+  return fit;
 }
 
 // A lognormal strength with this mean and SD, from one standard normal draw z.

@@ -80,10 +80,11 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
   // Depth of the root end below the surface, on the floor at most.
   auto burial = [&](double theta) { return std::clamp(-root_at(theta)[1], 0.0, floor); };
   // The opener leaves the furrow open; the returning soil has refilled a share of it where the
-  // seedling goes in. The root holds in that soil only until the covering wheel.
+  // seedling goes in. The root holds in that soil only until the covering wheel: the length of
+  // it in that soil, for a root end root_depth below the surface.
   const double backflow_level = mc.backflow_fill * floor;  // above the floor
-  auto embedded = [&](double theta) {
-    return std::max(0.0, backflow_level - (floor - burial(theta)));
+  auto embedded = [&](double root_depth) {
+    return std::max(0.0, backflow_level - (floor - root_depth));
   };
 
   // 1. Held: from where the root end reaches the surface to the release. The lips are a
@@ -99,7 +100,7 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
   const double lip_Nm_per_rad = std::max(1e-6, lip_N_per_m * held_length * held_length / 12.0);
   double elastic = 0.0;  // the lips' elastic give, at the release
   for (double theta = entry; theta < theta_r; theta += dtheta) {
-    const double b = embedded(theta);
+    const double b = embedded(burial(theta));
     if (b <= 0.0) continue;
     // The root end's ground velocity if the seedling moved with the lips: the machine's travel
     // and the disc's turn. Across the rod (+ where the turn grows) and along it (+ outwards).
@@ -128,11 +129,12 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
   out.clamp_turn_deg = turn / kRadPerDeg;
 
   // 2. Released: the rod about its root end, (x, y) with y up from the soil surface.
-  const double b = embedded(theta_r);
-  out.burial_mm = burial(theta_r) * 1e3;
+  const double buried = burial(theta_r);
+  const double b = embedded(buried);
+  out.burial_mm = buried * 1e3;
   double phi = theta_r + turn;                // + top forward
   const double root_x = root_at(theta_r)[0];  // hub at x = 0 at release
-  const double root_y = -burial(theta_r);
+  const double root_y = -buried;
   const double drag_N = mc.lip_friction * mc.residual_grip_share * clamp_N;
   const double phi_release = phi;
   for (double t = 0.0; t < 2.0 * kPi / omega; t += dt) {
@@ -175,7 +177,7 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
     phi += rate * kFallStep_s;
   }
   out.fall_deg = (phi - phi_standing) / kRadPerDeg;
-  const double covered_Nm = firmed.holding_moment_Nm(diameter, burial(theta_r));
+  const double covered_Nm = firmed.holding_moment_Nm(diameter, buried);
   if (std::abs(phi) >= 0.5 * kPi || weight_arm_Nm * std::abs(std::sin(phi)) > covered_Nm) {
     out.lodged = true;
     phi = std::copysign(90.0 * kRadPerDeg, phi);

@@ -84,50 +84,44 @@ bool ConsoleServer::audit(const std::string& address, const std::string& session
                           const std::string& what, const std::string& value,
                           const std::string& result) {
   if (!audit_) return true;
-  if (const auto s = refused_logins_.take(console_now_ns()))
-    audit_->append(s->address, "-", "login_refused", s->value, s->words);
+  audit_refusals(refused_logins_.take(console_now_ns()));
   return audit_->append(address, session, what, value, result);
+}
+
+void ConsoleServer::audit_refusals(const std::optional<RefusalSummary>& s) {
+  if (s && audit_) audit_->append(s->address, "-", s->what, s->value, s->words);
 }
 
 void ConsoleServer::login(const httplib::Request& req, httplib::Response& res) {
   const auto secret = login_secret(req.body);
   if (!secret) return error(res, 400, "send {\"secret\": \"...\"}");
   const LoginResult r = sessions_->login(req.remote_addr, *secret);
+  if (r.status == LoginResult::Status::kOk) {
+    res.set_header("Set-Cookie",
+                   std::string(kCookie) + "=" + r.token + "; HttpOnly; SameSite=Strict; Path=/");
+    nlohmann::json body = {{"role", role_name(r.role)}, {"csrf", r.csrf}};
+    // Logged in even without an audit log: the operator may need to stop the machine.
+    if (!audit(req.remote_addr, r.id, "login", "-",
+               std::string("logged in as ") + role_name(r.role)))
+      body["warning"] =
+          "the audit log " + audit_->path() + " cannot be written: only stop is taken";
+    return answer(res, 200, body);
+  }
   std::string said;
-  if (r.status == LoginResult::Status::kRateLimited) {
-    const long wait = std::lround(r.retry_after_s);
-    res.set_header("Retry-After", std::to_string(wait));
-    said = "too many wrong secrets: wait " + std::to_string(wait) + " s";
-    error(res, 429, said);
-  } else if (r.status == LoginResult::Status::kTooManyLogins) {
-    const long wait = std::lround(r.retry_after_s);
-    res.set_header("Retry-After", std::to_string(wait));
-    said = "too many logins from this address: wait " + std::to_string(wait) + " s";
-    error(res, 429, said);
-  } else if (r.status == LoginResult::Status::kWrongSecret) {
+  if (r.status == LoginResult::Status::kWrongSecret) {
     said = "wrong secret";
     error(res, 401, "wrong secret (the pairing secret is on the machine's label)");
   } else {
-    said = std::string("logged in as ") + role_name(r.role);
-    res.set_header("Set-Cookie",
-                   std::string(kCookie) + "=" + r.token + "; HttpOnly; SameSite=Strict; Path=/");
-    answer(res, 200, {{"role", role_name(r.role)}, {"csrf", r.csrf}});
+    const long wait = std::lround(r.retry_after_s);
+    res.set_header("Retry-After", std::to_string(wait));
+    said = std::string(r.status == LoginResult::Status::kRateLimited
+                           ? "too many wrong secrets"
+                           : "too many logins from this address") +
+           ": wait " + std::to_string(wait) + " s";
+    error(res, 429, said);
   }
-  if (r.status != LoginResult::Status::kOk) {
-    // Counted, and said once a minute: a flood of wrong secrets cannot fill the disk.
-    if (const auto s = refused_logins_.add(req.remote_addr, said, console_now_ns()); s && audit_)
-      audit_->append(s->address, "-", s->value == "1" ? "login" : "login_refused",
-                     s->value == "1" ? "-" : s->value, s->words);
-    return;
-  }
-  if (!audit(req.remote_addr, r.id, "login", "-", said)) {
-    // Logged in all the same: the operator may need to stop the machine. Said on the page.
-    answer(res, 200,
-           {{"role", role_name(r.role)},
-            {"csrf", r.csrf},
-            {"warning",
-             "the audit log " + audit_->path() + " cannot be written: only stop is taken"}});
-  }
+  // Counted, and said once a minute: a flood of wrong secrets cannot fill the disk.
+  audit_refusals(refused_logins_.add(req.remote_addr, said, console_now_ns()));
 }
 
 void ConsoleServer::command(const httplib::Request& req, httplib::Response& res) {

@@ -206,8 +206,7 @@ void ConsoleServer::stop() {
   drainer_wake_.notify_all();
   if (drainer_.joinable()) drainer_.join();
   // The refused logins not yet said are said before the log closes.
-  if (const auto s = refused_logins_.take(console_now_ns()); s && audit_)
-    audit_->append(s->address, "-", "login_refused", s->value, s->words);
+  audit_refusals(refused_logins_.take(console_now_ns()));
 }
 
 }  // namespace planter::console

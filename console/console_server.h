@@ -113,6 +113,8 @@ class ConsoleServer {
   // cannot be written.
   bool audit(const std::string& address, const std::string& session, const std::string& what,
              const std::string& value, const std::string& result);
+  // Writes a refused login's line or summary (if there is an audit log).
+  void audit_refusals(const std::optional<RefusalSummary>& s);
 
   ConsoleOptions options_;
   ConsoleInfo info_;

@@ -11,7 +11,7 @@ std::optional<RefusalSummary> RefusedLoginTally::add(const std::string& address,
   std::lock_guard<std::mutex> lock(mutex_);
   if (pending_ == 0 && now_ns - said_ns_ >= period_ns_) {
     said_ns_ = now_ns;
-    return RefusalSummary{address, "1", words};
+    return RefusalSummary{address, "login", "-", words};
   }
   if (pending_ == 0) first_ns_ = now_ns;
   ++pending_;
@@ -33,6 +33,7 @@ std::optional<RefusalSummary> RefusedLoginTally::summary_locked(std::int64_t now
   if (pending_ == 0) return std::nullopt;
   RefusalSummary s;
   s.address = addresses_.size() == 1 && !more_addresses_ ? *addresses_.begin() : "-";
+  s.what = "login_refused";
   s.value = std::to_string(pending_);
   s.words = std::to_string(pending_) + " refused logins (" +
             std::to_string(pending_ - pending_limited_) + " wrong secret, " +

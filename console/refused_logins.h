@@ -21,9 +21,12 @@ inline std::int64_t console_now_ns() {
       .count();
 }
 
+// One audit line: the refusal itself ("login", value "-") or a summary ("login_refused", value
+// how many).
 struct RefusalSummary {
   std::string address;  // the one address, or "-" for several
-  std::string value;    // how many
+  std::string what;
+  std::string value;
   std::string words;
 };
 

@@ -19,7 +19,6 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
-#include <utility>
 
 #include "console/operator_sessions.h"
 #include "sim/runner/lockstep_runner.h"
@@ -123,28 +122,19 @@ class LiveRecorder : public console::RecordingControl {
 // it go when the program ends, however it ends).
 class DirectoryLock {
  public:
-  DirectoryLock() = default;
   explicit DirectoryLock(const std::string& dir) {
     const std::string path = dir + "/.planter-live.lock";
     fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0600);
     if (fd_ < 0) throw std::runtime_error(path + ": cannot be opened: " + std::strerror(errno));
     if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
       ::close(fd_);
-      fd_ = -1;
       throw std::runtime_error(dir +
                                ": another planter-sim live uses this directory (--dir another)");
     }
   }
-  DirectoryLock(DirectoryLock&& o) noexcept : fd_(std::exchange(o.fd_, -1)) {}
-  DirectoryLock& operator=(DirectoryLock&& o) noexcept {
-    std::swap(fd_, o.fd_);
-    return *this;
-  }
   DirectoryLock(const DirectoryLock&) = delete;
   DirectoryLock& operator=(const DirectoryLock&) = delete;
-  ~DirectoryLock() {
-    if (fd_ >= 0) ::close(fd_);
-  }
+  ~DirectoryLock() { ::close(fd_); }
 
  private:
   int fd_ = -1;
@@ -162,11 +152,11 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
   const std::string recordings = options.dir + "/recordings";
   LiveRecorder recorder(recordings, scenario);
   std::string pairing;
-  DirectoryLock lock;
+  std::optional<DirectoryLock> lock;
   if (!options.view_only) {
     std::filesystem::create_directories(recordings);
     // One live instance per --dir: two would share the audit log and the recordings.
-    lock = DirectoryLock(options.dir);
+    lock.emplace(options.dir);
     pairing = options.pairing_secret_file.empty()
                   ? console::OperatorSessions::new_secret()
                   : console::OperatorSessions::read_secret_file(options.pairing_secret_file);

@@ -37,8 +37,6 @@ const std::vector<std::string> kTermNames{"A", "B", "C"};
 // The paper's findings for uprightness (its Tables 5-6 and optimisation): the significant
 // terms, the optimum and the centre point.
 const std::vector<std::string> kPaperSignificant{"A", "B", "C", "BC", "A^2", "B^2", "C^2"};
-constexpr double kPaperOptimum[3] = {255.0, 0.278, 102.0};
-constexpr double kPaperCentreUprightness_pct = 94.8, kPaperCentreDamage_pct = 3.0;
 constexpr int kCentrePoints = 3;
 constexpr double kForceCurve_N[] = {40.0, 60.0, 80.0, 90.0, 100.0, 120.0};
 
@@ -241,6 +239,13 @@ DesignOptimum design_optimum(const std::vector<Summary>& results) {
 
 const std::vector<std::string>& paper_significant_terms() { return kPaperSignificant; }
 
+std::string optimum_text(double area_mm2, double disc_speed_radps, double depth_mm) {
+  return fmt("%.0f", area_mm2) + " mm^2, " + fmt("%.3f", disc_speed_radps) + " rad/s, " +
+         fmt("%.0f", depth_mm) + " mm";
+}
+
+double design_span(int factor) { return 2.0 * kFactors[factor].half_range; }
+
 int run_sweep(const std::string& scenario_path, const std::string& out_dir, const SweepOptions& o) {
   Scenario base = load_scenario(scenario_path);
   for (const auto& w : base.board.warnings)
@@ -405,23 +410,22 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
 
   std::ostringstream html;
   html << "<!doctype html><html><head>" << report::kReportHead
-       << "<title>Sweep: " << report::html_escape(base.name)
-       << "</title><style>body{font-family:sans-serif;max-width:1000px;margin:auto}"
-          "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 6px;"
-          "text-align:right}</style></head><body>"
+       << "<title>Sweep: " << report::html_escape(base.name) << "</title>"
+       << report::kTablePageStyle << "</head><body>"
        << "<h1>The paper's Box-Behnken experiment, simulated</h1><p>" << runs.size() << " runs of "
        << o.distance_m << " m on " << points << " design points (" << kCentrePoints
        << " centre points), at least " << o.replicates
        << " replicates each, more where the damage rate's standard error was above "
        << o.damage_precision_pts << " points (worst reached: " << fmt("%.2f", worst_se)
        << ").</p><h2>Optimum (desirability: uprightness up, peak radial force down)</h2><p>"
-       << fmt("%.0f", opt[0]) << " mm^2, " << fmt("%.3f", opt[1]) << " rad/s, "
-       << fmt("%.0f", opt[2]) << " mm (desirability " << fmt("%.3f", best.desirability)
-       << "); the paper's: 255 mm^2, 0.278 rad/s, 102 mm. Terms of uprightness whose "
-          "significance differs from the paper's: "
+       << optimum_text(opt[0], opt[1], opt[2]) << " (desirability "
+       << fmt("%.3f", best.desirability)
+       << "); the paper's: " << optimum_text(kPaperOptimum[0], kPaperOptimum[1], kPaperOptimum[2])
+       << ". Terms of uprightness whose significance differs from the paper's: "
        << report::html_escape(differ_text) << ". Centre point: uprightness "
-       << fmt("%.2f", centre_up) << " % (paper 94.8 predicted), damage " << fmt("%.2f", centre_dmg)
-       << " % (paper 3).</p>"
+       << fmt("%.2f", centre_up) << " % (paper " << fmt("%.1f", kPaperCentreUprightness_pct)
+       << " predicted), damage " << fmt("%.2f", centre_dmg) << " % (paper "
+       << fmt("%.0f", kPaperCentreDamage_pct) << ").</p>"
        << surface_map("uprightness", "%", a_up, 1, 2, best.coded, paper, best.coded, 0.0, 100.0)
        << surface_map("uprightness", "%", a_up, 0, 1, best.coded, paper, best.coded, 0.0, 100.0)
        << surface_map("peak radial force on the seedling", "N", a_force, 1, 2, best.coded, paper,
@@ -482,10 +486,9 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
                 force_curve[i].uprightness_pct, force_curve[i].damage_pct,
                 force_curve[i].truth_skips, force_curve[i].seedlings_turned_in_clamp);
   std::printf("wrote %s/{sweep.csv,sweep.json,report.html}\n", out_dir.c_str());
-  std::printf(
-      "optimum: %.0f mm^2, %.3f rad/s, %.0f mm (desirability %.3f); paper: 255 mm^2, "
-      "0.278 rad/s, 102 mm\n",
-      opt[0], opt[1], opt[2], best.desirability);
+  std::printf("optimum: %s (desirability %.3f); paper: %s\n",
+              optimum_text(opt[0], opt[1], opt[2]).c_str(), best.desirability,
+              optimum_text(kPaperOptimum[0], kPaperOptimum[1], kPaperOptimum[2]).c_str());
   return 0;
 }
 

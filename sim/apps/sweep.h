@@ -33,6 +33,15 @@ struct DesignOptimum {
 };
 // The terms of uprightness the paper found significant (its Tables 5-6).
 const std::vector<std::string>& paper_significant_terms();
+
+// The paper's optimum and centre point (its optimisation): printed beside the model's as a
+// comparison, never a target.
+inline constexpr double kPaperOptimum[3] = {255.0, 0.278, 102.0};  // mm^2, rad/s, mm
+inline constexpr double kPaperCentreUprightness_pct = 94.8, kPaperCentreDamage_pct = 3.0;
+// An optimum as the tools print it: "255 mm^2, 0.278 rad/s, 102 mm".
+std::string optimum_text(double area_mm2, double disc_speed_radps, double depth_mm);
+// The span of the design's factor (0 contact area, 1 disc speed, 2 depth), in its unit.
+double design_span(int factor);
 // The desirability optimum of design_scenarios' results, in the same order.
 DesignOptimum design_optimum(const std::vector<Summary>& results);
 

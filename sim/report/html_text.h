@@ -15,6 +15,12 @@ inline constexpr const char* kReportHead =
     "<style>table{display:block;overflow-x:auto;max-width:100%}svg,img{max-width:100%;"
     "height:auto}body{padding:0 8px;overflow-wrap:anywhere}</style>";
 
+// The pages that are mostly tables of figures (the sweep's, the sensitivity analysis'):
+// numbers right-aligned in ruled cells.
+inline constexpr const char* kTablePageStyle =
+    "<style>body{font-family:sans-serif;max-width:1000px;margin:auto}table{border-collapse:"
+    "collapse}td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}</style>";
+
 // A figure for a reader: v with the given number of decimals ("91.21").
 std::string fixed(double v, int decimals);
 

@@ -67,13 +67,13 @@ void remove_abandoned_staging(const std::string& dir) {
 
 }  // namespace
 
-std::string output_dir_refusal(const std::string& dir, const std::string& tool) {
+std::string output_dir_refusal(const std::string& dir, const std::string& tool, bool force) {
   std::error_code ec;
   if (fs::is_symlink(dir, ec))
     return "is a symbolic link; outputs do not follow links: give the directory itself";
   if (!fs::exists(dir, ec)) return "";
   if (!fs::is_directory(dir, ec)) return "exists and is not a directory";
-  if (fs::is_empty(dir, ec)) return "";
+  if (force || fs::is_empty(dir, ec)) return "";
   const std::string other = "holds files that are not the output of '" + tool +
                             "' (no run.json of it); choose another --out, or give --force to "
                             "replace the directory";
@@ -93,22 +93,12 @@ std::string output_dir_refusal(const std::string& dir, const std::string& tool) 
   return "";
 }
 
-bool output_dir_is_replaceable(const std::string& dir, const std::string& tool) {
-  return output_dir_refusal(dir, tool).empty();
-}
-
 OutputSet::OutputSet(std::string dir, std::string tool, bool force)
     : dir_(std::move(dir)), tool_(std::move(tool)) {
   while (dir_.size() > 1 && dir_.back() == '/') dir_.pop_back();
   std::error_code ec;
-  if (fs::is_symlink(dir_, ec))
-    fail(dir_, "is a symbolic link; outputs do not follow links: give the directory itself");
-  if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec))
-    fail(dir_, "exists and is not a directory");
-  if (!force) {
-    if (const std::string refusal = output_dir_refusal(dir_, tool_); !refusal.empty())
-      fail(dir_, refusal);
-  }
+  if (const std::string refusal = output_dir_refusal(dir_, tool_, force); !refusal.empty())
+    fail(dir_, refusal);
   const std::string parent = parent_of(dir_);
   fs::create_directories(parent, ec);
   if (ec) fail(parent, "cannot be created: " + ec.message());

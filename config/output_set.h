@@ -43,10 +43,10 @@ class OutputSet {
 };
 
 // Why `dir` may not be replaced by a run of `tool` ("" when it may): it is missing, empty, or
-// holds an earlier run of the same tool and nothing else (every file in its run.json). A
-// symbolic link is refused (outputs do not follow links).
-[[nodiscard]] std::string output_dir_refusal(const std::string& dir, const std::string& tool);
-[[nodiscard]] bool output_dir_is_replaceable(const std::string& dir, const std::string& tool);
+// holds an earlier run of the same tool and nothing else (every file in its run.json), or
+// `force` is given. A symbolic link or a file that is no directory is refused even with force.
+[[nodiscard]] std::string output_dir_refusal(const std::string& dir, const std::string& tool,
+                                             bool force);
 
 // The manifest's file name.
 inline constexpr const char* kRunManifest = "run.json";

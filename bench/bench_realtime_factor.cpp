@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   }
   std::sort(factors.begin(), factors.end());
   std::printf(
-      "lockstep real-time factor (%s, %.0f s, %llu frames): %.0fx real time (goal >= 200x)\n",
+      "lockstep real-time factor (%s, %.0f s, %llu frames): %.0fx real time (goal >= 2000x)\n",
       scenario.name.c_str(), sim_s, frames, factors[1]);
   return 0;
 }

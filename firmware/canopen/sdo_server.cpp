@@ -162,7 +162,7 @@ std::uint32_t SdoServer::write_value(ObjectEntry& entry, const std::uint8_t* dat
     if (rules_ != nullptr) {
       if (const std::uint32_t code = rules_->check_write(entry, v); code != 0) return code;
     }
-    entry.value = v;
+    od_.store(entry, v);
   }
   ++writes_;
   return 0;

@@ -30,13 +30,6 @@ double si_to_bus(BusScale scale, const NodeConfig& node, double si) {
   return si;
 }
 
-const SignalDecl* find_signal(std::string_view column) {
-  for (const SignalDecl& s : kSignals) {
-    if (s.column == column) return &s;
-  }
-  return nullptr;
-}
-
 const SignalDecl* find_bus_signal(NodeRole role, std::uint16_t index, std::uint8_t sub) {
   for (const SignalDecl& s : kSignals) {
     if (s.on_bus() && s.role == role && s.index == index && s.sub == sub) return &s;

@@ -210,7 +210,8 @@ void CanopenDevice::process(std::int64_t now_ns) {
     on_rpdo();  // the application sees SDO-written commands too (commissioning moves)
   }
   if (unconfigured()) return;
-  const auto period_ms = od_.get(0x1017, 0);
+  resolve_if_changed();
+  const auto period_ms = heartbeat_period_ms_ != nullptr ? heartbeat_period_ms_->value : 0;
   if (period_ms > 0 && now_ns >= next_heartbeat_ns_) {
     send_heartbeat(static_cast<std::uint8_t>(nmt_));
     next_heartbeat_ns_ = now_ns + static_cast<std::int64_t>(period_ms) * 1'000'000;
@@ -225,6 +226,27 @@ canopen::PdoMapping CanopenDevice::mapping(std::uint16_t map_index) const {
         static_cast<std::uint32_t>(od_.get(map_index, i + 1)));
   }
   return m;
+}
+
+void CanopenDevice::resolve_if_changed() {
+  if (od_.revision() == resolved_revision_) return;
+  const auto resolve = [this](std::uint16_t comm, ResolvedPdo& pdo) {
+    const auto cob_entry = od_.get(comm, 1);
+    pdo.valid = (cob_entry & kPdoInvalid) == 0;
+    pdo.cob_id = static_cast<std::uint16_t>(cob_entry & 0x7FF);
+    pdo.transmission_type = od_.get(comm, 2);
+    pdo.mapping = mapping(static_cast<std::uint16_t>(comm + 0x200));
+    for (std::uint8_t i = 0; i < pdo.mapping.count; ++i) {
+      const auto& e = pdo.mapping.entries[i];
+      pdo.objects[i] = od_.find(e.index, e.sub);
+    }
+  };
+  for (std::uint16_t k = 0; k < 4; ++k) {
+    resolve(static_cast<std::uint16_t>(0x1400 + k), rpdos_[k]);
+    resolve(static_cast<std::uint16_t>(0x1800 + k), tpdos_[k]);
+  }
+  heartbeat_period_ms_ = od_.find(0x1017, 0);
+  resolved_revision_ = od_.revision();
 }
 
 void CanopenDevice::handle(const hal::CanFrame& f, std::int64_t now_ns) {
@@ -268,14 +290,15 @@ void CanopenDevice::handle(const hal::CanFrame& f, std::int64_t now_ns) {
     on_sync();
     return;
   }
-  for (std::uint16_t k = 0; k < 4; ++k) {
-    const auto cob_entry = od_.get(static_cast<std::uint16_t>(0x1400 + k), 1);
-    if ((cob_entry & 0x80000000u) != 0 || (cob_entry & 0x7FF) != cob) continue;
-    const canopen::PdoMapping m = mapping(static_cast<std::uint16_t>(0x1600 + k));
+  resolve_if_changed();
+  for (const ResolvedPdo& pdo : rpdos_) {
+    if (!pdo.valid || pdo.cob_id != cob) continue;
     std::uint64_t raw[canopen::PdoMapping::kMaxEntries]{};
-    if (!canopen::pdo_unpack(m, f.data.data(), f.dlc, raw)) return;  // short: ignored
-    for (std::uint8_t i = 0; i < m.count; ++i)
-      od_.set(m.entries[i].index, m.entries[i].sub, raw[i]);
+    if (!canopen::pdo_unpack(pdo.mapping, f.data.data(), f.dlc, raw)) return;  // short: ignored
+    const ResolvedPdo copy = pdo;  // a mapped communication object re-resolves the tables
+    for (std::uint8_t i = 0; i < copy.mapping.count; ++i) {
+      if (copy.objects[i] != nullptr) od_.store(*copy.objects[i], raw[i]);
+    }
     on_rpdo();
     return;
   }
@@ -283,18 +306,17 @@ void CanopenDevice::handle(const hal::CanFrame& f, std::int64_t now_ns) {
 
 void CanopenDevice::on_sync() {
   ++sync_count_;
-  for (std::uint16_t k = 0; k < 4; ++k) {
-    const auto cob_entry = od_.get(static_cast<std::uint16_t>(0x1800 + k), 1);
-    if ((cob_entry & 0x80000000u) != 0) continue;
-    const auto type = od_.get(static_cast<std::uint16_t>(0x1800 + k), 2);
+  resolve_if_changed();
+  for (const ResolvedPdo& pdo : tpdos_) {
+    if (!pdo.valid) continue;
+    const auto type = pdo.transmission_type;
     if (type == 0 || type > 240 || sync_count_ % type != 0) continue;
-    const canopen::PdoMapping m = mapping(static_cast<std::uint16_t>(0x1A00 + k));
     std::uint64_t raw[canopen::PdoMapping::kMaxEntries]{};
-    for (std::uint8_t i = 0; i < m.count; ++i)
-      raw[i] = od_.get(m.entries[i].index, m.entries[i].sub);
+    for (std::uint8_t i = 0; i < pdo.mapping.count; ++i)
+      raw[i] = pdo.objects[i] != nullptr ? pdo.objects[i]->value : 0;
     hal::CanFrame f{};
-    f.id = static_cast<std::uint32_t>(cob_entry & 0x7FF);
-    f.dlc = canopen::pdo_pack(m, raw, f.data.data());
+    f.id = pdo.cob_id;
+    f.dlc = canopen::pdo_pack(pdo.mapping, raw, f.data.data());
     bus_.send(f);
   }
 }

@@ -1,6 +1,7 @@
 #pragma once
 // A simulated CANopen slave: object dictionary, SDO server, NMT, heartbeat producer and a
 // PDO engine driven by its own communication objects (so the master's configuration is real).
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -67,6 +68,9 @@ class CanopenDevice : private canopen::SdoWriteRules {
   void reset_communication(std::int64_t now_ns);
   void on_sync();
   [[nodiscard]] canopen::PdoMapping mapping(std::uint16_t map_index) const;
+  // The PDOs and the heartbeat period as entry pointers, resolved again only when the
+  // dictionary's revision changes (a configuration write), not on every frame and SYNC.
+  void resolve_if_changed();
   void send_heartbeat(std::uint8_t state);
   void after_sdo_write();
   void set_node_id(std::uint8_t node_id);
@@ -83,6 +87,19 @@ class CanopenDevice : private canopen::SdoWriteRules {
   canopen::NmtState nmt_ = canopen::NmtState::kPreOperational;
   std::int64_t next_heartbeat_ns_ = 0;
   std::uint32_t sync_count_ = 0;
+
+  struct ResolvedPdo {
+    bool valid = false;
+    std::uint16_t cob_id = 0;
+    std::uint64_t transmission_type = 0;
+    canopen::PdoMapping mapping;
+    // The mapped objects; nullptr where the device lacks one (reads 0, writes nothing).
+    std::array<canopen::ObjectEntry*, canopen::PdoMapping::kMaxEntries> objects{};
+  };
+  std::array<ResolvedPdo, 4> rpdos_{};
+  std::array<ResolvedPdo, 4> tpdos_{};
+  const canopen::ObjectEntry* heartbeat_period_ms_ = nullptr;
+  std::uint64_t resolved_revision_ = ~std::uint64_t{0};
 };
 
 }  // namespace planter::sim

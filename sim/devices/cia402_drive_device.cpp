@@ -37,16 +37,26 @@ std::uint32_t Cia402DriveDevice::check_profile_write(const canopen::ObjectEntry&
   return canopen::abort_code::kValueRange;
 }
 
-std::int8_t Cia402DriveDevice::mode() const {
-  return static_cast<std::int8_t>(od().get(c402::kModesOfOperation, 0));
+// All six are added by the constructor, so none is null.
+const Cia402DriveDevice::HotObjects& Cia402DriveDevice::hot() {
+  auto& o = od();
+  if (o.revision() != hot_revision_) {
+    hot_ = {o.find(c402::kPositionActual, 0), o.find(c402::kVelocityActual, 0),
+            o.find(c402::kTorqueActual, 0),   o.find(c402::kModesOfOperation, 0),
+            o.find(c402::kTargetVelocity, 0), o.find(c402::kProfileVelocity, 0)};
+    hot_revision_ = o.revision();
+  }
+  return hot_;
 }
 
-std::int64_t Cia402DriveDevice::target_velocity() const {
-  return od().get_signed(c402::kTargetVelocity, 0);
+std::int8_t Cia402DriveDevice::mode() { return static_cast<std::int8_t>(hot().mode->value); }
+
+std::int64_t Cia402DriveDevice::target_velocity() {
+  return canopen::sign_extend(hot().target_velocity->value, 32);
 }
 
-std::int64_t Cia402DriveDevice::profile_velocity() const {
-  return static_cast<std::int64_t>(od().get(c402::kProfileVelocity, 0));
+std::int64_t Cia402DriveDevice::profile_velocity() {
+  return static_cast<std::int64_t>(hot().profile_velocity->value);
 }
 
 void Cia402DriveDevice::on_rpdo() {
@@ -87,9 +97,10 @@ void Cia402DriveDevice::publish_status() {
 void Cia402DriveDevice::set_actual(std::int64_t position, std::int64_t velocity,
                                    std::int16_t torque) {
   auto& o = od();
-  o.set(c402::kPositionActual, 0, static_cast<std::uint64_t>(position));
-  o.set(c402::kVelocityActual, 0, static_cast<std::uint64_t>(velocity));
-  o.set(c402::kTorqueActual, 0, static_cast<std::uint64_t>(static_cast<std::int64_t>(torque)));
+  const HotObjects& objects = hot();
+  o.store(*objects.position_actual, static_cast<std::uint64_t>(position));
+  o.store(*objects.velocity_actual, static_cast<std::uint64_t>(velocity));
+  o.store(*objects.torque_actual, static_cast<std::uint64_t>(static_cast<std::int64_t>(torque)));
   if (homing_) {
     // The end stop is reached when the position stops falling.
     homing_stalled_steps_ = position >= last_position_ ? homing_stalled_steps_ + 1 : 0;

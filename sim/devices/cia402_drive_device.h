@@ -15,10 +15,11 @@ class Cia402DriveDevice final : public CanopenDevice {
   [[nodiscard]] bool quick_stopping() const {
     return state_ == canopen::cia402::State::kQuickStopActive;
   }
-  [[nodiscard]] std::int8_t mode() const;
-  [[nodiscard]] std::int64_t target_velocity() const;
+  // Not const: they read through the entry cache below.
+  [[nodiscard]] std::int8_t mode();
+  [[nodiscard]] std::int64_t target_velocity();
   [[nodiscard]] std::int64_t position_setpoint() const { return position_setpoint_; }
-  [[nodiscard]] std::int64_t profile_velocity() const;
+  [[nodiscard]] std::int64_t profile_velocity();
 
   void set_actual(std::int64_t position, std::int64_t velocity, std::int16_t torque_per_mille);
   // A drive fault (e.g. overcurrent): goes to fault and sends EMCY.
@@ -32,6 +33,20 @@ class Cia402DriveDevice final : public CanopenDevice {
 
  private:
   void publish_status();
+  // The objects the plant reads and writes on every substep, found again only when the
+  // dictionary's revision changes. A cache of where the entries are; the values always live
+  // in the dictionary.
+  struct HotObjects {
+    canopen::ObjectEntry* position_actual = nullptr;
+    canopen::ObjectEntry* velocity_actual = nullptr;
+    canopen::ObjectEntry* torque_actual = nullptr;
+    canopen::ObjectEntry* mode = nullptr;
+    canopen::ObjectEntry* target_velocity = nullptr;
+    canopen::ObjectEntry* profile_velocity = nullptr;
+  };
+  [[nodiscard]] const HotObjects& hot();
+  HotObjects hot_{};
+  std::uint64_t hot_revision_ = ~std::uint64_t{0};
   canopen::cia402::State state_ = canopen::cia402::State::kSwitchOnDisabled;
   std::uint16_t previous_controlword_ = 0;
   std::int64_t position_setpoint_ = 0;

@@ -44,6 +44,7 @@ class Ground {
     const double dv = route_.accel_mps2 * dt_s;
     v_mps_ += std::clamp(wanted - v_mps_, -dv, dv);
     x_m_ += v_mps_ * dt_s;
+    terrain_mm_ = terrain_at(x_m_);
   }
 
   void start() { moving_ = true; }
@@ -53,20 +54,24 @@ class Ground {
   [[nodiscard]] int dwelling_stop() const { return dwelling_stop_; }
   [[nodiscard]] double dwell_until_s() const { return dwell_until_s_; }
   [[nodiscard]] bool finished() const { return x_m_ >= route_.distance_m - 1e-3 && v_mps_ < 1e-4; }
-  // Terrain height (mm) under the machine: two incommensurate waves.
-  [[nodiscard]] double terrain_mm() const {
-    constexpr double kTwoPi = 6.283185307179586;
-    const double k = kTwoPi / terrain_.wavelength_m;
-    return terrain_.roughness_mm *
-           (0.7 * std::sin(k * x_m_) + 0.3 * std::sin(2.71 * k * x_m_ + 1.3));
-  }
+  // Terrain height (mm) under the machine, computed once a step (the plant asks for it
+  // several times a step).
+  [[nodiscard]] double terrain_mm() const { return terrain_mm_; }
 
  private:
+  // Two incommensurate waves.
+  [[nodiscard]] double terrain_at(double x_m) const {
+    constexpr double kTwoPi = 6.283185307179586;
+    const double k = kTwoPi / terrain_.wavelength_m;
+    return terrain_.roughness_mm * (0.7 * std::sin(k * x_m) + 0.3 * std::sin(2.71 * k * x_m + 1.3));
+  }
+
   RouteConfig route_;
   TerrainConfig terrain_;
   bool moving_ = false;
   double x_m_ = 0.0;
   double v_mps_ = 0.0;
+  double terrain_mm_ = terrain_at(0.0);
   double dwell_until_s_ = -1.0;
   int dwelling_stop_ = -1;
   unsigned stop_done_mask_ = 0;

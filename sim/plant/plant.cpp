@@ -11,12 +11,10 @@ namespace {
 constexpr double kTwoPi = 6.283185307179586;
 
 // A simulated drive speaks the board's units: the signal table says each object's scale.
-double raw_of(const ControllerConfig& board, std::string_view column, double si) {
-  const SignalDecl& s = *find_signal(column);
+double raw_of(const ControllerConfig& board, const SignalDecl& s, double si) {
   return si_to_bus(s.scale, board.node(s.role), si);
 }
-double si_of(const ControllerConfig& board, std::string_view column, double raw) {
-  const SignalDecl& s = *find_signal(column);
+double si_of(const ControllerConfig& board, const SignalDecl& s, double raw) {
   return bus_to_si(s.scale, board.node(s.role), raw);
 }
 // 0x6081 profile velocity: a configuration object, in counts per second like the positions.
@@ -64,19 +62,21 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   wheel_.roll(ground_.x_m() - x_before, slip_pct * 0.01, t_ns, dt_ns, edges);
 
   // Disc drive (profile velocity).
-  disc_.step(si_of(board_, "omega_cmd", static_cast<double>(dev.disc.target_velocity())),
-             dev.disc.enabled(), dev.disc.quick_stopping(), dt);
-  dev.disc.set_actual(std::llround(raw_of(board_, "disc_angle", disc_.motor_angle())),
-                      std::llround(raw_of(board_, "omega", disc_.omega())),
-                      per_mille(raw_of(board_, "disc_torque", disc_.torque_Nm())));
+  disc_.step(
+      si_of(board_, known_signal("omega_cmd"), static_cast<double>(dev.disc.target_velocity())),
+      dev.disc.enabled(), dev.disc.quick_stopping(), dt);
+  dev.disc.set_actual(std::llround(raw_of(board_, known_signal("disc_angle"), disc_.motor_angle())),
+                      std::llround(raw_of(board_, known_signal("omega"), disc_.omega())),
+                      per_mille(raw_of(board_, known_signal("disc_torque"), disc_.torque_Nm())));
 
   // Roller clamp actuator (profile position) and the disc lips it compresses.
   const NodeConfig& roller_node = board_.node(NodeRole::kRollerActuator);
-  roller_.step(
-      si_of(board_, "clamp_pos_cmd_mm", static_cast<double>(dev.roller.position_setpoint())),
-      profile_velocity_of(roller_node, static_cast<double>(dev.roller.profile_velocity())),
-      dev.roller.enabled(), dt);
-  dev.roller.set_actual(std::llround(raw_of(board_, "clamp_pos_mm", roller_.position_mm())), 0, 0);
+  roller_.step(si_of(board_, known_signal("clamp_pos_cmd_mm"),
+                     static_cast<double>(dev.roller.position_setpoint())),
+               profile_velocity_of(roller_node, static_cast<double>(dev.roller.profile_velocity())),
+               dev.roller.enabled(), dt);
+  dev.roller.set_actual(
+      std::llround(raw_of(board_, known_signal("clamp_pos_mm"), roller_.position_mm())), 0, 0);
   const double compression =
       roller_.position_mm() + seedlings_.nip_thickness_mm(t) - cfg_.drive.clamp_x0_mm;
   const double elastic = cfg_.drive.clamp_k_N * fx.changed(fx.clamp_stiffness_change_pct, t) *
@@ -102,14 +102,15 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
 
   // Furrow opener depth actuator (profile position) against soil draft.
   const NodeConfig& depth_node = board_.node(NodeRole::kDepthActuator);
-  depth_.step(si_of(board_, "depth_cmd_mm", static_cast<double>(dev.depth.position_setpoint())),
+  depth_.step(si_of(board_, known_signal("depth_cmd_mm"),
+                    static_cast<double>(dev.depth.position_setpoint())),
               profile_velocity_of(depth_node, static_cast<double>(dev.depth.profile_velocity())),
               dev.depth.enabled(), dt);
   // The depth-limiting wheel follows the surface, but only partly over micro-terrain.
   const double depth_true =
       depth_.position_mm() - fx.depth_sag_mm_per_kN * draft * 1e-3 + 0.3 * ground_.terrain_mm();
-  dev.depth.set_actual(std::llround(raw_of(board_, "depth_mm", depth_true)), 0,
-                       per_mille(raw_of(board_, "depth_force", draft)));
+  dev.depth.set_actual(std::llround(raw_of(board_, known_signal("depth_mm"), depth_true)), 0,
+                       per_mille(raw_of(board_, known_signal("depth_force"), draft)));
 
   // Seedlings.
   const ReleaseConditions now{t,          ground_.x_m(), ground_.v_mps(),     disc_.disc_omega(),

@@ -1,6 +1,7 @@
 #include "sim/report/chart.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -37,9 +38,11 @@ std::string js_string(const std::string& s) {
 
 std::string number(double v) {
   if (!std::isfinite(v)) return "null";
+  // "%.6g" (std::to_chars' general format with a precision is printf's %g, C++17
+  // [charconv.to.chars]) without printf's cost, which was most of writing a report.
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 6);
+  return std::string(buf, r.ptr);
 }
 
 std::string string_array(const std::vector<std::string>& items) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <utility>
 
 #include "config/recording_format.h"
 
@@ -38,12 +39,23 @@ void RecordingWriter::write(const TickRecord& r) {
   char row[2048];
   const double t_s = static_cast<double>(r.controller.time_ns) * 1e-9;
   const int n = config::format_controller_columns(row, sizeof row, t_s, r.controller);
+  config::RowText line(row, sizeof row, n > 0 ? static_cast<std::size_t>(n) : 0);
+  for (const auto& [value, decimals] : {std::pair{p.v_mps, 5},
+                                        {p.x_m, 5},
+                                        {p.sigma, 4},
+                                        {p.disc_omega_radps, 5},
+                                        {p.clamp_force_N, 2},
+                                        {p.depth_mm, 3},
+                                        {p.slip, 4}}) {
+    line.separator();
+    line.fixed(value, decimals);
+  }
+  line.text("\n");
   // A row cut short would be a wrong row: refuse it instead.
-  if (n <= 0 || static_cast<std::size_t>(n) >= sizeof row)
+  if (n <= 0 || line.length() >= sizeof row)
     throw std::runtime_error(path_ + ": the row at " + std::to_string(t_s) +
                              " s does not fit a line of 2 kB");
-  std::fprintf(file_, "%s,%.5f,%.5f,%.4f,%.5f,%.2f,%.3f,%.4f\n", row, p.v_mps, p.x_m, p.sigma,
-               p.disc_omega_radps, p.clamp_force_N, p.depth_mm, p.slip);
+  std::fwrite(row, 1, line.length(), file_);
 }
 
 bool RecordingWriter::flush() {

@@ -6,11 +6,17 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "apps/planter-can/frame_decoder.h"
 #include "config/recording_format.h"
@@ -114,6 +120,49 @@ TEST(SignalTable, RecordingHeaderAndRowComeFromTheTable) {
   // A buffer too small is reported, never overrun.
   char tiny[8];
   EXPECT_GE(config::format_controller_columns(tiny, sizeof tiny, 1.5, t), 8);
+}
+
+// The recording's numbers are written without printf (issue 30) and must stay "%.*f" byte
+// for byte: ties (0.125 at two decimals), signed zeros, tiny negatives, large and non-finite
+// values, and a million random values across the recording's magnitudes and decimals.
+TEST(SignalTable, RowNumbersAreWhatPrintfWrites) {
+  const auto printf_of = [](double v, int decimals) {
+    char buf[400];
+    const int n = std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    return std::string(buf, static_cast<std::size_t>(n));
+  };
+  const auto ours = [](double v, int decimals) {
+    char buf[400];
+    config::RowText row(buf, sizeof buf);
+    row.fixed(v, decimals);
+    return std::string(buf, row.length());
+  };
+  std::vector<std::pair<double, int>> cases = {
+      {0.125, 2},   {0.375, 2}, {2.5, 0},    {3.5, 0},      {-0.0, 3},     {0.0, 5},
+      {-0.0001, 3}, {1e-7, 5},  {-1e-7, 4},  {0.5, 0},      {1.0005, 3},   {-2.675, 2},
+      {1e300, 2},   {-1e20, 1}, {4.5e15, 3}, {9.999995, 5}, {123456.5, 0}, {0.05, 1}};
+  for (double v :
+       {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+        std::numeric_limits<double>::quiet_NaN()})
+    cases.emplace_back(v, 3);
+  std::mt19937_64 rng(20261125);
+  std::uniform_real_distribution<double> exponent(-8.0, 9.0);
+  std::uniform_int_distribution<int> decimals(0, 9);
+  for (int i = 0; i < 1'000'000; ++i) {
+    const double sign = (rng() & 1) != 0 ? -1.0 : 1.0;
+    cases.emplace_back(sign * std::pow(10.0, exponent(rng)), decimals(rng));
+  }
+  // Values on the recording's own grids: a tick's time, millimetres, newtons.
+  for (int i = 0; i < 200'000; ++i) cases.emplace_back(i * 0.01, 3 + i % 3);
+  for (int i = 0; i < 200'000; ++i) cases.emplace_back(i * 0.005 - 500.0, 2);
+  std::size_t differ = 0;
+  for (const auto& [v, d] : cases) {
+    if (ours(v, d) != printf_of(v, d)) {
+      if (++differ <= 5)
+        ADD_FAILURE() << v << " at " << d << ": " << ours(v, d) << " vs " << printf_of(v, d);
+    }
+  }
+  EXPECT_EQ(differ, 0u) << "of " << cases.size();
 }
 
 // A live run: every bus signal the nodes send, decoded by planter-can with the board, equals

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/analysis/at_rest.h"
 #include "sim/analysis/channel_model.h"
 #include "sim/analysis/decimation.h"
 #include "sim/analysis/effect_hooks.h"
@@ -213,25 +214,18 @@ class DepthChannel : public ChannelModel {
 // the relaxation time tau. The speed column and the force sensor need not be sampled together
 // (planter-sim writes the true speed at the tick and the force as the controller received it,
 // 20 ms later): their relative lag is a nominal parameter, as the soil wheel's is.
-constexpr double kRestWindow_s = 0.5;
 
-// True where the machine stands: the soil wheel's speed reads exactly zero (no encoder edge)
-// for kRestWindow_s either side, which covers the wheel's estimator lag at a start. A speed
-// column's noise at rest is then not integrated as travel. A wheel speed that never reads
-// exactly zero (a filtered estimate) marks nothing.
+// Where the machine stands (at_rest.h): from the column the analysis carries when the
+// recording was thinned, found at the full rate before the anti-alias filter; otherwise from
+// this recording's own wheel speed.
 std::vector<bool> standing(const Recording& r) {
-  const std::vector<double>& wheel = r.at("v_wheel");
-  const std::size_t n = wheel.size();
-  const double rate = sample_rate_hz(r);
-  const auto half = static_cast<std::size_t>(std::ceil(kRestWindow_s * std::max(rate, 0.0)));
-  std::vector<std::size_t> moving_before(n + 1, 0);  // prefix count of moving samples
-  for (std::size_t k = 0; k < n; ++k) moving_before[k + 1] = moving_before[k] + (wheel[k] != 0.0);
-  std::vector<bool> out(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t lo = k > half ? k - half : 0, hi = std::min(n, k + half + 1);
-    out[k] = moving_before[hi] == moving_before[lo];
+  if (r.has(kAtRestColumn)) {
+    const std::vector<double>& column = r.at(kAtRestColumn);
+    std::vector<bool> out(column.size());
+    for (std::size_t k = 0; k < column.size(); ++k) out[k] = column[k] != 0.0;
+    return out;
   }
-  return out;
+  return wheel_at_rest(r);
 }
 
 class DraftChannel : public ChannelModel {
@@ -272,14 +266,23 @@ class DraftChannel : public ChannelModel {
     law.rest_relaxation_s = p[4];
     y.resize(d.size());
     double share = 0.0;
+    // The fits run this millions of times: the rest decay once per distinct step (the rows
+    // are evenly sampled), the depth's power as exp(m ln) (opener_draft.h has both forms).
+    double decay_dt = -1.0, decay = 1.0;
     for (std::size_t k = 0; k < d.size(); ++k) {
       const double v_k = rest[k] ? 0.0 : v[k];
       if (k > 0) {
         const double dt = r.t[k] - r.t[k - 1];
+        if (dt != decay_dt) {
+          decay_dt = dt;
+          decay = soil::rest_decay(law, dt);
+        }
         const double v_prev = rest[k - 1] ? 0.0 : v[k - 1];
-        share = soil::mobilised_share(law, share, 0.5 * (v_k + v_prev) * dt, dt);
+        share = soil::mobilised_share_after(law, share, 0.5 * (v_k + v_prev) * dt, decay);
       }
-      y[k] = soil::opener_draft_N(law, v_k, d[k], share);
+      const double ratio = std::max(0.0, d[k]) / soil::kDraftReferenceDepth_mm;
+      y[k] = law.texture_factor * soil::draft_per_cm_N(law, v_k) *
+             soil::draft_depth_cm_of_log(std::log(ratio), law.depth_exponent) * share;
     }
     apply_output(r, fx, nullptr, nullptr, y);
   }

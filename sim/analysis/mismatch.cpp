@@ -7,6 +7,7 @@
 #include <mutex>
 #include <thread>
 
+#include "sim/analysis/at_rest.h"
 #include "sim/analysis/decimation.h"
 #include "sim/analysis/effect_hooks.h"
 #include "sim/analysis/model_file.h"
@@ -345,7 +346,11 @@ Recording analysed_recording(const Recording& full, const FitOptions& o,
   // rather than aliased (it is looked for at the recording's own rate: fast_tones.h).
   const std::size_t stride = (full.size() + o.max_rows - 1) / o.max_rows;
   const Recording& clean = glitches.empty() ? full : without_glitches(full, glitches);
-  return decimated(clean, stride, channel_columns());
+  if (stride <= 1 || !clean.has("v_wheel")) return decimated(clean, stride, channel_columns());
+  // The standstills at the full rate: the filter leaves no exact zero in the wheel's speed.
+  Recording marked = clean;
+  mark_at_rest(marked);
+  return decimated(marked, stride, channel_columns());
 }
 
 std::string rejection(const Candidate& c, const FitOptions& o) {

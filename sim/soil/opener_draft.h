@@ -46,15 +46,28 @@ inline double texture_factor_of(std::string_view texture) {
   return -1.0;
 }
 
+// The relaxation over a step of dt_s alone. A fit over evenly sampled rows computes it once
+// for all its steps (mobilised_share_after).
+inline double rest_decay(const OpenerDraftLaw& law, double dt_s) {
+  return std::exp(-std::max(0.0, dt_s) / law.rest_relaxation_s);
+}
+
+// mobilised_share with the step's rest_decay given.
+inline double mobilised_share_after(const OpenerDraftLaw& law, double share, double travel_m,
+                                    double decay) {
+  // exp(0) is 1: no exp for a step without travel.
+  const double unloaded = travel_m > 0.0 ? std::exp(-travel_m * 1e3 / law.mobilisation_mm) : 1.0;
+  const double loaded = 1.0 - (1.0 - share) * unloaded;
+  return loaded * decay;
+}
+
 // The mobilised share after a step of forward travel and time: exact for a step at constant
 // speed taken as travel then relaxation (the plant steps 1 ms, the fit its analysed rate).
 // Backward travel does not unload: this machine does not reverse, and a noisy speed at rest
 // must not be read as unloading.
 inline double mobilised_share(const OpenerDraftLaw& law, double share, double travel_m,
                               double dt_s) {
-  const double loaded =
-      1.0 - (1.0 - share) * std::exp(-std::max(0.0, travel_m) * 1e3 / law.mobilisation_mm);
-  return loaded * std::exp(-std::max(0.0, dt_s) / law.rest_relaxation_s);
+  return mobilised_share_after(law, share, travel_m, rest_decay(law, dt_s));
 }
 
 // The share held at a steady forward speed (the fixed point of the law above, continuous).
@@ -73,6 +86,12 @@ inline double draft_per_cm_N(const OpenerDraftLaw& law, double v_mps) {
 inline double draft_depth_cm(double depth_mm, double depth_exponent) {
   return 0.1 * kDraftReferenceDepth_mm *
          std::pow(std::max(0.0, depth_mm) / kDraftReferenceDepth_mm, depth_exponent);
+}
+
+// draft_depth_cm from ln(d / T_ref) (-inf at or above the surface): a fit that varies m over
+// the same depths takes the logarithm once a row and no pow.
+inline double draft_depth_cm_of_log(double log_depth_ratio, double depth_exponent) {
+  return 0.1 * kDraftReferenceDepth_mm * std::exp(depth_exponent * log_depth_ratio);
 }
 
 // The draft with the mobilised share s (mobilised_share).

@@ -7,6 +7,7 @@
 #include <random>
 #include <sstream>
 
+#include "sim/analysis/at_rest.h"
 #include "sim/analysis/day_tracks.h"
 #include "sim/analysis/decimation.h"
 #include "sim/analysis/fit_outputs.h"
@@ -198,6 +199,38 @@ TEST(Analysis, ADelayBetweenGridPointsIsRefined) {
 // Decimation filters before it thins: a 38 Hz tone on a 100 Hz recording kept 1 row in 3 (33 Hz,
 // whose Nyquist frequency is 16.7 Hz) is removed, not folded down to 4.7 Hz; a 1 Hz signal
 // passes whole and on time (zero phase).
+// A standstill in a recording long enough to be thinned is found at the full rate (issue 32:
+// the anti-alias filter left no exact zero in the wheel's speed, so none was ever found).
+TEST(Decimation, AStandstillInAThinnedRecordingIsStillFound) {
+  Recording r;
+  r.file = "synthetic";
+  std::vector<double>& wheel = r.signals["v_wheel"];
+  for (int k = 0; k < 30000; ++k) {  // 300 s at 100 Hz: thinned to 12,000 rows
+    const double t = 0.01 * k;
+    r.t.push_back(t);
+    // A 10 s stop from 100 s; otherwise 0.5 m/s with the encoder's ripple.
+    wheel.push_back(t >= 100.0 && t < 110.0 ? 0.0 : 0.5 + 0.01 * std::sin(37.0 * t));
+  }
+  const Recording a = analysed_recording(r, FitOptions{}, {});
+  ASSERT_LT(a.size(), r.size());
+  ASSERT_TRUE(a.has(kAtRestColumn));
+  double rest_s = 0.0;
+  const std::vector<double>& rest = a.at(kAtRestColumn);
+  for (std::size_t k = 1; k < a.size(); ++k) {
+    if (rest[k] != 0.0) {
+      EXPECT_GE(a.t[k], 100.0) << "at rest while moving";
+      EXPECT_LT(a.t[k], 110.0) << "at rest while moving";
+      rest_s += a.t[k] - a.t[k - 1];
+    }
+    // The filtered speed itself never reads zero: the reason for the column.
+  }
+  // The stop less the half-windows at each end (the wheel's estimator lag).
+  EXPECT_NEAR(rest_s, 10.0 - 2 * kRestHalfWindow_s, 0.1);
+  std::size_t zeros = 0;
+  for (double v : a.at("v_wheel")) zeros += v == 0.0;
+  EXPECT_LT(zeros, a.size() / 100) << "the filtered speed should rarely read exactly zero";
+}
+
 TEST(Decimation, AFastToneIsRemovedNotAliased) {
   Recording r;
   r.file = "synthetic";

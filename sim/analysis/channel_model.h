@@ -108,6 +108,20 @@ class ChannelModel {
                         const std::vector<Effect>& effects, std::vector<double>& y) const = 0;
   // Initial nominal values from the data (a rough guess for the solver).
   [[nodiscard]] virtual std::vector<double> initial_guess(const Recording& r) const;
+  // Further starts of the nominal fit, across the ranges where its cost has more than one
+  // valley (the clamp law's k, x0 and n trade against each other): the nominal is fitted from
+  // each and the best kept, so no effect takes credit for escaping a local solution.
+  [[nodiscard]] virtual std::vector<std::vector<double>> nominal_starts(const Recording&) const {
+    return {};
+  }
+  // When a constant added to the output trades with the nominal's own constants (the clamp
+  // law's contact point x0): the rows before `end` where, by the nominal values fitted beside
+  // the offset, the subsystem is at zero load (the clamp open), the only place the offset is
+  // told apart. nullopt: no trade, an offset is judged like any effect.
+  [[nodiscard]] virtual std::optional<std::size_t> zero_load_rows(
+      const Recording&, const std::vector<double>& /*nominal*/, std::size_t /*end*/) const {
+    return std::nullopt;
+  }
 };
 
 // Every channel of the nominal structures; the caller keeps those the recording observes.

@@ -2,6 +2,7 @@
 // clamp, depth (position and draft).
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "sim/analysis/at_rest.h"
 #include "sim/analysis/channel_model.h"
@@ -152,6 +153,33 @@ class ClampChannel : public ChannelModel {
       if (f[k] > fm) fm = f[k], xm = x[k];
     const double x0 = *std::min_element(x.begin(), x.end());
     return {std::max(1e-3, fm / std::pow(std::max(0.1, xm - x0), 1.2)), x0, 1.2};
+  }
+  // The law's exponent over its range, each with the contact point at the smallest position
+  // and at a third of the stroke, and k through the largest force: k, x0 and n trade, and a
+  // fit from one start alone can stop in a valley with n far from the truth (issue 32).
+  std::vector<std::vector<double>> nominal_starts(const Recording& r) const override {
+    const auto& x = r.at("clamp_pos_mm");
+    const auto& f = r.at("clamp_force");
+    double xm = 0, fm = 0;
+    for (std::size_t k = 0; k < x.size(); ++k)
+      if (f[k] > fm) fm = f[k], xm = x[k];
+    const double lo = *std::min_element(x.begin(), x.end());
+    std::vector<std::vector<double>> out;
+    for (double n : {1.0, 1.6, 2.2}) {
+      for (double x0 : {lo, lo + (xm - lo) / 3.0}) {
+        out.push_back({std::max(1e-3, fm / std::pow(std::max(0.1, xm - x0), n)), x0, n});
+      }
+    }
+    return out;
+  }
+  // The roller short of the contact point fitted beside the offset: no seedling is squeezed
+  // there, the force sensor reads its offset alone.
+  std::optional<std::size_t> zero_load_rows(const Recording& r, const std::vector<double>& p,
+                                            std::size_t end) const override {
+    const auto& x = r.at("clamp_pos_mm");
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < std::min(end, x.size()); ++k) n += x[k] <= p[1];
+    return n;
   }
   // n within 0.9-2.5: PRODUCT.md gives 1-1.5 from the DEM; a law much softer than linear
   // would be the fit bending to mimic creep. A sensor gain error is the same as a different

@@ -39,6 +39,9 @@ struct Candidate {
   double held_out_improvement = 0.0;  // 1 - rms_after / rms_before on the held-out part
   double cv_improvement = 0.0;        // blocked cross-validation: the best of 3 folds (or a loss)
   double explained = 0.0;  // share of the calibration residual beyond noise it accounts for
+  // Non-empty when the recording cannot tell this effect from the nominal's own parameters:
+  // why, and the experiment that would (rejection() returns it first).
+  std::string not_separable;
   ChannelFit fit;
 };
 

@@ -96,6 +96,29 @@ TEST(Analysis, ACleanClampRecordingHasNoSignificantMismatch) {
   }
 }
 
+// An offset on a clamp that never opens trades with the law's contact point x0: it is not
+// named, and the tool says what would tell them apart (issue 32, item 3). (With the roller
+// open at the start, as in every closed-loop run, the blind proof's force-offset case names it.)
+TEST(Analysis, AnOffsetOnAClampThatNeverOpensIsNotNamed) {
+  Recording r = clamp_recording(0.0, 1.0, 7);
+  for (double& f : r.signals["clamp_force"]) f += 8.0;
+  FitOptions o = quick();
+  o.max_rows = 3000;
+  const FitReport rep = analyse(r, o);
+  ASSERT_EQ(rep.channels.size(), 1u);
+  const ChannelReport& c = rep.channels[0];
+  for (const Candidate& chosen : c.chosen) EXPECT_NE(chosen.effect, "sensor offset");
+  bool said = false;
+  for (const Candidate& cand : c.ranked) {
+    if (cand.effect != "sensor offset") continue;
+    said = true;
+    EXPECT_NE(rejection(cand, o).find("0 rows at zero load"), std::string::npos)
+        << rejection(cand, o);
+    EXPECT_NE(rejection(cand, o).find("the clamp open"), std::string::npos);
+  }
+  EXPECT_TRUE(said) << "the offset was not tried";
+}
+
 TEST(Analysis, HiddenClampRelaxationIsNamedAndFitted) {
   const FitReport rep = analyse(clamp_recording(0.3, 1.0, 11), quick());
   ASSERT_EQ(rep.channels.size(), 1u);

@@ -158,19 +158,25 @@ inline constexpr std::array kSignals = {
                            signal_decl::c402::kTargetPosition, BusScale::kPerCount, false),
 };
 
-// The declaration of a recording column, or nullptr. constexpr, so a hot path names its
-// signals at compile time (see known_signal) instead of searching on every tick.
-constexpr const SignalDecl* find_signal(std::string_view column) {
-  for (const SignalDecl& s : kSignals) {
-    if (s.column == column) return &s;
+// The index in kSignals of a recording column, kSignals.size() when there is none.
+constexpr std::size_t signal_index(std::string_view column) {
+  for (std::size_t i = 0; i < kSignals.size(); ++i) {
+    if (kSignals[i].column == column) return i;
   }
-  return nullptr;
+  return kSignals.size();
 }
-// A column the code names itself: a misspelt name does not compile.
+// The declaration of a recording column, or nullptr.
+constexpr const SignalDecl* find_signal(std::string_view column) {
+  const std::size_t i = signal_index(column);
+  return i < kSignals.size() ? &kSignals[i] : nullptr;
+}
+// A column the code names itself, found at compile time (a hot path does not search on every
+// tick); a misspelt name does not compile. By index: the sanitizers' null checks make a
+// pointer comparison no constant expression.
 consteval const SignalDecl& known_signal(std::string_view column) {
-  const SignalDecl* s = find_signal(column);
-  if (s == nullptr) throw "not a column of the signal table";
-  return *s;
+  const std::size_t i = signal_index(column);
+  if (i >= kSignals.size()) throw "not a column of the signal table";
+  return kSignals[i];
 }
 // The bus signal carried by (role, index, sub), or nullptr.
 const SignalDecl* find_bus_signal(NodeRole role, std::uint16_t index, std::uint8_t sub);

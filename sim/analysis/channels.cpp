@@ -265,10 +265,13 @@ class DraftChannel : public ChannelModel {
   std::vector<ParamSpec> nominal_params() const override {
     const soil::OpenerDraftLaw row;
     return {{"draft_100mm", "N", 500.0, 0.0, 1e5},
-            {"m", "1", 1.5, 1.0, 2.0},
+            // Ranges to the limits the physics allows (issue 32): the depth exponent either
+            // side of D497's linear 1 (assumed 0.5-3), a draft mobilised and released
+            // within one row (10 um, 10 ms) up to a metre and an hour.
+            {"m", "1", 1.5, 0.5, 3.0},
             {"speed_lag_s", "s", 0.02, 0.0, 0.5},
-            {"mobilisation_mm", "mm", row.mobilisation_mm, 0.5, 200.0},
-            {"rest_relaxation_s", "s", row.rest_relaxation_s, 0.5, 3600.0}};
+            {"mobilisation_mm", "mm", row.mobilisation_mm, 0.01, 1000.0},
+            {"rest_relaxation_s", "s", row.rest_relaxation_s, 0.01, 3600.0}};
   }
   std::vector<const EffectSpec*> candidates(const Recording&) const override {
     return specs({EffectKind::kOffset, EffectKind::kPeriodic, EffectKind::kDelay,

@@ -122,6 +122,7 @@ std::string fit_json(const FitReport& r, double wall_s) {
     ch["output"] = c.channel->output();
     ch["output_unit"] = column_unit(c.channel->output());
     ch["verdict"] = c.verdict;
+    ch["at_range_edge"] = c.at_range_edge;
     ch["nominal"] = params_json(c.channel->nominal_params(), c.nominal.nominal,
                                 c.nominal.nominal_sd, *c.channel);
     ch["noise_rms"] = c.noise_rms;

@@ -338,6 +338,19 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       }
     }
   }
+  const std::vector<ParamSpec> specs = ch.nominal_params();
+  for (std::size_t i = 0; i < specs.size() && i < rep.final_fit.nominal.size(); ++i) {
+    const ParamSpec& p = specs[i];
+    const double v = rep.final_fit.nominal[i], tolerance = 1e-6 * (p.upper - p.lower);
+    // A lower bound of 0 is the physics' own limit (no lag, no inertia): ending there is an
+    // answer, not a sign of a wrong structure.
+    const bool at_lower = v <= p.lower + tolerance && p.lower != 0.0;
+    if (p.grid || (!at_lower && v < p.upper - tolerance)) continue;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s = %.4g %s (range %.4g to %.4g)", p.name.c_str(), v,
+                  p.unit.c_str(), p.lower, p.upper);
+    rep.at_range_edge.emplace_back(buf);
+  }
   if (rep.chosen.empty() && !rep.change)
     rep.verdict = rep.unexplained ? "unexplained residual" : "no significant mismatch";
   else

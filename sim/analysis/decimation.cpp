@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "firmware/io/signal_table.h"
+
 namespace planter::analysis {
 namespace {
 
@@ -69,12 +71,33 @@ Recording decimated(const Recording& r, std::size_t stride,
   for (const auto& [name, v] : r.signals) {
     auto& o = out.signals[name];
     o.reserve(out.t.size());
-    if (std::find(filter.begin(), filter.end(), name) != filter.end()) {
+    const SignalDecl* decl = find_signal(name);
+    if (std::find(filter.begin(), filter.end(), name) == filter.end()) {
+      for (std::size_t k = 0; k < v.size(); k += stride) o.push_back(v[k]);
+    } else if (decl != nullptr && decl->commanded != nullptr) {
+      // A command is a staircase the controller held: the low-pass filter rings at its
+      // steps (a play or a dead zone then reads the ringing: a 6 mm play read 8.5 mm, issue
+      // 32), so it is averaged over each kept row's interval instead, centred on the row
+      // (no delay; half weights at the ends of an even stride). The actuator integrates the
+      // staircase; the average keeps that integral.
+      const double half = 0.5 * static_cast<double>(stride);
+      const auto reach = static_cast<std::size_t>(half);
+      for (std::size_t k = 0; k < v.size(); k += stride) {
+        double sum = 0.0, weight = 0.0;
+        const std::size_t from = k >= reach ? k - reach : 0;
+        const std::size_t to = std::min(v.size() - 1, k + reach);
+        for (std::size_t j = from; j <= to; ++j) {
+          const double distance = std::abs(static_cast<double>(j) - static_cast<double>(k));
+          const double w = distance < half ? 1.0 : 0.5;
+          sum += w * v[j];
+          weight += w;
+        }
+        o.push_back(sum / weight);
+      }
+    } else {
       std::vector<double> smooth = v;
       zero_phase_lowpass(smooth, cutoff, rate);
       for (std::size_t k = 0; k < smooth.size(); k += stride) o.push_back(smooth[k]);
-    } else {
-      for (std::size_t k = 0; k < v.size(); k += stride) o.push_back(v[k]);
     }
   }
   for (std::size_t k = 0; k < r.state.size(); k += stride) out.state.push_back(r.state[k]);

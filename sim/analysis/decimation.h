@@ -20,7 +20,9 @@ inline constexpr double kAntiAliasCutoffShare = 0.8;
 void zero_phase_lowpass(std::vector<double>& x, double cutoff_hz, double rate_hz);
 
 // Every `stride`-th row; the named columns first filtered below kAntiAliasCutoffShare of the new
-// Nyquist frequency. Other columns and the state are only thinned (a flag has no spectrum).
+// Nyquist frequency, except a command (the signal table's commanded columns), which is averaged
+// over each kept row's interval: the filter would ring at its steps. Other columns and the
+// state are only thinned (a flag has no spectrum).
 Recording decimated(const Recording& r, std::size_t stride, const std::vector<std::string>& filter);
 
 // The mean sample rate of a recording, Hz.

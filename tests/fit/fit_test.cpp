@@ -148,6 +148,43 @@ TEST(Analysis, HiddenClampRelaxationIsNamedAndFitted) {
 
 // A single out-of-range sample (a load cell's 65535) is excluded and reported; noise, steps and
 // the relaxation itself are never taken for a glitch.
+// A play between the depth actuator and the opener that starts at one end of its gap, as a
+// gear train's does at power-up (issue 32, item 4): named, with its gap, from either end.
+Recording depth_play_recording(double gap_mm, double start_side, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  std::uniform_real_distribution<double> level(80.0, 120.0);
+  Recording r;
+  r.file = "synthetic";
+  auto& cmd = r.signals["depth_cmd_mm"];
+  auto& depth = r.signals["depth_mm"];
+  double target = 100.0, played = 100.0 + start_side * 0.5 * gap_mm, state = played;
+  for (int k = 0; k < 12000; ++k) {  // 120 s at 100 Hz
+    if (k % 600 == 0) target = level(rng);
+    played = std::clamp(played, target - 0.5 * gap_mm, target + 0.5 * gap_mm);
+    // First order, 0.3 s, with a rate limit of 60 mm/s: the depth channel's nominal structure.
+    state += std::clamp((1.0 - std::exp(-0.01 / 0.3)) * (played - state), -0.6, 0.6);
+    r.t.push_back(0.01 * k);
+    cmd.push_back(target);
+    depth.push_back(state + noise(rng));
+  }
+  return r;
+}
+
+TEST(Analysis, APlayThatStartsAtOneEndIsNamedWithItsGap) {
+  for (double side : {-1.0, 1.0}) {
+    // Thinned 4:1, so the command is averaged over four rows at each step.
+    FitOptions o = quick();
+    o.max_rows = 3000;
+    const FitReport rep = analyse(depth_play_recording(6.0, side, 21), o);
+    ASSERT_EQ(rep.channels.size(), 1u);
+    const ChannelReport& c = rep.channels[0];
+    ASSERT_FALSE(c.chosen.empty()) << "start side " << side << ": " << c.verdict;
+    EXPECT_EQ(c.chosen[0].effect, "backlash (play)") << "start side " << side;
+    EXPECT_NEAR(c.chosen[0].fit.effects.back().values[0], 6.0, 1.2) << "start side " << side;
+  }
+}
+
 TEST(Glitches, OnlyTheSpikeIsFound) {
   for (double noise : {0.5, 2.0}) {
     for (double relax : {0.0, 0.3})

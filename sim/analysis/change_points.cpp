@@ -51,7 +51,8 @@ std::vector<Single> single_changes(const ChannelModel& ch, const Recording& r,
                                    double rss_all) {
   std::vector<Single> out;
   ChannelFit trial = before;
-  const ParameterLayout lay = fitted_layout(ch, trial);
+  ParameterLayout lay = fitted_layout(ch, trial);
+  bounds_for_output(lay.specs, r.at(ch.output()));
   const std::vector<double*>& p = lay.slots;
   const std::vector<ParamSpec>& specs = lay.specs;
   const double rss_none = rss_between(ch, r, trial, from, to);

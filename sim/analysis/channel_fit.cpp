@@ -71,6 +71,7 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
   auto* functor = new SimulationError{&ch, &r, &y, &at, nominal, effects, nullptr};
   Layout lay = layout(functor->nominal, functor->effects, ch.nominal_params(), false);
   functor->lay = &lay;
+  bounds_for_output(lay.specs, y);
   std::vector<double> x(lay.slots.size());
   for (std::size_t k = 0; k < x.size(); ++k) x[k] = *lay.slots[k];
   if (!x.empty()) {
@@ -219,6 +220,18 @@ Effect initial_effect(const EffectSpec& spec, const Recording& r,
     for (const auto& p : spec.params) e.values.push_back(p.initial);
   }
   return e;
+}
+
+void bounds_for_output(std::vector<ParamSpec>& specs, const std::vector<double>& y) {
+  double size = 0.0;
+  for (double v : y) size = std::max(size, std::abs(v));
+  size = std::max(size, 1e-9);
+  for (ParamSpec& spec : specs) {
+    if (!spec.of_output_size) continue;
+    spec.lower *= size;
+    spec.upper *= size;
+    spec.of_output_size = false;
+  }
 }
 
 ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& split,

@@ -53,6 +53,9 @@ struct ParameterLayout {
   std::vector<ParamSpec> specs;
 };
 ParameterLayout fitted_layout(const ChannelModel& channel, ChannelFit& fit);
+// The bounds of the parameters given relative to the output's size (ParamSpec::of_output_size)
+// made absolute for the recorded output y.
+void bounds_for_output(std::vector<ParamSpec>& specs, const std::vector<double>& y);
 
 // How many calibration rows a fit on `split` compares (the n of its BIC).
 std::size_t fitted_rows(const Split& split);

@@ -17,6 +17,9 @@ struct ParamSpec {
   double lower = 0.0;
   double upper = 0.0;
   bool grid = false;  // non-smooth in the output (a delay, a gap, a step): searched on a grid
+  // lower and upper are multiples of the recorded output's largest magnitude, not absolute:
+  // a friction loop of 17 kN and one of 2 N are both inside the range (issue 32).
+  bool of_output_size = false;
 };
 
 enum class EffectKind {

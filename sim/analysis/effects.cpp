@@ -245,7 +245,7 @@ const std::vector<EffectSpec>& library() {
          .name = "hysteresis of the clamp (Bouc-Wen)",
          .signature = "closing and opening give different forces at the same position",
          // A passive clamp dissipates: the loading branch lies above the unloading one (H > 0).
-         .params = {{"height", "output units", 0.0, 0.0, 1e4},
+         .params = {{"height", "output units", 0.0, 0.0, 2.0, false, true},
                     {"delta", "input units", 0.5, 0.01, 100.0}},
          .on_output = hysteresis,
          .extra_starts = {{0.0, 0.1}, {0.0, 2.0}},
@@ -273,14 +273,14 @@ const std::vector<EffectSpec>& library() {
     add({.kind = EffectKind::kCoulomb,
          .name = "Coulomb friction",
          .signature = "a step in the residual at each speed reversal",
-         .params = {{"coulomb", "output units", 0.0, 0.0, 100.0}},
+         .params = {{"coulomb", "output units", 0.0, 0.0, 2.0, false, true}},
          .on_output = coulomb,
          .separating_experiment = friction_sweep});
     add({.kind = EffectKind::kStribeck,
          .name = "Stribeck friction",
          .signature = "extra resistance at low speed",
-         .params = {{"coulomb", "output units", 0.0, 0.0, 100.0},
-                    {"stribeck_extra", "output units", 0.0, 0.0, 100.0},
+         .params = {{"coulomb", "output units", 0.0, 0.0, 2.0, false, true},
+                    {"stribeck_extra", "output units", 0.0, 0.0, 2.0, false, true},
                     // Below four times the sign's smoothing, a Stribeck speed would only
                     // reshape that smoothing (a Coulomb step would pass for Stribeck).
                     {"stribeck_speed", "input units", 0.1, 4.0 * kFrictionSmoothing_radps, 5.0}},
@@ -304,21 +304,21 @@ const std::vector<EffectSpec>& library() {
     add({.kind = EffectKind::kOffset,
          .name = "sensor offset",
          .signature = "a constant residual",
-         .params = {{"offset", "output units", 0.0, -1e4, 1e4}},
+         .params = {{"offset", "output units", 0.0, -2.0, 2.0, false, true}},
          .on_output = offset,
          .separating_experiment = "readings at zero load (the clamp open, the disc at rest): an "
                                   "offset reads there too"});
     add({.kind = EffectKind::kDrift,
          .name = "sensor drift",
          .signature = "a residual growing linearly with time",
-         .params = {{"drift_per_s", "output units/s", 0.0, -10.0, 10.0}},
+         .params = {{"drift_per_s", "output units/s", 0.0, -1.0, 1.0, false, true}},
          .on_output = drift,
          .separating_experiment = "the machine held still for several minutes: drift keeps "
                                   "growing, relaxation settles"});
     add({.kind = EffectKind::kPeriodic,
          .name = "periodic disturbance (vibration)",
          .signature = "a peak in the residual spectrum",
-         .params = {{"amplitude", "output units", 0.0, 0.0, 1e4},
+         .params = {{"amplitude", "output units", 0.0, 0.0, 2.0, false, true},
                     {"frequency_hz", "Hz", 1.0, 0.01, 1e4},
                     {"phase_rad", "rad", 0.0, -20.0, 20.0}},
          .on_output = periodic,

@@ -42,8 +42,11 @@ std::vector<ModelChannel> load_augmented_model(const std::string& path) {
       if (!spec) e.fail("name", "'" + name + "' is no effect of the library");
       Effect fx{spec, {}};
       for (const ParamSpec& p : spec->params) {
-        const double hi = p.upper > p.lower ? p.upper : 1e9;  // grid ones scale with the data
-        fx.values.push_back(e.required_number(model_key(p.name), p.lower, hi, p.unit.c_str()));
+        // Grid ones, and those bounded relative to the output's size, scale with the data.
+        const bool scales = p.of_output_size || !(p.upper > p.lower);
+        const double lo = p.of_output_size && p.lower < 0.0 ? -1e9 : p.lower;
+        const double hi = scales ? 1e9 : p.upper;
+        fx.values.push_back(e.required_number(model_key(p.name), lo, hi, p.unit.c_str()));
       }
       e.reject_unknown_keys();
       m.effects.push_back(fx);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "sim/analysis/at_rest.h"
+#include "sim/analysis/channel_fit.h"
 #include "sim/analysis/day_tracks.h"
 #include "sim/analysis/decimation.h"
 #include "sim/analysis/fit_outputs.h"
@@ -182,6 +183,20 @@ TEST(Analysis, APlayThatStartsAtOneEndIsNamedWithItsGap) {
     ASSERT_FALSE(c.chosen.empty()) << "start side " << side << ": " << c.verdict;
     EXPECT_EQ(c.chosen[0].effect, "backlash (play)") << "start side " << side;
     EXPECT_NEAR(c.chosen[0].fit.effects.back().values[0], 6.0, 1.2) << "start side " << side;
+  }
+}
+
+// An effect's size is bounded relative to the output, not by an absolute cap: a friction loop
+// of 17 kN fits inside the hysteresis height's range as a 2 N one does (issue 32, item 4).
+TEST(Analysis, EffectSizesAreBoundedByTheOutputNotByACap) {
+  for (double size : {2.0, 20000.0}) {
+    std::vector<ParamSpec> specs = effect_spec(EffectKind::kHysteresis).params;
+    const std::vector<double> y = {0.0, -0.5 * size, size};
+    bounds_for_output(specs, y);
+    EXPECT_DOUBLE_EQ(specs[0].lower, 0.0);
+    EXPECT_GE(specs[0].upper, 17000.0 * size / 20000.0) << "output of " << size;
+    EXPECT_LE(specs[0].upper, 2.0 * size) << "output of " << size;
+    EXPECT_DOUBLE_EQ(specs[1].upper, 100.0);  // delta is in the input's units: absolute
   }
 }
 

@@ -22,10 +22,4 @@ std::vector<bool> wheel_at_rest(const Recording& r) {
   return out;
 }
 
-void mark_at_rest(Recording& r) {
-  const std::vector<bool> rest = wheel_at_rest(r);
-  std::vector<double>& column = r.signals[kAtRestColumn];
-  column.assign(rest.begin(), rest.end());
-}
-
 }  // namespace planter::analysis

@@ -22,7 +22,4 @@ inline constexpr double kRestHalfWindow_s = 0.5;
 // reads zero (a filtered estimate) marks nothing.
 std::vector<bool> wheel_at_rest(const Recording& r);
 
-// Adds kAtRestColumn from wheel_at_rest to a full-rate recording that has v_wheel.
-void mark_at_rest(Recording& r);
-
 }  // namespace planter::analysis

@@ -134,6 +134,25 @@ class DiscTorqueChannel : public ChannelModel {
   }
 };
 
+// Where the recorded clamp force peaks, and the roller's lowest position: the clamp law's
+// starts pass k through the peak for a given contact point x0 and exponent n.
+struct ClampPeak {
+  double at_mm = 0.0, force_N = 0.0, lowest_mm = 0.0;
+  [[nodiscard]] std::vector<double> start(double x0, double n) const {
+    return {std::max(1e-3, force_N / std::pow(std::max(0.1, at_mm - x0), n)), x0, n};
+  }
+};
+
+ClampPeak clamp_peak(const Recording& r) {
+  const auto& x = r.at("clamp_pos_mm");
+  const auto& f = r.at("clamp_force");
+  ClampPeak peak;
+  for (std::size_t k = 0; k < x.size(); ++k)
+    if (f[k] > peak.force_N) peak.force_N = f[k], peak.at_mm = x[k];
+  peak.lowest_mm = *std::min_element(x.begin(), x.end());
+  return peak;
+}
+
 class ClampChannel : public ChannelModel {
  public:
   std::string subsystem() const override { return "clamp"; }
@@ -146,29 +165,18 @@ class ClampChannel : public ChannelModel {
             {"n", "1", 1.2, 0.9, 2.5}};
   }
   std::vector<double> initial_guess(const Recording& r) const override {
-    const auto& x = r.at("clamp_pos_mm");
-    const auto& f = r.at("clamp_force");
-    double xm = 0, fm = 0;
-    for (std::size_t k = 0; k < x.size(); ++k)
-      if (f[k] > fm) fm = f[k], xm = x[k];
-    const double x0 = *std::min_element(x.begin(), x.end());
-    return {std::max(1e-3, fm / std::pow(std::max(0.1, xm - x0), 1.2)), x0, 1.2};
+    const ClampPeak peak = clamp_peak(r);
+    return peak.start(peak.lowest_mm, 1.2);
   }
   // The law's exponent over its range, each with the contact point at the smallest position
   // and at a third of the stroke, and k through the largest force: k, x0 and n trade, and a
   // fit from one start alone can stop in a valley with n far from the truth (issue 32).
   std::vector<std::vector<double>> nominal_starts(const Recording& r) const override {
-    const auto& x = r.at("clamp_pos_mm");
-    const auto& f = r.at("clamp_force");
-    double xm = 0, fm = 0;
-    for (std::size_t k = 0; k < x.size(); ++k)
-      if (f[k] > fm) fm = f[k], xm = x[k];
-    const double lo = *std::min_element(x.begin(), x.end());
+    const ClampPeak peak = clamp_peak(r);
+    const double lo = peak.lowest_mm;
     std::vector<std::vector<double>> out;
     for (double n : {1.0, 1.6, 2.2}) {
-      for (double x0 : {lo, lo + (xm - lo) / 3.0}) {
-        out.push_back({std::max(1e-3, fm / std::pow(std::max(0.1, xm - x0), n)), x0, n});
-      }
+      for (double x0 : {lo, lo + (peak.at_mm - lo) / 3.0}) out.push_back(peak.start(x0, n));
     }
     return out;
   }

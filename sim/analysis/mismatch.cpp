@@ -138,8 +138,8 @@ Location locate(const ChannelModel& ch, const Recording& r, const std::vector<do
   return l;
 }
 
-// The zero-load rows an offset needs to be told from the nominal's constants: with the noise
-// of a force sensor (about 1 % of its range), twenty rows fix a constant to a quarter of it.
+// The zero-load rows an offset needs to be told from the nominal's constants: twenty rows fix
+// a constant to about a quarter of the sensor's noise (1 / sqrt(20)).
 constexpr std::size_t kOffsetZeroLoadRows = 20;
 
 ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const FitOptions& o,
@@ -376,11 +376,14 @@ Recording analysed_recording(const Recording& full, const FitOptions& o,
   // rather than aliased (it is looked for at the recording's own rate: fast_tones.h).
   const std::size_t stride = (full.size() + o.max_rows - 1) / o.max_rows;
   const Recording& clean = glitches.empty() ? full : without_glitches(full, glitches);
-  if (stride <= 1 || !clean.has("v_wheel")) return decimated(clean, stride, channel_columns());
-  // The standstills at the full rate: the filter leaves no exact zero in the wheel's speed.
-  Recording marked = clean;
-  mark_at_rest(marked);
-  return decimated(marked, stride, channel_columns());
+  Recording out = decimated(clean, stride, channel_columns());
+  if (stride <= 1 || !clean.has("v_wheel")) return out;
+  // The standstills at the full rate, kept row by row: the filter leaves no exact zero in the
+  // wheel's speed.
+  const std::vector<bool> rest = wheel_at_rest(clean);
+  std::vector<double>& column = out.signals[kAtRestColumn];
+  for (std::size_t k = 0; k < rest.size(); k += stride) column.push_back(rest[k] ? 1.0 : 0.0);
+  return out;
 }
 
 std::string rejection(const Candidate& c, const FitOptions& o) {

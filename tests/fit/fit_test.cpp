@@ -147,8 +147,6 @@ TEST(Analysis, HiddenClampRelaxationIsNamedAndFitted) {
   for (std::size_t k = 0; k < y.size(); k += 97) EXPECT_NEAR(y[k], c.final_fit.prediction[k], 1e-6);
 }
 
-// A single out-of-range sample (a load cell's 65535) is excluded and reported; noise, steps and
-// the relaxation itself are never taken for a glitch.
 // A play between the depth actuator and the opener that starts at one end of its gap, as a
 // gear train's does at power-up (issue 32, item 4): named, with its gap, from either end.
 Recording depth_play_recording(double gap_mm, double start_side, unsigned seed) {
@@ -200,6 +198,8 @@ TEST(Analysis, EffectSizesAreBoundedByTheOutputNotByACap) {
   }
 }
 
+// A single out-of-range sample (a load cell's 65535) is excluded and reported; noise, steps and
+// the relaxation itself are never taken for a glitch.
 TEST(Glitches, OnlyTheSpikeIsFound) {
   for (double noise : {0.5, 2.0}) {
     for (double relax : {0.0, 0.3})

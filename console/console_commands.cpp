@@ -97,6 +97,8 @@ void ConsoleServer::login(const httplib::Request& req, httplib::Response& res) {
   if (!secret) return error(res, 400, "send {\"secret\": \"...\"}");
   const LoginResult r = sessions_->login(req.remote_addr, *secret);
   if (r.status == LoginResult::Status::kOk) {
+    // The operator's device keeps a way in however many others hold connections.
+    if (r.role == Role::kOperator) limits_.remember_operator(req.remote_addr);
     res.set_header("Set-Cookie",
                    std::string(kCookie) + "=" + r.token + "; HttpOnly; SameSite=Strict; Path=/");
     nlohmann::json body = {{"role", role_name(r.role)}, {"csrf", r.csrf}};

@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "console/guarded_server.h"
+
 namespace planter::console {
 
 std::string console_page();      // console_page.html, embedded at build time
@@ -113,8 +115,8 @@ std::string ConsoleServer::history_json() {
 
 void ConsoleServer::start() {
   if (options_.commands != nullptr) audit_ = std::make_unique<AuditLog>(options_.audit_log);
-  server_ = std::make_unique<httplib::Server>();
-  httplib::Server& srv = *server_;
+  server_ = std::make_unique<GuardedServer>(limits_, ConnectionTimes{});
+  GuardedServer& srv = *server_;
   srv.set_payload_max_length(kMaxBodyBytes);
   // SO_REUSEADDR only: cpp-httplib's default adds SO_REUSEPORT, with which a second console
   // on the same port would start without a word and share the connections.
@@ -177,6 +179,7 @@ void ConsoleServer::start() {
   } else {
     port_ = srv.bind_to_port(options_.bind, options_.port) ? options_.port : -1;
   }
+  if (port_ > 0) server_->widen_backlog();
   if (port_ <= 0)
     throw std::runtime_error("console: cannot listen on " + options_.bind + ":" +
                              std::to_string(options_.port) +

@@ -1,5 +1,6 @@
 #pragma once
-// The operator's console over HTTP, served from its own threads (cpp-httplib's pool), never
+// The operator's console over HTTP, served from its own threads (a fixed pool, with the bounds of
+// guarded_server.h around cpp-httplib's parsing), never
 // from the control loop: the loop publishes a LiveSample into a lock-free queue of fixed size
 // (no lock, no allocation, a full queue drops the sample and counts it); the server's threads
 // drain it into the history the page plots. Commands go the other way through a
@@ -17,6 +18,7 @@
 
 #include "console/audit_log.h"
 #include "console/command_channel.h"
+#include "console/connection_limits.h"
 #include "console/host_names.h"
 #include "console/live_sample.h"
 #include "console/operator_sessions.h"
@@ -32,6 +34,8 @@ struct Response;
 }  // namespace httplib
 
 namespace planter::console {
+
+class GuardedServer;
 
 struct ConsoleOptions {
   std::string bind = "127.0.0.1";  // the machine's network: 0.0.0.0
@@ -77,7 +81,7 @@ inline ConsoleInfo console_info(std::string title, const ControllerConfig& c, bo
 }
 
 // The calling thread leaves the loop's CPU (if one is pinned, and another exists) and any
-// real-time policy it inherited; the threads it makes from then (cpp-httplib's pool) inherit
+// real-time policy it inherited; the threads it makes from then (the connection workers) inherit
 // that. The console's threads call it first; so may any other helper of the loop's program.
 void leave_the_loop(int loop_cpu);
 
@@ -127,8 +131,9 @@ class ConsoleServer {
   std::unique_ptr<AuditLog> audit_;
   std::mutex host_names_mutex_;
   HostNames host_names_;
-  RefusedLoginTally refused_logins_{60.0};  // one summary line a minute at most
-  std::unique_ptr<httplib::Server> server_;
+  RefusedLoginTally refused_logins_{60.0};     // one summary line a minute at most
+  ConnectionLimits limits_{ConnectionCaps{}};  // who may hold a connection (guarded_server.h)
+  std::unique_ptr<GuardedServer> server_;
   std::thread thread_;
   // Moves the loop's samples into the history five times a second whether or not anyone is
   // looking (issue 28, item 6: with no client the queue filled and new samples were dropped).

@@ -1,0 +1,261 @@
+#include "console/guarded_server.h"
+
+#include <netdb.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <string>
+#include <string_view>
+
+namespace planter::console {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+// How often a wait looks whether the server is stopping.
+constexpr std::chrono::milliseconds kStopCheck{100};
+
+std::string address_of(socket_t sock, bool peer) {
+  sockaddr_storage addr{};
+  socklen_t len = sizeof addr;
+  const int got = peer ? getpeername(sock, reinterpret_cast<sockaddr*>(&addr), &len)
+                       : getsockname(sock, reinterpret_cast<sockaddr*>(&addr), &len);
+  if (got != 0) return {};
+  char host[NI_MAXHOST];
+  if (getnameinfo(reinterpret_cast<sockaddr*>(&addr), len, host, sizeof host, nullptr, 0,
+                  NI_NUMERICHOST) != 0)
+    return {};
+  return host;
+}
+
+int port_of(socket_t sock, bool peer) {
+  sockaddr_storage addr{};
+  socklen_t len = sizeof addr;
+  const int got = peer ? getpeername(sock, reinterpret_cast<sockaddr*>(&addr), &len)
+                       : getsockname(sock, reinterpret_cast<sockaddr*>(&addr), &len);
+  if (got != 0) return 0;
+  if (addr.ss_family == AF_INET) return ntohs(reinterpret_cast<sockaddr_in*>(&addr)->sin_port);
+  if (addr.ss_family == AF_INET6) return ntohs(reinterpret_cast<sockaddr_in6*>(&addr)->sin6_port);
+  return 0;
+}
+
+// A whole answer in one send that never waits: for a client refused before it was read.
+void refuse(socket_t sock, int status, const char* reason, const std::string& words) {
+  const std::string answer =
+      "HTTP/1.1 " + std::to_string(status) + " " + reason +
+      "\r\nContent-Type: text/plain\r\nContent-Length: " + std::to_string(words.size()) +
+      "\r\nRetry-After: 5\r\nConnection: close\r\n\r\n" + words;
+  (void)!send(sock, answer.data(), answer.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+}
+
+// The connection as cpp-httplib reads and writes it, with a byte budget and deadlines.
+class BoundedStream final : public httplib::Stream {
+ public:
+  BoundedStream(socket_t sock, const std::atomic<socket_t>& listening, const ConnectionTimes& t)
+      : sock_(sock), listening_(listening), times_(t) {}
+
+  // Each request gets the whole budget and its own deadlines.
+  void next_request() {
+    consumed_ = 0;
+    cut_ = Cut::kNone;
+    answer_started_ = replacing_ = false;
+    read_deadline_ = Clock::now() + times_.request_read;
+    write_deadline_.reset();
+  }
+  // Waits for the next request's first byte, at most the idle time.
+  bool next_request_arrives() {
+    if (have_ > used_) return true;
+    return wait(POLLIN, Clock::now() + times_.idle);
+  }
+  // The request could not be read whole (too large, too slow, or the client went): the
+  // connection ends after the answer.
+  [[nodiscard]] bool cut() const { return cut_ != Cut::kNone; }
+
+  bool is_readable() const override { return have_ > used_ || wait(POLLIN, read_deadline_); }
+  bool is_writable() const override { return wait(POLLOUT, write_deadline()); }
+
+  ssize_t read(char* ptr, size_t size) override {
+    if (consumed_ >= times_.request_bytes) {
+      cut_ = Cut::kTooLarge;
+      return -1;
+    }
+    size = std::min(size, times_.request_bytes - consumed_);
+    if (have_ == used_) {
+      if (!wait(POLLIN, read_deadline_)) {
+        cut_ = Cut::kTooSlow;
+        return -1;
+      }
+      ssize_t n;
+      do {
+        n = recv(sock_, buffer_, sizeof buffer_, 0);
+      } while (n < 0 && errno == EINTR);
+      if (n <= 0) {
+        cut_ = Cut::kGone;
+        return n;
+      }
+      have_ = static_cast<std::size_t>(n);
+      used_ = 0;
+    }
+    const std::size_t n = std::min(size, have_ - used_);
+    std::memcpy(ptr, buffer_ + used_, n);
+    used_ += n;
+    consumed_ += n;
+    return static_cast<ssize_t>(n);
+  }
+
+  ssize_t write(const char* ptr, size_t size) override {
+    if (!answer_started_) {
+      answer_started_ = true;
+      // cpp-httplib answers a request it could not read with a bare 400; this one says why.
+      // Its other answers (413 for a declared body too large, say) go out as they are.
+      static constexpr std::string_view kBare400 = "HTTP/1.1 400 ";
+      replacing_ = (cut_ == Cut::kTooLarge || cut_ == Cut::kTooSlow) &&
+                   std::string_view(ptr, size).substr(0, kBare400.size()) == kBare400;
+      if (replacing_ && cut_ == Cut::kTooLarge)
+        refuse(sock_, 431, "Request Header Fields Too Large",
+               "refused: a request of more than " + std::to_string(times_.request_bytes) +
+                   " bytes (request line, headers and body)\n");
+      else if (replacing_)
+        refuse(sock_, 408, "Request Timeout",
+               "refused: the request did not arrive whole within " +
+                   std::to_string(times_.request_read.count() / 1000) + " s\n");
+    }
+    if (replacing_) return static_cast<ssize_t>(size);
+    if (!write_deadline_) write_deadline_ = Clock::now() + times_.response_write;
+    if (!wait(POLLOUT, *write_deadline_)) return -1;
+    ssize_t n;
+    do {
+      n = send(sock_, ptr, size, MSG_NOSIGNAL);
+    } while (n < 0 && errno == EINTR);
+    return n;
+  }
+
+  void get_remote_ip_and_port(std::string& ip, int& port) const override {
+    ip = address_of(sock_, true);
+    port = port_of(sock_, true);
+  }
+  void get_local_ip_and_port(std::string& ip, int& port) const override {
+    ip = address_of(sock_, false);
+    port = port_of(sock_, false);
+  }
+  socket_t socket() const override { return sock_; }
+
+ private:
+  [[nodiscard]] Clock::time_point write_deadline() const {
+    return write_deadline_ ? *write_deadline_ : Clock::now() + times_.response_write;
+  }
+  // Until the socket is ready, the deadline passes or the server stops.
+  bool wait(short events, Clock::time_point deadline) const {
+    for (;;) {
+      if (listening_.load() == INVALID_SOCKET) return false;
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+      if (left.count() <= 0) return false;
+      pollfd p{sock_, events, 0};
+      const int n = poll(&p, 1, static_cast<int>(std::min(left, kStopCheck).count()));
+      if (n > 0) return true;
+      if (n < 0 && errno != EINTR) return false;
+    }
+  }
+
+  socket_t sock_;
+  const std::atomic<socket_t>& listening_;
+  const ConnectionTimes& times_;
+  char buffer_[4096];
+  std::size_t have_ = 0, used_ = 0;
+  std::size_t consumed_ = 0;
+  enum class Cut { kNone, kTooLarge, kTooSlow, kGone } cut_ = Cut::kNone;
+  bool answer_started_ = false, replacing_ = false;
+  Clock::time_point read_deadline_{};
+  std::optional<Clock::time_point> write_deadline_;
+};
+
+}  // namespace
+
+ConnectionWorkers::ConnectionWorkers(std::size_t workers) {
+  for (std::size_t i = 0; i < workers; ++i)
+    threads_.emplace_back([this] {
+      for (;;) {
+        std::function<void()> job;
+        {
+          std::unique_lock<std::mutex> lock(mutex_);
+          wake_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
+          if (jobs_.empty()) return;  // stopping, and nothing left
+          job = std::move(jobs_.front());
+          jobs_.pop_front();
+        }
+        job();
+      }
+    });
+}
+
+ConnectionWorkers::~ConnectionWorkers() { shutdown(); }
+
+void ConnectionWorkers::enqueue(std::function<void()> fn) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    jobs_.push_back(std::move(fn));
+  }
+  wake_.notify_one();
+}
+
+void ConnectionWorkers::shutdown() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& t : threads_)
+    if (t.joinable()) t.join();
+}
+
+GuardedServer::GuardedServer(ConnectionLimits& limits, ConnectionTimes times)
+    : limits_(limits), times_(times) {
+  // More workers than connections can be admitted, so a refusal is never queued behind them.
+  const ConnectionCaps& caps = limits_.caps();
+  const std::size_t workers = caps.total + caps.operators_remembered * caps.per_address + 8;
+  new_task_queue = [workers] { return new ConnectionWorkers(workers); };
+}
+
+void GuardedServer::widen_backlog() {
+  const socket_t sock = svr_sock_.load();
+  if (sock != INVALID_SOCKET) ::listen(sock, SOMAXCONN);
+}
+
+bool GuardedServer::process_and_close_socket(socket_t sock) {
+  const std::string address = address_of(sock, true);
+  const Ticket ticket = limits_.admit(address);
+  bool served = false;
+  if (ticket.admission == Admission::kAddressFull) {
+    refuse(sock, 429, "Too Many Requests",
+           "refused: " + std::to_string(limits_.caps().per_address) +
+               " connections from this address are open already\n");
+  } else if (ticket.admission == Admission::kServerFull) {
+    refuse(sock, 503, "Service Unavailable", "refused: the console is busy; try again\n");
+  } else {
+    served = serve(sock);
+  }
+  limits_.release(address, ticket);
+  shutdown(sock, SHUT_RDWR);
+  close(sock);
+  return served;
+}
+
+bool GuardedServer::serve(socket_t sock) {
+  BoundedStream stream(sock, svr_sock_, times_);
+  bool ok = false;
+  for (std::size_t n = 0; n < times_.requests_per_connection; ++n) {
+    if (!stream.next_request_arrives()) break;
+    stream.next_request();
+    bool closed = false;
+    ok = process_request(stream, n + 1 == times_.requests_per_connection, closed, nullptr);
+    if (!ok || closed || stream.cut()) break;
+  }
+  return ok;
+}
+
+}  // namespace planter::console

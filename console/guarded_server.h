@@ -1,0 +1,69 @@
+#pragma once
+// cpp-httplib's server with the connection handling replaced by one that holds on the farm's
+// network (issue 28, items 1-2). cpp-httplib parses the requests and routes them; what it lacks
+// is bounded here:
+// - admission before a byte is read: ConnectionLimits' caps per address and in all, a refused
+//   connection answered 503 at once and closed, on a worker kept free for it;
+// - every request read within a deadline from its first byte (a slow sender is cut), an idle
+//   keep-alive connection closed after a few seconds, every response written within a deadline;
+// - at most a fixed number of bytes read for one request, headers and body together, however
+//   many header lines are sent: past that the request is answered 431 and the connection closed,
+//   so memory stays bounded whatever arrives;
+// - a fixed pool of workers (never one per connection) larger than the admitted connections, so
+//   a refusal never waits behind a slow connection.
+#include <httplib.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "console/connection_limits.h"
+
+namespace planter::console {
+
+struct ConnectionTimes {
+  std::chrono::milliseconds request_read{10000};  // first byte to the end of the body
+  std::chrono::milliseconds idle{5000};           // between requests on one connection
+  std::chrono::milliseconds response_write{10000};
+  std::size_t request_bytes = 64 * 1024;  // request line, headers and body
+  std::size_t requests_per_connection = 50;
+};
+
+// A fixed pool: the accepting thread hands it each connection.
+class ConnectionWorkers : public httplib::TaskQueue {
+ public:
+  explicit ConnectionWorkers(std::size_t workers);
+  ~ConnectionWorkers() override;
+  void enqueue(std::function<void()> fn) override;
+  void shutdown() override;
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<std::function<void()>> jobs_;
+  bool stop_ = false;
+  std::vector<std::thread> threads_;
+};
+
+class GuardedServer : public httplib::Server {
+ public:
+  GuardedServer(ConnectionLimits& limits, ConnectionTimes times);
+  // After binding: the kernel's queue of connections not yet accepted as long as it allows
+  // (cpp-httplib asks for 5, which a burst of refused connections fills).
+  void widen_backlog();
+
+ private:
+  bool process_and_close_socket(socket_t sock) override;
+  bool serve(socket_t sock);
+
+  ConnectionLimits& limits_;
+  ConnectionTimes times_;
+};
+
+}  // namespace planter::console

@@ -1,0 +1,65 @@
+// Who may hold a console connection (console/connection_limits.h): a cap per address and in all,
+// and the operator's address past the total, so others' connections cannot keep it from Stop.
+#include "console/connection_limits.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace planter::console {
+namespace {
+
+TEST(ConnectionLimits, OneAddressGetsItsShareAndNoMore) {
+  ConnectionLimits limits(ConnectionCaps{3, 10, 2});
+  std::vector<Ticket> held;
+  for (int i = 0; i < 3; ++i) held.push_back(limits.admit("10.0.0.9"));
+  for (const Ticket& t : held) EXPECT_EQ(t.admission, Admission::kAdmitted);
+  EXPECT_EQ(limits.admit("10.0.0.9").admission, Admission::kAddressFull);
+  EXPECT_EQ(limits.admit("10.0.0.8").admission, Admission::kAdmitted) << "another address";
+  limits.release("10.0.0.9", held.back());
+  EXPECT_EQ(limits.admit("10.0.0.9").admission, Admission::kAdmitted) << "a slot given back";
+}
+
+TEST(ConnectionLimits, ACrowdFillsTheTotalButNotTheOperatorsWay) {
+  ConnectionLimits limits(ConnectionCaps{2, 4, 2});
+  limits.remember_operator("192.168.1.20");
+  for (int a = 0; a < 2; ++a)
+    for (int i = 0; i < 2; ++i)
+      EXPECT_EQ(limits.admit("10.0.0." + std::to_string(a)).admission, Admission::kAdmitted);
+  EXPECT_EQ(limits.admit("10.0.0.7").admission, Admission::kServerFull);
+  const Ticket op = limits.admit("192.168.1.20");
+  EXPECT_EQ(op.admission, Admission::kAdmitted);
+  EXPECT_FALSE(op.counted);
+  EXPECT_EQ(limits.admit("192.168.1.20").admission, Admission::kAdmitted);
+  EXPECT_EQ(limits.admit("192.168.1.20").admission, Admission::kAddressFull)
+      << "the operator's own share is capped too";
+  EXPECT_EQ(limits.open(), 6u);
+  // Its connection given back does not free a slot of the total for the crowd.
+  limits.release("192.168.1.20", op);
+  EXPECT_EQ(limits.admit("10.0.0.7").admission, Admission::kServerFull);
+}
+
+TEST(ConnectionLimits, OnlyTheNewestOperatorsAreRemembered) {
+  ConnectionLimits limits(ConnectionCaps{1, 1, 2});
+  ASSERT_EQ(limits.admit("10.0.0.1").admission, Admission::kAdmitted);  // the total is full
+  for (const char* a : {"a", "b", "c"}) limits.remember_operator(a);
+  EXPECT_EQ(limits.admit("a").admission, Admission::kServerFull) << "forgotten";
+  EXPECT_EQ(limits.admit("b").admission, Admission::kAdmitted);
+  EXPECT_EQ(limits.admit("c").admission, Admission::kAdmitted);
+}
+
+TEST(ConnectionLimits, ATicketCountedOnceIsGivenBackOnceWhateverHappenedBetween) {
+  ConnectionLimits limits(ConnectionCaps{4, 1, 2});
+  const Ticket t = limits.admit("10.0.0.1");
+  ASSERT_TRUE(t.counted);
+  limits.remember_operator("10.0.0.1");  // logged in while connected
+  limits.release("10.0.0.1", t);
+  EXPECT_EQ(limits.open(), 0u);
+  EXPECT_EQ(limits.admit("10.0.0.2").admission, Admission::kAdmitted) << "the total is free";
+  limits.release("10.0.0.3", Ticket{});  // a refused one gives nothing back
+  EXPECT_EQ(limits.admit("10.0.0.4").admission, Admission::kServerFull);
+}
+
+}  // namespace
+}  // namespace planter::console

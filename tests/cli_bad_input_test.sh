@@ -105,6 +105,15 @@ printf '[[channel]]\noutput = "omega"\nsubsystem = "disc drive"\nT_d = 0.19\nome
 expect replay-no-channel "unknown.csv: has none of the model's channels; nothing to replay" -- \
   "$sim" replay "$tmp/model.toml" "$tmp/unknown.csv" --out "$tmp/rp"
 [ ! -e "$tmp/rp/replay.csv" ] || { echo "FAIL replay-no-channel: replay.csv written"; fail=1; }
+# Issue 28, item 15: an effect on a channel planter-fit never puts it on, and a channel named
+# twice, were replayed as if they meant something.
+{ echo "t,omega_cmd,omega"; for i in $(seq 0 99); do echo "$i.5,0.3,0.3"; done; } >"$tmp/omega.csv"
+{ cat "$tmp/model.toml"; printf '[[channel.effect]]\nname = "Coulomb friction"\ncoulomb = 1.0\n'; } >"$tmp/wrong-effect.toml"
+expect replay-wrong-effect "wrong-effect.toml:7: 'name': 'Coulomb friction' is not an effect of channel 'omega'" -- \
+  "$sim" replay "$tmp/wrong-effect.toml" "$tmp/omega.csv" --out "$tmp/rp2"
+{ cat "$tmp/model.toml" "$tmp/model.toml"; } >"$tmp/twice.toml"
+expect replay-channel-twice "twice.toml:7: 'channel\\[1\\]\\.output': 'omega' has a \[\[channel\]\] table already" -- \
+  "$sim" replay "$tmp/twice.toml" "$tmp/omega.csv" --out "$tmp/rp3"
 mkdir -p "$tmp/busy" && echo mine >"$tmp/busy/notes.txt"
 want_rc=1 expect replay-busy-out "busy: holds files that are not the output of 'planter-sim replay'" -- \
   "$sim" replay "$tmp/model.toml" "$tmp/unknown.csv" --out "$tmp/busy"

@@ -1,5 +1,6 @@
 #include "sim/analysis/model_file.h"
 
+#include <algorithm>
 #include <cctype>
 
 #include "config/toml_section.h"
@@ -33,6 +34,9 @@ std::vector<ModelChannel> load_augmented_model(const std::string& path) {
     for (const ChannelModel* ch : all_channels())
       if (ch->output() == output) m.channel = ch;
     if (!m.channel) t.fail("output", "'" + output + "' is no channel planter-fit knows");
+    for (const ModelChannel& before : out)
+      if (before.channel == m.channel)
+        t.fail("output", "'" + output + "' has a [[channel]] table already: one per channel");
     (void)t.string("subsystem", "");
     for (const ParamSpec& p : m.channel->nominal_params())
       m.nominal.push_back(t.required_number(model_key(p.name), p.lower, p.upper, p.unit.c_str()));
@@ -41,6 +45,7 @@ std::vector<ModelChannel> load_augmented_model(const std::string& path) {
       const EffectSpec* spec = spec_named(name);
       if (!spec) e.fail("name", "'" + name + "' is no effect of the library");
       Effect fx{spec, {}};
+      m.effect_lines.push_back(e.line_of("name"));
       for (const ParamSpec& p : spec->params) {
         // Grid ones, and those bounded relative to the output's size, scale with the data.
         const bool scales = p.of_output_size || !(p.upper > p.lower);
@@ -57,6 +62,22 @@ std::vector<ModelChannel> load_augmented_model(const std::string& path) {
   root.reject_unknown_keys();
   if (out.empty()) throw config::ConfigError(path, 1, "channel", "no [[channel]] table");
   return out;
+}
+
+void check_effects_belong(const std::string& path, const std::vector<ModelChannel>& model,
+                          const Recording& r) {
+  for (const ModelChannel& m : model) {
+    const std::vector<const EffectSpec*> tried = m.channel->candidates(r);
+    for (std::size_t i = 0; i < m.effects.size(); ++i) {
+      if (std::find(tried.begin(), tried.end(), m.effects[i].spec) != tried.end()) continue;
+      std::string names;
+      for (const EffectSpec* s : tried) names += (names.empty() ? "" : ", ") + s->name;
+      throw config::ConfigError(path, i < m.effect_lines.size() ? m.effect_lines[i] : 0, "name",
+                                "'" + m.effects[i].spec->name + "' is not an effect of channel '" +
+                                    m.channel->output() +
+                                    "' (with this recording's columns it takes: " + names + ")");
+    }
+  }
 }
 
 }  // namespace planter::analysis

@@ -17,6 +17,7 @@ int run_replay(const std::string& model_path, const std::string& recording_path,
   config::OutputSet out(out_dir, "planter-sim replay", force);
   const std::vector<ModelChannel> model = load_augmented_model(model_path);
   const Recording rec = load_recording(recording_path);
+  check_effects_belong(model_path, model, rec);
   std::vector<const ModelChannel*> used;
   std::vector<std::vector<double>> sims;
   for (const auto& m : model) {

@@ -146,6 +146,30 @@ TEST(SeedlingRelease, AWeakGripLetsTheSoilTurnTheSeedlingInTheClamp) {
   EXPECT_LT(weak, firm - 2.0) << "firm " << firm << " weak " << weak;
 }
 
+// Before the grip gives, the seedling turns with the lips as far as their rubber shears: the
+// elastic turn is the soil's moment over 2 G A (w^2 + d^2) / (12 h), whatever the clamp's
+// compression law (which presses the lips together and has no say in their turning).
+TEST(SeedlingRelease, TheLipsTurnElasticallyByTheirRubbersShearStiffness) {
+  PlantConfig config;
+  ReleaseInput in = centre(1.5);
+  in.clamp_force_N = 400.0;  // a grip the soil never beats: the turn is elastic alone
+  const double base = release_seedling(config, in).clamp_turn_deg;
+  ASSERT_GT(std::abs(base), 0.05);
+  config.mechanism.lip_shear_modulus_MPa *= 2.0;
+  EXPECT_NEAR(release_seedling(config, in).clamp_turn_deg, base / 2.0, 1e-9);
+  config.mechanism.lip_shear_modulus_MPa /= 2.0;
+  config.mechanism.lip_shear_layer_mm *= 2.0;
+  EXPECT_NEAR(release_seedling(config, in).clamp_turn_deg, base * 2.0, 1e-9);
+  config.mechanism.lip_shear_layer_mm /= 2.0;
+  config.drive.clamp_k_N *= 3.0;
+  config.drive.clamp_n = 2.0;
+  EXPECT_NEAR(release_seedling(config, in).clamp_turn_deg, base, 1e-12);
+  // The stiffness itself: a 245 mm^2 patch on a 10 mm stem, 24.5 mm long.
+  const double w = 0.0245, d = 0.010;
+  EXPECT_NEAR(lip_turning_stiffness_Nm_per_rad(config.mechanism, 10.0),
+              2.0 * 1e6 * w * d * (w * w + d * d) / (12.0 * 0.010), 1e-9);
+}
+
 }  // namespace
 }  // namespace planter::sim
 

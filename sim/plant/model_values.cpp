@@ -47,6 +47,14 @@ const std::array kValues{
     ModelValue{"mechanism.lip_friction", "", O::measured, 0.2, 0.3,
                "the paper, Sec. 3.4: seedling on silicone rubber, static friction 0.2-0.3",
                [](PlantConfig& c) -> double& { return c.mechanism.lip_friction; }},
+    ModelValue{"mechanism.lip_shear_modulus_MPa", "MPa", O::assumed, 0.3, 2.9,
+               "assumed: silicone rubber, Shore 30-70A; the paper's Sec. 3.3 gives 2.9 GPa, a "
+               "thousand times a rubber's, read here as 2.9 MPa (the range's top)",
+               [](PlantConfig& c) -> double& { return c.mechanism.lip_shear_modulus_MPa; }},
+    ModelValue{"mechanism.lip_shear_layer_mm", "mm", O::assumed, 3.0, 20.0,
+               "assumed: the rubber sheared under the contact, from the 3 mm pad (the paper, "
+               "Sec. 3.3) to the 20 mm protrusions (Sec. 3.1)",
+               [](PlantConfig& c) -> double& { return c.mechanism.lip_shear_layer_mm; }},
     ModelValue{"mechanism.protrusion_band_mm", "mm", O::design, 20.0, 40.0,
                "the paper, Sec. 3.1 and 5: protrusions over a 40 mm band (20 mm the other "
                "arrangement tried)",

@@ -106,6 +106,9 @@ struct MechanismConfig {
   double root_protrusion_mm = 70.0;          // assumed: root end beyond the disc rim
   double backflow_fill = 0.5;  // assumed: share of the furrow refilled at the seedling
   double lip_friction = 0.25;  // seedling on silicone rubber, the paper's 0.2-0.3
+  // The lips' elastic turn before the grip gives: the rubber under the contact in shear.
+  double lip_shear_modulus_MPa = 1.0;  // assumed: silicone rubber (the paper's "2.9 GPa" cannot be)
+  double lip_shear_layer_mm = 10.0;    // assumed: from the 3 mm pad to the 20 mm protrusions
 };
 
 struct DriveModelConfig {

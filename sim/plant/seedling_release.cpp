@@ -25,6 +25,13 @@ double held_length_m(const MechanismConfig& mc, double diameter_mm) {
   return std::min(mc.contact_area_mm2 / std::max(0.1, diameter_mm), mc.protrusion_band_mm) * 1e-3;
 }
 
+double lip_turning_stiffness_Nm_per_rad(const MechanismConfig& mc, double diameter_mm) {
+  const double w = held_length_m(mc, diameter_mm), d = std::max(0.1, diameter_mm) * 1e-3;
+  const double area = w * d;  // per face
+  return 2.0 * mc.lip_shear_modulus_MPa * 1e6 * area * (w * w + d * d) /
+         (12.0 * std::max(1e-6, mc.lip_shear_layer_mm * 1e-3));
+}
+
 double carry_grip_needed_N(const PlantConfig& config, double length_mm, double diameter_mm,
                            double omega_radps) {
   const MechanismConfig& mc = config.mechanism;
@@ -87,17 +94,18 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
     return std::max(0.0, backflow_level - (floor - root_depth));
   };
 
-  // 1. Held: from where the root end reaches the surface to the release. The lips are a
-  // distributed spring over the held length w: the clamp law's local stiffness dF/dx = n F / x
-  // ([plant] clamp_k_N, clamp_n) spread over w resists turning with k w^2 / 12.
+  // 1. Held: from where the root end reaches the surface to the release. Before the grip gives,
+  // the lips turn with the seedling elastically: turning the stem in the disc's plane shears the
+  // rubber under the contact in that plane (the faces do not compress), so the stiffness is the
+  // rubber's shear law, tau = G gamma over the sheared layer h (Gent, Engineering with Rubber,
+  // ch. 3: a thin layer in simple shear). A patch of area A (w long, d wide) on each of two faces
+  // turned by phi moves a point at r by r phi: k = 2 G A (w^2 + d^2) / (12 h).
   const double entry = -std::acos(std::clamp((hub_height) / (r_rim + protrusion), -1.0, 1.0));
   const double held_length = held_length_m(mc, in.diameter_mm);
   const double grip_N = 2.0 * mc.lip_friction * clamp_N;  // both faces
   const double hold_Nm = grip_N * held_length / 4.0;      // mu N w / 2
-  const DriveModelConfig& dr = config.drive;
-  const double lip_compression_mm = std::pow(clamp_N / dr.clamp_k_N, 1.0 / dr.clamp_n);
-  const double lip_N_per_m = 1e3 * dr.clamp_n * clamp_N / std::max(0.1, lip_compression_mm);
-  const double lip_Nm_per_rad = std::max(1e-6, lip_N_per_m * held_length * held_length / 12.0);
+  const double lip_Nm_per_rad =
+      std::max(1e-6, lip_turning_stiffness_Nm_per_rad(mc, in.diameter_mm));
   double elastic = 0.0;  // the lips' elastic give, at the release
   for (double theta = entry; theta < theta_r; theta += dtheta) {
     const double b = embedded(burial(theta));

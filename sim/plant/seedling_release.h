@@ -15,7 +15,8 @@
 //  1. Held: the root end follows the trochoid of radius R + protrusion at the actual v and
 //     omega. Once below the surface it is dragged through the returned soil (the plowing force,
 //     sim/soil/root_anchorage.h), against its motion. Across the rod, the lips resist turning
-//     with a friction moment mu N w / 2 (N on each of two faces, uniform over the held length
+//     elastically, shearing the rubber under the contact (G, over its sheared layer), up to a
+//     friction moment mu N w / 2 (N on each of two faces, uniform over the held length
 //     w = contact area / diameter): when the soil's moment about the clamp is larger, the root
 //     stays where the soil holds it and the seedling turns in the clamp (the paper, Sec. 4.3).
 //     Along the rod, the same friction 2 mu N holds it: when the soil's axial share is larger,
@@ -64,6 +65,10 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
 // The held length of stem between the lips (m): contact area / diameter, at most the band of
 // flexible protrusions.
 double held_length_m(const MechanismConfig& mc, double diameter_mm);
+
+// The lips' elastic stiffness against the seedling turning in the disc's plane (N m/rad): the
+// rubber under both faces' contact patches in simple shear.
+double lip_turning_stiffness_Nm_per_rad(const MechanismConfig& mc, double diameter_mm);
 
 // The clamp force (N) below which a seedling of this size drops from the clamp during the
 // carry at disc speed omega: its weight and accelerations over the two faces' friction.

@@ -71,7 +71,8 @@ std::vector<std::string> model_assumptions(const Scenario& sc) {
              "with the opener (the paper, Fig. 2), the root end's lowest point %.0f mm above the "
              "furrow floor. Carried by friction on both lip faces (mu %.2f, the paper's 0.2-0.3); "
              "the root plowed through the returned soil turns it in the clamp when the soil's "
-             "moment beats mu N w / 2, and slides it along the clamp when the soil's push beats "
+             "moment beats mu N w / 2 (before that the lips turn with it, their rubber in shear: G "
+             "%.2f MPa over %.0f mm), and slides it along the clamp when the soil's push beats "
              "2 mu N; released %.1f deg past the lowest point, the leaves dragged by the lips with "
              "%.3f of the clamp force until the top leaves the disc, against the root's anchorage "
              "in c-phi soil (Broms' short pile with Rankine-Bell's passive pressure: returned soil "
@@ -82,7 +83,8 @@ std::vector<std::string> model_assumptions(const Scenario& sc) {
              "(1 value): the scatter the stages leave out, %.1f deg. Uprightness = mean of (1 - "
              "|tilt| / 90 deg), the paper's definition.",
              p.seedlings.density_kg_per_m3, m.root_protrusion_mm, m.root_clearance_mm,
-             m.lip_friction, m.release_after_lowest_deg, m.residual_grip_share,
+             m.lip_friction, m.lip_shear_modulus_MPa, m.lip_shear_layer_mm,
+             m.release_after_lowest_deg, m.residual_grip_share,
              p.soil.backflow.unit_weight_kN_per_m3, p.soil.backflow.friction_angle_deg,
              p.soil.backflow.cohesion_kPa, m.covering_wheel_behind_mm,
              p.soil.firmed.unit_weight_kN_per_m3, p.soil.firmed.cohesion_kPa,

@@ -177,6 +177,9 @@ Scenario load_scenario(const std::string& path) {
     m.residual_grip_share = t->number("residual_grip_share", m.residual_grip_share, 0.0, 1.0);
     m.root_protrusion_mm = t->number("root_protrusion_mm", m.root_protrusion_mm, 10.0, 200.0, "mm");
     m.lip_friction = t->number("lip_friction", m.lip_friction, 0.0, 2.0);
+    m.lip_shear_modulus_MPa =
+        t->number("lip_shear_modulus_MPa", m.lip_shear_modulus_MPa, 0.01, 100.0, "MPa");
+    m.lip_shear_layer_mm = t->number("lip_shear_layer_mm", m.lip_shear_layer_mm, 0.5, 100.0, "mm");
     m.backflow_fill = t->number("backflow_fill", m.backflow_fill, 0.0, 1.0);
     t->reject_unknown_keys();
   }

@@ -39,6 +39,9 @@ struct Common {
   std::string out;
   bool force = false;
   long max_steps = 2'000'000;  // 100x the defaults' 18000: minutes, not hours
+  // Particles x steps: the work, and with the particles the memory (about 1.6 kB a particle
+  // with its bonds and contacts). 100x the defaults' (693 x 18000): minutes, not hours.
+  double max_particle_steps = 1.25e9;
   double speedup = 0.0;
   double diameter_mm = 0.0;
 };
@@ -57,6 +60,18 @@ dem::CompressionSetup load_setup(const Common& c) {
             std::to_string(s.time_step_s) + ", speedup " + std::to_string(s.speedup) +
             "; the defaults take " + std::to_string(dem::compression_steps({})) +
             "); raise time_step_s or --speedup, or allow it with --max-steps");
+  }
+  const long particles = dem::seedling_particle_count(s.seedling);
+  const double work = static_cast<double>(particles) * static_cast<double>(steps);
+  if (work > c.max_particle_steps) {
+    char what[400];
+    std::snprintf(what, sizeof what,
+                  "one compression would take %ld particles x %ld steps = %.3g particle-steps "
+                  "(the defaults: %ld x %ld); coarser particles, a shorter seedling, a larger "
+                  "time_step_s or --speedup, or allow it with --max-particle-steps",
+                  particles, steps, work, dem::seedling_particle_count({}),
+                  dem::compression_steps({}));
+    throw config::ConfigError(c.params.empty() ? "planter-dem" : c.params, 0, "", what);
   }
   return s;
 }
@@ -184,6 +199,10 @@ int main(int argc, char** argv) {
                     "refuse a compression longer than this many time steps")
         ->capture_default_str()
         ->check(planter::config::finite_range(1L, 1'000'000'000'000L));
+    sub->add_option("--max-particle-steps", common.max_particle_steps,
+                    "refuse a compression of more particles x time steps than this")
+        ->capture_default_str()
+        ->check(planter::config::finite_range(1.0, 1e15));
     sub->add_option("--speedup", common.speedup, "platen speed over the paper's 0.2 m/min")
         ->check(planter::config::finite_range(1.0, 500.0));
     sub->add_option("--diameter-mm", common.diameter_mm, "seedling diameter")

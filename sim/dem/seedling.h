@@ -24,6 +24,10 @@ struct SeedlingBuild {
   double max_y_m = 0.0;
 };
 
+// How many particles build_seedling makes, without making them: what a run will cost is known
+// before any memory is taken.
+long seedling_particle_count(const SeedlingGeometry& g);
+
 // Adds the seedling to `world` (centred on the origin, axis along Z) and bonds it.
 SeedlingBuild build_seedling(DemWorld& world, const SeedlingGeometry& g);
 

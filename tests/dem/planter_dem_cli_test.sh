@@ -34,6 +34,10 @@ expect 2 "diameters" -- reduce --out "$work/o" --diameters-mm 8.3,abc
 expect 2 "empty.toml:1: holds no parameters" -- compress --params "$work/empty.toml" --out "$work/o"
 printf '[test]\ntime_step_s = 1e-8\n' >"$work/tiny_step.toml"
 expect 2 "one compression would take 3600000 steps" -- compress --params "$work/tiny_step.toml" --out "$work/o"
+# Issue 28, item 14: a valid file of fine particles ran 300 s at 1 GB without a word; the
+# particles count in the cost, before any memory is taken.
+printf '[seedling]\nlength_mm = 400\ndiameter_mm = 30\nparticle_radius_mm = 0.3\nlayers = 4\n' >"$work/fine.toml"
+expect 2 "one compression would take 3[0-9]* particles x 18000 steps" -- compress --params "$work/fine.toml" --out "$work/o"
 mkfifo "$work/fifo.toml"
 expect 2 "fifo.toml: is a FIFO, not a regular file" -- compress --params "$work/fifo.toml" --out "$work/o"
 [ -e "$work/o" ] && { echo "FAIL: refused runs left $work/o"; fails=$((fails + 1)); }

@@ -172,6 +172,33 @@ TEST(BoardConfig, DuplicateNodeIdAndBadPdoEntry) {
   EXPECT_NE(e.find("nodes.force_sensor.tpdo1"), std::string::npos) << e;
 }
 
+// Issue 28, item 12: mappings the node cannot serve passed the loader and failed the boot (or,
+// for sync_period_ms = 1000, made every PDO stale). Each is refused with the entry and why.
+TEST(BoardConfig, AMappingTheNodesProfileCannotServeIsRefusedAtLoad) {
+  auto refused = [](const std::string& pattern, const std::string& replacement,
+                    const std::string& key, const std::string& why) {
+    const std::string e = error_of(board_with(pattern, replacement));
+    EXPECT_NE(e.find(key), std::string::npos) << e;
+    EXPECT_NE(e.find(why), std::string::npos) << e;
+  };
+  refused("\"6077:00:16\"\\]\n\n\\[nodes.roller", "\"1234:05:16\"]\n\n[nodes.roller",
+          "nodes.disc_drive.tpdo2", "a communication object (0x1000-0x1FFF) is not mapped");
+  refused("\"6077:00:16\"\\]\n\n\\[nodes.roller", "\"6099:00:16\"]\n\n[nodes.roller",
+          "nodes.disc_drive.tpdo2", "no such object in the node's device profile (CiA 402)");
+  refused("\"7130:01:16\"", "\"6138:01:32\"", "nodes.force_sensor.tpdo1",
+          "the object is write-only: a TPDO cannot send it");
+  refused("rpdo1 = \\[\"6040:00:16\", \"60FF:00:32\"\\]",
+          "rpdo1 = [\"6040:00:16\", \"6064:00:32\"]", "nodes.disc_drive.rpdo1",
+          "the object is read-only: an RPDO cannot write it");
+  refused("\"6077:00:16\"\\]\n\n\\[nodes.roller", "\"6077:00:32\"]\n\n[nodes.roller",
+          "nodes.disc_drive.tpdo2", "the object's size differs (16 bits)");
+  refused("sync_period_ms = 10 ", "sync_period_ms = 1000 ", "can.sync_period_ms",
+          "must be at least two SYNC periods");
+  // A manufacturer-specific object is the device's own: left to the boot's read-back.
+  EXPECT_NO_THROW(planter::config::load_board(
+      board_with("\"6077:00:16\"\\]\n\n\\[nodes.roller", "\"2077:00:16\"]\n\n[nodes.roller")));
+}
+
 TEST(BoardConfig, MissingFile) {
   EXPECT_NE(error_of("/nonexistent/board.toml").find("no such file"), std::string::npos);
 }

@@ -3,27 +3,22 @@
 #include <algorithm>
 #include <cmath>
 
+#include "firmware/canopen/profile_objects.h"
+
 namespace planter::sim {
 
-using canopen::Access;
 namespace c402 = canopen::cia402;
 
 Cia402DriveDevice::Cia402DriveDevice(const DeviceIdentity& identity, hal::CanBus& bus)
     : CanopenDevice(identity, bus) {
-  auto& o = od();
-  o.add(c402::kControlword, 0, 2, Access::kReadWrite, 0);
-  o.add(c402::kStatusword, 0, 2, Access::kReadOnly, c402::encode_state(state_));
-  o.add(c402::kModesOfOperation, 0, 1, Access::kReadWrite, 0);
-  o.add(c402::kModesDisplay, 0, 1, Access::kReadOnly, 0);
-  o.add(c402::kErrorCode, 0, 2, Access::kReadOnly, 0);
-  o.add(c402::kPositionActual, 0, 4, Access::kReadOnly, 0);
-  o.add(c402::kVelocityActual, 0, 4, Access::kReadOnly, 0);
-  o.add(c402::kTorqueActual, 0, 2, Access::kReadOnly, 0);
-  o.add(c402::kTargetPosition, 0, 4, Access::kReadWrite, 0);
-  o.add(c402::kProfileVelocity, 0, 4, Access::kReadWrite, 0);
-  o.add(c402::kProfileAcceleration, 0, 4, Access::kReadWrite, 0);
-  o.add(c402::kTargetVelocity, 0, 4, Access::kReadWrite, 0);
-  o.add(c402::kSupportedModes, 0, 4, Access::kConst, (1u << 0) | (1u << 2) | (1u << 5));
+  // Every object of the profile's table (firmware/canopen/profile_objects.h), so what the
+  // loader accepts in a mapping the simulated drive serves.
+  for (const canopen::ProfileObject& p : canopen::profile_objects(402)) {
+    std::uint64_t value = 0;
+    if (p.index == c402::kStatusword) value = c402::encode_state(state_);
+    if (p.index == c402::kSupportedModes) value = (1u << 0) | (1u << 2) | (1u << 5);
+    od().add(p.index, p.sub, p.size, p.access, value);
+  }
 }
 
 std::uint32_t Cia402DriveDevice::check_profile_write(const canopen::ObjectEntry& entry,
@@ -126,13 +121,13 @@ void Cia402DriveDevice::raise_fault(std::uint16_t error_code) {
 
 Cia404ForceSensor::Cia404ForceSensor(const DeviceIdentity& identity, hal::CanBus& bus)
     : CanopenDevice(identity, bus) {
-  auto& o = od();
-  o.add(0x7130, 0, 1, Access::kConst, 1);
-  o.add(0x7130, 1, 2, Access::kReadOnly, 0);            // process value, 0.1 N
-  o.add(0x6131, 1, 4, Access::kReadWrite, 0x00210000);  // unit: newton (CiA 303-2)
-  o.add(0x6132, 1, 1, Access::kReadWrite, 1);           // one decimal
-  o.add(0x6138, 1, 4, Access::kWriteOnly, 0);           // tare zero
-  o.add(0x6150, 1, 1, Access::kReadOnly, 0);            // status
+  for (const canopen::ProfileObject& p : canopen::profile_objects(404)) {
+    std::uint64_t value = 0;
+    if (p.index == 0x7130 && p.sub == 0) value = 1;  // one channel
+    if (p.index == 0x6131) value = 0x00210000;       // unit: newton (CiA 303-2)
+    if (p.index == 0x6132) value = 1;                // one decimal: the value in 0.1 N
+    od().add(p.index, p.sub, p.size, p.access, value);
+  }
 }
 
 void Cia404ForceSensor::set_force_N(double force_N) {

@@ -9,7 +9,8 @@
 // the console ten times a second, the command channel served every tick) while five clients
 // poll it as the page does (state at 5 Hz, history every 2 s; one of them logged in and
 // setting the depth every 2 s), and a sixth sends 100 wrong secrets as fast as it can a third
-// of the way in: the figures are taken with all of that going on. A window without the
+// of the way in, while others send endless header lines and hold 100 idle and 8 slow
+// connections (issue 28): the figures are taken with all of that going on. A window without the
 // console comes first (a third as long, cyclictest beside it too), and the last line compares
 // the two windows' ratios to cyclictest: the console's cost, with the machine's noise divided out.
 #include <sys/wait.h>
@@ -29,7 +30,12 @@
 #include "hal/linux/tick_trace.h"
 #include "sim/runner/lockstep_runner.h"
 #ifdef PLANTER_BENCH_CONSOLE
+#include <arpa/inet.h>
 #include <httplib.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include "console/console_server.h"
 #endif
@@ -70,6 +76,42 @@ Stats cyclictest_stats(const std::string& histfile, double max_us) {
 }
 
 #ifdef PLANTER_BENCH_CONSOLE
+// From another loopback address than the clients' (Linux answers all of 127/8): an attacker
+// on the farm's network is not the operator's phone.
+int connect_loopback(int port, const char* from) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) return -1;
+  sockaddr_in src{};
+  src.sin_family = AF_INET;
+  if (::inet_pton(AF_INET, from, &src.sin_addr) != 1 ||
+      ::bind(fd, reinterpret_cast<sockaddr*>(&src), sizeof src) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+// Whether the server closed or refused it (readable: an answer or the end); if so, reopened
+// and `start` sent. A connection still held open is left as it is.
+bool reopen_if_closed(int& fd, int port, const char* from, const std::string& start) {
+  if (fd >= 0) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 0) == 0) return false;
+    ::close(fd);
+  }
+  fd = connect_loopback(port, from);
+  if (fd >= 0 && !start.empty()) (void)!::send(fd, start.data(), start.size(), MSG_NOSIGNAL);
+  return true;
+}
+
 // The console's load, as five phones and one guesser would put it on the machine.
 class ConsoleLoad {
  public:
@@ -131,6 +173,40 @@ class ConsoleLoad {
       }
       flood_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     });
+    attack(port, loop_cpu);
+  }
+  // And what anyone on the farm's network can send meanwhile (issue 28): endless header lines,
+  // 100 idle connections and 8 slow ones, each reopened when the server closes it.
+  void attack(int port, int loop_cpu) {
+    clients_.emplace_back([this, port, loop_cpu] {
+      console::leave_the_loop(loop_cpu);
+      const std::string line = "X-Filler: " + std::string(1000, 'a') + "\r\n";
+      while (!done_) {
+        const int fd = connect_loopback(port, "127.0.0.2");
+        if (fd < 0) continue;
+        const std::string start = "GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\n";
+        bool open = ::send(fd, start.data(), start.size(), MSG_NOSIGNAL) > 0;
+        while (open && !done_) open = ::send(fd, line.data(), line.size(), MSG_NOSIGNAL) > 0;
+        cut_floods++;
+        ::close(fd);
+      }
+    });
+    clients_.emplace_back([this, port, loop_cpu] {
+      console::leave_the_loop(loop_cpu);
+      std::vector<int> idle(100, -1), slow(8, -1);
+      const std::string start = "GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\n";
+      for (int second = 0; !done_; ++second) {
+        for (int& fd : idle) reopen_if_closed(fd, port, "127.0.0.3", "");
+        for (int& fd : slow) {
+          if (reopen_if_closed(fd, port, "127.0.0.4", start)) continue;
+          if (second % 2 == 0) (void)!::send(fd, "X-Slow: 1\r\n", 11, MSG_NOSIGNAL);
+        }
+        for (int i = 0; i < 10 && !done_; ++i)
+          std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      }
+      for (int fd : idle) ::close(fd);
+      for (int fd : slow) ::close(fd);
+    });
   }
   ~ConsoleLoad() { stop(); }
   void stop() {
@@ -152,6 +228,7 @@ class ConsoleLoad {
   console::CommandChannel commands;
   std::atomic<long> pages{0}, failed{0}, commands_answered{0}, wrong{0}, limited{0};
   std::atomic<double> flood_s{0};
+  std::atomic<long> cut_floods{0};
 
  private:
   std::int64_t every_;  // ticks per console sample, as planterd's
@@ -293,16 +370,18 @@ int main(int argc, char** argv) {
   std::printf(
       "with console: 5 clients for %.0f s: %ld pages served, %ld requests failed, %ld depth "
       "commands answered, %llu samples dropped; 100 wrong secrets in %.2f s: %ld refused "
-      "(401), %ld rate-limited (429)\n",
+      "(401), %ld rate-limited (429); under attack meanwhile: %ld header floods cut, 100 idle "
+      "and 8 slow connections held\n",
       seconds, console_load.pages.load(), console_load.failed.load(),
       console_load.commands_answered.load(),
       static_cast<unsigned long long>(console_load.dropped()), console_load.flood_s.load(),
-      console_load.wrong.load(), console_load.limited.load());
+      console_load.wrong.load(), console_load.limited.load(), console_load.cut_floods.load());
   if (!report("with console", busy, cfg)) return 1;
   const double with_clients = p99_ratio(busy), without = p99_ratio(quiet);
   std::printf(
       "p99 wake-up latency ratio planterd/cyclictest: %.2f (goal <= 1.2), overruns %llu, with 5 "
-      "console clients; without them %.2f (overruns %llu): with / without %.2f (goal <= 1, no "
+      "console clients and the attack; without them %.2f (overruns %llu): with / without %.2f "
+      "(goal <= 1, no "
       "worse)\n",
       with_clients, busy.overruns, without, quiet.overruns, with_clients / without);
 #else

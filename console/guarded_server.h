@@ -57,6 +57,9 @@ class GuardedServer : public httplib::Server {
   // After binding: the kernel's queue of connections not yet accepted as long as it allows
   // (cpp-httplib asks for 5, which a burst of refused connections fills).
   void widen_backlog();
+  // What a worker does with an accepted connection, on the calling thread: admits it, serves
+  // it within the bounds, closes it (the fuzz target feeds it one, tests/fuzz).
+  bool serve_connection(socket_t sock) { return process_and_close_socket(sock); }
 
  private:
   bool process_and_close_socket(socket_t sock) override;

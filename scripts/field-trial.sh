@@ -23,4 +23,4 @@ if ! PLANTER_BUILD_TARGETS=planter-sim "$root/scripts/setup.sh" "$root/build" 2>
   exit 1
 fi
 echo "field-trial: running the simulated Zhangqiu field trial (30 m)" >&2
-"$root/build/sim/planter-sim" run "$root/scenarios/zhangqiu-field.toml" --out "${1:-$root/out/zhangqiu-field}"
+"$root/build/apps/planter-sim/planter-sim" run "$root/scenarios/zhangqiu-field.toml" --out "${1:-$root/out/zhangqiu-field}"

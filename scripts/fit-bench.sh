@@ -12,7 +12,7 @@ build=${1:-$root/build}
 out=$build/fit-bench
 mkdir -p "$out"
 source "$root/scripts/fit-base-scenario.sh"
-sim=$build/sim/planter-sim
+sim=$build/apps/planter-sim/planter-sim
 fit=$build/apps/planter-fit/planter-fit
 rows=60000  # 10 minutes at 100 Hz: one copy, and planter-fit's window
 for run in relaxed stiffer; do

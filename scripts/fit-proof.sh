@@ -9,7 +9,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 out=${2:-$build/fit-proof}
 mkdir -p "$out"
-sim=$build/sim/planter-sim
+sim=$build/apps/planter-sim/planter-sim
 fit=$build/apps/planter-fit/planter-fit
 # The base scenario (scripts/fit-base-scenario.sh): the field scenario on 15 m, clean.
 source "$root/scripts/fit-base-scenario.sh"

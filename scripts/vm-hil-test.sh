@@ -5,7 +5,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:-$root/build}" && pwd)
-[ -x "$build/apps/planterd/planterd" ] && [ -x "$build/sim/planter-sim" ] ||
+[ -x "$build/apps/planterd/planterd" ] && [ -x "$build/apps/planter-sim/planter-sim" ] ||
   { echo "vm-hil-test: build planterd and planter-sim first (scripts/setup.sh)" >&2; exit 1; }
 "$root/scripts/apt-install.sh" vm-hil-test python3 python3-can
 # The package the VM installs: this build's, made again when planterd is newer than it.

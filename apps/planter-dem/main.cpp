@@ -16,10 +16,10 @@
 #include "config/cli_range.h"
 #include "config/config_error.h"
 #include "config/durable_file.h"
-#include "sim/dem/calibration.h"
-#include "sim/dem/compression_report.h"
-#include "sim/dem/dem_params.h"
-#include "sim/dem/reduced_order.h"
+#include "dem/calibration.h"
+#include "dem/compression_report.h"
+#include "dem/dem_params.h"
+#include "dem/reduced_order.h"
 
 namespace {
 

@@ -13,9 +13,9 @@
 #include "config/cli_range.h"
 #include "config/config_error.h"
 #include "config/output_set.h"
-#include "sim/analysis/day_tracks.h"
-#include "sim/analysis/fit_outputs.h"
-#include "sim/analysis/model_file.h"
+#include "analysis/day_tracks.h"
+#include "analysis/fit_outputs.h"
+#include "analysis/model_file.h"
 
 namespace {
 

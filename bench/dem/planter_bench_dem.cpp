@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/dem/compression_test.h"
+#include "dem/compression_test.h"
 
 using namespace planter::dem;
 

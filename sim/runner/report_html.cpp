@@ -5,8 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "sim/report/chart.h"
-#include "sim/report/html_text.h"
+#include "report/chart.h"
+#include "report/html_text.h"
 #include "sim/runner/recording_writer.h"
 
 namespace planter::sim {

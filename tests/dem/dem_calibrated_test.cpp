@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <string>
 
-#include "sim/dem/compression_test.h"
-#include "sim/dem/dem_params.h"
+#include "dem/compression_test.h"
+#include "dem/dem_params.h"
 
 using namespace planter::dem;
 

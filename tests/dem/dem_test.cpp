@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "sim/dem/dem_world.h"
+#include "dem/dem_world.h"
 
 namespace planter::dem {
 namespace {

@@ -7,10 +7,10 @@
 #include <fstream>
 
 #include "config/config_error.h"
-#include "sim/dem/calibration.h"
-#include "sim/dem/dem_params.h"
-#include "sim/dem/seedling.h"
-#include "sim/doe/doe.h"
+#include "dem/calibration.h"
+#include "dem/dem_params.h"
+#include "dem/seedling.h"
+#include "doe/doe.h"
 #include "sim/seedling/seedling_force_model.h"
 
 using namespace planter;

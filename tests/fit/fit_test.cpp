@@ -7,13 +7,13 @@
 #include <random>
 #include <sstream>
 
-#include "sim/analysis/at_rest.h"
-#include "sim/analysis/channel_fit.h"
-#include "sim/analysis/day_tracks.h"
-#include "sim/analysis/decimation.h"
-#include "sim/analysis/fit_outputs.h"
-#include "sim/analysis/mismatch.h"
-#include "sim/analysis/model_file.h"
+#include "analysis/at_rest.h"
+#include "analysis/channel_fit.h"
+#include "analysis/day_tracks.h"
+#include "analysis/decimation.h"
+#include "analysis/fit_outputs.h"
+#include "analysis/mismatch.h"
+#include "analysis/model_file.h"
 
 using namespace planter::analysis;
 

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "config/config_error.h"
-#include "sim/analysis/model_file.h"
-#include "sim/dem/dem_params.h"
+#include "analysis/model_file.h"
+#include "dem/dem_params.h"
 #include "sim/runner/scenario.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

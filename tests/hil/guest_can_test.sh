@@ -7,7 +7,7 @@
 set -u
 R=$1
 B=$2
-SIM=$B/sim/planter-sim
+SIM=$B/apps/planter-sim/planter-sim
 PLANTERD=$B/apps/planterd/planterd
 # A copy of the board, its calibration (which the calibrations write) and the machines.
 rm -rf d && mkdir d && cp "$R/boards/vm-hil/board.toml" "$R/boards/vm-hil/calibration.toml" d/ &&

@@ -9,7 +9,7 @@ B=$2
 DEB=$3
 BOARD=$R/boards/vm-hil/board.toml
 PLANTERD=$B/apps/planterd/planterd
-SIM=$B/sim/planter-sim
+SIM=$B/apps/planter-sim/planter-sim
 fail=0
 note() { echo "hil: $*"; }
 

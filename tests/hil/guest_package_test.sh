@@ -14,7 +14,7 @@ set -u
 R=$1
 B=$2
 DEB=$3
-SIM=$B/sim/planter-sim
+SIM=$B/apps/planter-sim/planter-sim
 note() { echo "hil: $*"; }
 fail=0
 P=/tmp/package-root

@@ -1,0 +1,341 @@
+#include "analysis/channel_fit.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "analysis/residual_stats.h"
+
+namespace planter::analysis {
+namespace {
+
+// Where each free parameter lives: the nominal vector or an effect's values.
+using Layout = ParameterLayout;
+
+Layout layout(std::vector<double>& nominal, std::vector<Effect>& effects,
+              const std::vector<ParamSpec>& nominal_specs, bool include_grid) {
+  Layout l;
+  for (std::size_t k = 0; k < nominal.size(); ++k) {
+    l.slots.push_back(&nominal[k]);
+    l.specs.push_back(nominal_specs[k]);
+  }
+  for (auto& e : effects) {
+    for (std::size_t k = 0; k < e.values.size(); ++k) {
+      if (e.spec->params[k].grid && !include_grid) continue;
+      l.slots.push_back(&e.values[k]);
+      l.specs.push_back(e.spec->params[k]);
+    }
+  }
+  return l;
+}
+
+// The calibration rows the fit sees: at most about 4000, none from a left-out fold.
+std::vector<std::size_t> rows(const Split& split) {
+  const std::size_t end = split.calibration_end;
+  const std::size_t stride = std::max<std::size_t>(1, end / 4000);
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < end; k += stride)
+    if (k < split.fold_from || k >= split.fold_to) out.push_back(k);
+  return out;
+}
+
+struct SimulationError {
+  const ChannelModel* channel;
+  const Recording* rec;
+  const std::vector<double>* y;
+  const std::vector<std::size_t>* at;
+  mutable std::vector<double> nominal;
+  mutable std::vector<Effect> effects;
+  Layout* lay;  // points into nominal/effects above
+  bool operator()(double const* const* p, double* residual) const {
+    for (std::size_t k = 0; k < lay->slots.size(); ++k) *lay->slots[k] = p[0][k];
+    std::vector<double> pred;
+    channel->simulate(*rec, nominal, effects, pred);
+    for (std::size_t i = 0; i < at->size(); ++i) {
+      const double e = pred[(*at)[i]] - (*y)[(*at)[i]];
+      residual[i] = std::isfinite(e) ? e : 1e6;
+    }
+    return true;
+  }
+};
+
+// Solves the smooth parameters with the grid ones fixed; returns the calibration RSS.
+double solve(const ChannelModel& ch, const Recording& r, const Split& split,
+             std::vector<double>& nominal, std::vector<Effect>& effects, double huber,
+             std::vector<double>* sd) {
+  const std::vector<double>& y = r.at(ch.output());
+  const std::vector<std::size_t> at = rows(split);
+  auto* functor = new SimulationError{&ch, &r, &y, &at, nominal, effects, nullptr};
+  Layout lay = layout(functor->nominal, functor->effects, ch.nominal_params(), false);
+  functor->lay = &lay;
+  bounds_for_output(lay.specs, y);
+  std::vector<double> x(lay.slots.size());
+  for (std::size_t k = 0; k < x.size(); ++k) x[k] = *lay.slots[k];
+  if (!x.empty()) {
+    auto* cost =
+        new ceres::DynamicNumericDiffCostFunction<SimulationError>(functor, ceres::TAKE_OWNERSHIP);
+    cost->AddParameterBlock(static_cast<int>(x.size()));
+    cost->SetNumResiduals(static_cast<int>(at.size()));
+    ceres::Problem problem;
+    problem.AddResidualBlock(cost, huber > 0 ? new ceres::HuberLoss(huber) : nullptr, x.data());
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      x[k] = std::clamp(x[k], lay.specs[k].lower, lay.specs[k].upper);
+      problem.SetParameterLowerBound(x.data(), static_cast<int>(k), lay.specs[k].lower);
+      problem.SetParameterUpperBound(x.data(), static_cast<int>(k), lay.specs[k].upper);
+    }
+    ceres::Solver::Options opt;
+    opt.max_num_iterations = 40;
+    opt.linear_solver_type = ceres::DENSE_QR;
+    opt.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(opt, &problem, &summary);
+  } else {
+    delete functor;
+    functor = nullptr;
+  }
+  // Write the solution back to the caller's vectors.
+  Layout out = layout(nominal, effects, ch.nominal_params(), false);
+  for (std::size_t k = 0; k < x.size(); ++k) *out.slots[k] = x[k];
+  std::vector<double> pred;
+  ch.simulate(r, nominal, effects, pred);
+  double rss = 0;
+  for (std::size_t i : at) rss += (pred[i] - y[i]) * (pred[i] - y[i]);
+  if (sd) {
+    // Standard deviations from the Jacobian at the solution: sigma^2 (J'J)^-1.
+    sd->assign(x.size(), 0.0);
+    if (!x.empty() && at.size() > x.size()) {
+      Eigen::MatrixXd jac(at.size(), x.size());
+      for (std::size_t c = 0; c < x.size(); ++c) {
+        const double h = std::max(1e-7, 1e-4 * std::abs(x[c]));
+        const double keep = *out.slots[c];
+        *out.slots[c] = keep + h;
+        std::vector<double> p2;
+        ch.simulate(r, nominal, effects, p2);
+        *out.slots[c] = keep;
+        for (std::size_t i = 0; i < at.size(); ++i)
+          jac(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) =
+              (p2[at[i]] - pred[at[i]]) / h;
+      }
+      const double s2 = rss / static_cast<double>(at.size() - x.size());
+      const Eigen::MatrixXd cov =
+          s2 * (jac.transpose() * jac).completeOrthogonalDecomposition().pseudoInverse();
+      for (std::size_t c = 0; c < x.size(); ++c)
+        (*sd)[c] = std::sqrt(
+            std::max(0.0, cov(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c))));
+    }
+  }
+  return rss;
+}
+
+double robust_scale(const std::vector<double>& pred, const std::vector<double>& y,
+                    std::size_t end) {
+  std::vector<double> a;
+  for (std::size_t k = 0; k < end; k += std::max<std::size_t>(1, end / 4000))
+    a.push_back(std::abs(pred[k] - y[k]));
+  if (a.empty()) return 1.0;
+  std::nth_element(a.begin(), a.begin() + static_cast<long>(a.size() / 2), a.end());
+  return std::max(1e-9, 1.4826 * a[a.size() / 2]);
+}
+
+// Standard deviations back to their owners (a grid parameter: its resolution, not a fit), the
+// prediction, its errors and the parameter count.
+void finish(const ChannelModel& ch, const Recording& r, const Split& split,
+            const std::vector<double>& sd, double resolution, ChannelFit& fit) {
+  const std::vector<double>& y = r.at(ch.output());
+  std::size_t k = 0;
+  fit.nominal_sd.assign(fit.nominal.size(), 0.0);
+  for (auto& v : fit.nominal_sd) v = sd.size() > k ? sd[k++] : 0.0;
+  fit.effect_sd.clear();
+  for (const auto& e : fit.effects) {
+    std::vector<double> s;
+    for (const auto& p : e.spec->params)
+      s.push_back(p.grid ? resolution : (sd.size() > k ? sd[k++] : 0.0));
+    fit.effect_sd.push_back(s);
+  }
+  ch.simulate(r, fit.nominal, fit.effects, fit.prediction);
+  fit.rms_calibration = rms_between(fit.prediction, y, 0, split.calibration_end);
+  fit.rms_held_out = rms_between(fit.prediction, y, split.calibration_end, y.size());
+  fit.parameters = static_cast<int>(fit.nominal.size());
+  for (const auto& e : fit.effects) fit.parameters += static_cast<int>(e.values.size());
+}
+
+}  // namespace
+
+std::size_t fitted_rows(const Split& split) { return rows(split).size(); }
+
+ParameterLayout fitted_layout(const ChannelModel& ch, ChannelFit& f) {
+  return layout(f.nominal, f.effects, ch.nominal_params(), false);
+}
+
+std::vector<FittedValue> fitted_values(const ChannelModel& ch, const ChannelFit& f) {
+  std::vector<FittedValue> out;
+  const auto specs = ch.nominal_params();
+  for (std::size_t k = 0; k < specs.size(); ++k)
+    out.push_back({specs[k].name, specs[k].unit, f.nominal[k],
+                   k < f.nominal_sd.size() ? f.nominal_sd[k] : 0.0});
+  for (std::size_t e = 0; e < f.effects.size(); ++e)
+    for (std::size_t k = 0; k < f.effects[e].values.size(); ++k) {
+      const ParamSpec& p = f.effects[e].spec->params[k];
+      if (!p.grid)
+        out.push_back({p.name, p.unit, f.effects[e].values[k],
+                       e < f.effect_sd.size() ? f.effect_sd[e][k] : 0.0});
+    }
+  return out;
+}
+
+ChannelFit refit(const ChannelModel& ch, const Recording& r, const Split& split,
+                 const ChannelFit& fit, double* rss) {
+  ChannelFit out;
+  out.nominal = fit.nominal;
+  out.effects = fit.effects;
+  const double huber = 3.0 * robust_scale(fit.prediction, r.at(ch.output()), split.calibration_end);
+  std::vector<double> sd;
+  const double sum = solve(ch, r, split, out.nominal, out.effects, huber, &sd);
+  if (rss) *rss = sum;
+  // A grid parameter keeps the resolution the original fit reached.
+  double resolution = 0.0;
+  for (std::size_t e = 0; e < fit.effects.size() && e < fit.effect_sd.size(); ++e)
+    for (std::size_t k = 0; k < fit.effects[e].values.size(); ++k)
+      if (fit.effects[e].spec->params[k].grid) resolution = fit.effect_sd[e][k];
+  finish(ch, r, split, sd, resolution, out);
+  out.bic = fit.bic;
+  return out;
+}
+
+double signal_span(const std::vector<double>& v) {
+  if (v.empty()) return 0.0;
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  return *hi - *lo;
+}
+
+Effect initial_effect(const EffectSpec& spec, const Recording& r,
+                      const std::vector<double>& residual) {
+  Effect e{&spec, {}};
+  if (spec.start != nullptr) {
+    e.values = spec.start(r, residual);
+  } else {
+    for (const auto& p : spec.params) e.values.push_back(p.initial);
+  }
+  return e;
+}
+
+void bounds_for_output(std::vector<ParamSpec>& specs, const std::vector<double>& y) {
+  double size = 0.0;
+  for (double v : y) size = std::max(size, std::abs(v));
+  size = std::max(size, 1e-9);
+  for (ParamSpec& spec : specs) {
+    if (!spec.of_output_size) continue;
+    spec.lower *= size;
+    spec.upper *= size;
+    spec.of_output_size = false;
+  }
+}
+
+ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& split,
+                       const std::vector<double>& nominal_start, std::vector<Effect> effects) {
+  const std::vector<double>& y = r.at(ch.output());
+  std::vector<double> nominal = nominal_start;
+  // Grid values for the non-smooth parameters, scaled to the data.
+  const double in_span = r.has(ch.input()) ? signal_span(r.at(ch.input())) : 1.0;
+  const double out_span = signal_span(y);
+  struct GridParam {
+    std::size_t effect, index;
+    std::vector<double> values;
+  };
+  std::vector<GridParam> grid;
+  for (std::size_t e = 0; e < effects.size(); ++e) {
+    for (std::size_t k = 0; k < effects[e].values.size(); ++k) {
+      const ParamSpec& p = effects[e].spec->params[k];
+      if (!p.grid) continue;
+      const double hi = effects[e].spec->grid_upper != nullptr
+                            ? effects[e].spec->grid_upper(in_span, out_span, y)
+                            : p.upper;
+      GridParam g{e, k, {}};
+      if (effects[e].values[k] > 0.0) {
+        // Already located (a pair refit): refine around it.
+        for (double f : {0.8, 0.9, 1.0, 1.1, 1.2}) g.values.push_back(effects[e].values[k] * f);
+      } else {
+        for (int s = 1; s <= 16; ++s) g.values.push_back(hi * s / 16.0);
+      }
+      grid.push_back(g);
+    }
+  }
+  // A first solve without the effects' help sets the Huber scale from the nominal residual.
+  std::vector<double> pred;
+  ch.simulate(r, nominal, {}, pred);
+  const double huber = 3.0 * robust_scale(pred, y, split.calibration_end);
+
+  double best_rss = std::numeric_limits<double>::infinity();
+  std::vector<double> best_nominal = nominal;
+  std::vector<Effect> best_effects = effects;
+  // Grid over every combination (at most two grid parameters in practice).
+  std::vector<std::size_t> idx(grid.size(), 0);
+  while (true) {
+    std::vector<double> nom = nominal_start;
+    std::vector<Effect> fx = effects;
+    for (std::size_t g = 0; g < grid.size(); ++g)
+      fx[grid[g].effect].values[grid[g].index] = grid[g].values[idx[g]];
+    const double rss = solve(ch, r, split, nom, fx, huber, nullptr);
+    if (rss < best_rss) {
+      best_rss = rss;
+      best_nominal = nom;
+      best_effects = fx;
+    }
+    std::size_t g = 0;
+    while (g < grid.size() && ++idx[g] == grid[g].values.size()) idx[g++] = 0;
+    if (g == grid.size()) break;
+  }
+  // A single grid parameter is refined below its grid: the step is halved three times around
+  // the best value (a delay of 80 ms on a 31 ms grid). What is left is its resolution, reported
+  // as its +-: the fit cannot place it closer.
+  double resolution = 0.0;
+  if (grid.size() == 1 && grid[0].values.size() > 1) {
+    const GridParam& g = grid[0];
+    const ParamSpec& p = effects[g.effect].spec->params[g.index];
+    const double top = *std::max_element(g.values.begin(), g.values.end());
+    double step = std::abs(g.values[1] - g.values[0]);
+    for (int round = 0; round < 3; ++round) {
+      step *= 0.5;
+      const double centre = best_effects[g.effect].values[g.index];
+      for (double v : {centre - step, centre + step}) {
+        if (v <= p.lower || v > top) continue;
+        std::vector<double> nom = nominal_start;
+        std::vector<Effect> fx = best_effects;
+        fx[g.effect].values[g.index] = v;
+        const double rss = solve(ch, r, split, nom, fx, huber, nullptr);
+        if (rss < best_rss) {
+          best_rss = rss;
+          best_nominal = nom;
+          best_effects = fx;
+        }
+      }
+    }
+    resolution = step;
+  }
+  ChannelFit fit;
+  fit.nominal = best_nominal;
+  fit.effects = best_effects;
+  std::vector<double> sd;
+  const double rss = solve(ch, r, split, fit.nominal, fit.effects, huber, &sd);
+  finish(ch, r, split, sd, resolution, fit);
+  const double n = static_cast<double>(rows(split).size());
+  fit.bic = n * std::log(std::max(rss, 1e-300) / n) + fit.parameters * std::log(n);
+  return fit;
+}
+
+double fold_rms(const ChannelModel& ch, const Recording& r, const Split& split,
+                const ChannelFit& fit) {
+  const std::vector<double>& y = r.at(ch.output());
+  std::vector<double> nominal = fit.nominal;
+  std::vector<Effect> effects = fit.effects;
+  const double huber = 3.0 * robust_scale(fit.prediction, y, split.calibration_end);
+  solve(ch, r, split, nominal, effects, huber, nullptr);
+  std::vector<double> pred;
+  ch.simulate(r, nominal, effects, pred);
+  return rms_between(pred, y, split.fold_from, split.fold_to);
+}
+
+}  // namespace planter::analysis

@@ -1,0 +1,74 @@
+#pragma once
+// Fits a channel's nominal parameters, with or without candidate effects, in simulation
+// (free-run) error form: Ceres with bounds and a Huber loss on the calibration part; the
+// non-smooth parameters (a delay, a gap, a width, a step) on a grid around the solver.
+#include <string>
+#include <vector>
+
+#include "analysis/channel_model.h"
+
+namespace planter::analysis {
+
+struct Split {
+  std::size_t calibration_end = 0;  // samples [0, end) fit; [end, n) is held out
+  // A cross-validation fold: samples [fold_from, fold_to) of the calibration part left out.
+  std::size_t fold_from = 0;
+  std::size_t fold_to = 0;
+};
+
+struct ChannelFit {
+  std::vector<double> nominal;
+  std::vector<Effect> effects;
+  std::vector<double> nominal_sd;
+  std::vector<std::vector<double>> effect_sd;
+  double rms_calibration = 0.0;
+  double rms_held_out = 0.0;
+  double bic = 0.0;  // on the calibration part, residuals thinned to about one per 0.1 s
+  int parameters = 0;
+  std::vector<double> prediction;  // over all samples
+};
+
+ChannelFit fit_channel(const ChannelModel& channel, const Recording& r, const Split& split,
+                       const std::vector<double>& nominal_start, std::vector<Effect> effects);
+
+// `fit` refitted on the calibration rows `split` keeps (a fold left out), from its own values,
+// the grid parameters kept; with standard deviations, the prediction over all samples and its
+// RMS on the held-out part. `rss` (if given) gets the RSS over the fitted rows.
+ChannelFit refit(const ChannelModel& channel, const Recording& r, const Split& split,
+                 const ChannelFit& fit, double* rss = nullptr);
+// Every fitted (non-grid) parameter of a fit, named, in a fixed order: the nominal ones, then
+// each effect's.
+struct FittedValue {
+  std::string name;
+  std::string unit;
+  double value = 0.0;
+  double sd = 0.0;
+};
+std::vector<FittedValue> fitted_values(const ChannelModel& channel, const ChannelFit& fit);
+
+// Where each fitted (non-grid) parameter of a fit lives, with its spec, in the solver's order
+// (the order of fitted_values()): to vary one parameter of a fit by hand.
+struct ParameterLayout {
+  std::vector<double*> slots;
+  std::vector<ParamSpec> specs;
+};
+ParameterLayout fitted_layout(const ChannelModel& channel, ChannelFit& fit);
+// The bounds of the parameters given relative to the output's size (ParamSpec::of_output_size)
+// made absolute for the recorded output y.
+void bounds_for_output(std::vector<ParamSpec>& specs, const std::vector<double>& y);
+
+// How many calibration rows a fit on `split` compares (the n of its BIC).
+std::size_t fitted_rows(const Split& split);
+
+// The fit refitted with a fold left out (split.fold_from..fold_to), starting from `fit`, the
+// grid parameters kept; returns the RMS error it then makes on the fold.
+double fold_rms(const ChannelModel& channel, const Recording& r, const Split& split,
+                const ChannelFit& fit);
+
+// A candidate effect with starting values fitted to this channel's nominal residual.
+Effect initial_effect(const EffectSpec& spec, const Recording& r,
+                      const std::vector<double>& residual);
+
+double signal_span(const std::vector<double>& v);
+
+}  // namespace planter::analysis

@@ -1,0 +1,107 @@
+#include "analysis/decimation.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "firmware/io/signal_table.h"
+
+namespace planter::analysis {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+
+// One second-order section, direct form II transposed.
+struct Biquad {
+  double b0, b1, b2, a1, a2;
+  // Runs over x in place, starting from the steady state of x's first value (no step at the
+  // start: the filter has always seen it).
+  void run(std::vector<double>& x) const {
+    if (x.empty()) return;
+    const double gain = (b0 + b1 + b2) / (1.0 + a1 + a2);  // 1 for a low-pass
+    const double y0 = gain * x[0];
+    double z1 = y0 - b0 * x[0];
+    double z2 = b2 * x[0] - a2 * y0;
+    for (double& v : x) {
+      const double in = v;
+      const double out = b0 * in + z1;
+      z1 = b1 * in - a1 * out + z2;
+      z2 = b2 * in - a2 * out;
+      v = out;
+    }
+  }
+};
+
+// Low-pass section with quality q, by the bilinear transform with pre-warping.
+Biquad lowpass(double cutoff_hz, double rate_hz, double q) {
+  const double k = std::tan(kPi * cutoff_hz / rate_hz);
+  const double norm = 1.0 / (1.0 + k / q + k * k);
+  const double b0 = k * k * norm;
+  return {b0, 2.0 * b0, b0, 2.0 * (k * k - 1.0) * norm, (1.0 - k / q + k * k) * norm};
+}
+
+}  // namespace
+
+void zero_phase_lowpass(std::vector<double>& x, double cutoff_hz, double rate_hz) {
+  if (x.size() < 3 || cutoff_hz <= 0.0 || cutoff_hz >= 0.5 * rate_hz) return;
+  // Fourth-order Butterworth: two sections with the poles' quality factors
+  // 1 / (2 cos(pi/8)) and 1 / (2 cos(3 pi/8)).
+  const std::array<Biquad, 2> sections{lowpass(cutoff_hz, rate_hz, 0.5411961001461969),
+                                       lowpass(cutoff_hz, rate_hz, 1.3065629648763766)};
+  for (const Biquad& s : sections) s.run(x);
+  std::reverse(x.begin(), x.end());
+  for (const Biquad& s : sections) s.run(x);
+  std::reverse(x.begin(), x.end());
+}
+
+double sample_rate_hz(const Recording& r) {
+  if (r.size() < 2) return 0.0;
+  return static_cast<double>(r.size() - 1) / (r.t.back() - r.t.front());
+}
+
+Recording decimated(const Recording& r, std::size_t stride,
+                    const std::vector<std::string>& filter) {
+  if (stride <= 1) return r;
+  Recording out;
+  out.file = r.file;
+  out.metadata = r.metadata;
+  const double rate = sample_rate_hz(r);
+  const double cutoff = kAntiAliasCutoffShare * 0.5 * rate / static_cast<double>(stride);
+  for (std::size_t k = 0; k < r.size(); k += stride) out.t.push_back(r.t[k]);
+  for (const auto& [name, v] : r.signals) {
+    auto& o = out.signals[name];
+    o.reserve(out.t.size());
+    const SignalDecl* decl = find_signal(name);
+    if (std::find(filter.begin(), filter.end(), name) == filter.end()) {
+      for (std::size_t k = 0; k < v.size(); k += stride) o.push_back(v[k]);
+    } else if (decl != nullptr && decl->commanded != nullptr) {
+      // A command is a staircase the controller held: the low-pass filter rings at its
+      // steps (a play or a dead zone then reads the ringing: a 6 mm play read 8.5 mm, issue
+      // 32), so it is averaged over each kept row's interval instead, centred on the row
+      // (no delay; half weights at the ends of an even stride). The actuator integrates the
+      // staircase; the average keeps that integral.
+      const double half = 0.5 * static_cast<double>(stride);
+      const auto reach = static_cast<std::size_t>(half);
+      for (std::size_t k = 0; k < v.size(); k += stride) {
+        double sum = 0.0, weight = 0.0;
+        const std::size_t from = k >= reach ? k - reach : 0;
+        const std::size_t to = std::min(v.size() - 1, k + reach);
+        for (std::size_t j = from; j <= to; ++j) {
+          const double distance = std::abs(static_cast<double>(j) - static_cast<double>(k));
+          const double w = distance < half ? 1.0 : 0.5;
+          sum += w * v[j];
+          weight += w;
+        }
+        o.push_back(sum / weight);
+      }
+    } else {
+      std::vector<double> smooth = v;
+      zero_phase_lowpass(smooth, cutoff, rate);
+      for (std::size_t k = 0; k < smooth.size(); k += stride) o.push_back(smooth[k]);
+    }
+  }
+  for (std::size_t k = 0; k < r.state.size(); k += stride) out.state.push_back(r.state[k]);
+  return out;
+}
+
+}  // namespace planter::analysis

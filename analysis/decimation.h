@@ -1,0 +1,31 @@
+#pragma once
+// How the analysis shortens a long recording without aliasing: each column it reads is low-pass
+// filtered with zero phase, then every k-th row is kept. A vibration above the kept rate's
+// Nyquist frequency is removed, not folded down to a false, slow one.
+#include <string>
+#include <vector>
+
+#include "analysis/recording.h"
+
+namespace planter::analysis {
+
+// The low-pass cut-off as a share of the decimated Nyquist frequency.
+inline constexpr double kAntiAliasCutoffShare = 0.8;
+
+// A fourth-order Butterworth low-pass run forwards and backwards (zero phase, eighth-order
+// magnitude; Oppenheim & Schafer, "Discrete-Time Signal Processing", 3rd ed., sec. 7.3 for the
+// bilinear design, and Gustafsson, IEEE Trans. Signal Processing 44(4), 1996, for
+// forward-backward filtering with its start-up transients removed). `cutoff_hz` and the sample
+// rate `rate_hz`; the signal is taken as evenly sampled.
+void zero_phase_lowpass(std::vector<double>& x, double cutoff_hz, double rate_hz);
+
+// Every `stride`-th row; the named columns first filtered below kAntiAliasCutoffShare of the new
+// Nyquist frequency, except a command (the signal table's commanded columns), which is averaged
+// over each kept row's interval: the filter would ring at its steps. Other columns and the
+// state are only thinned (a flag has no spectrum).
+Recording decimated(const Recording& r, std::size_t stride, const std::vector<std::string>& filter);
+
+// The mean sample rate of a recording, Hz.
+double sample_rate_hz(const Recording& r);
+
+}  // namespace planter::analysis

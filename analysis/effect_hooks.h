@@ -1,0 +1,20 @@
+#pragma once
+// Where the candidate effects act in a channel's simulation (see channel_model.h).
+#include <vector>
+
+#include "analysis/channel_model.h"
+
+namespace planter::analysis {
+
+const Effect* find_effect(const std::vector<Effect>& fx, EffectKind kind);
+// The two branches of a Prony series are interchangeable: the faster is named first.
+void order_prony_terms(std::vector<Effect>& fx, std::vector<std::vector<double>>& sd);
+// Delay, dead zone and play, applied to a recorded input.
+std::vector<double> transform_input(const Recording& r, const std::vector<double>& u,
+                                    const std::vector<Effect>& fx);
+// Everything that acts on the output; `load` (N) for sag and slip, `speed` for friction.
+void apply_output(const Recording& r, const std::vector<Effect>& fx,
+                  const std::vector<double>* load, const std::vector<double>* speed,
+                  std::vector<double>& y, const std::vector<double>* displacement = nullptr);
+
+}  // namespace planter::analysis

@@ -1,0 +1,405 @@
+// The library of named candidate effects: one entry each, holding how it acts, its bounds and
+// its starts.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "analysis/effect_hooks.h"
+#include "analysis/tones.h"
+
+namespace planter::analysis {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+// ---- How each effect acts (forms: control-engineering textbook nonlinearities, e.g.
+// Slotine & Li, "Applied Nonlinear Control", ch. 5; friction after Armstrong-Helouvry; the
+// Maxwell branch after Findley, "Creep and Relaxation of Nonlinear Viscoelastic Materials").
+
+void delay(const Recording& r, const std::vector<double>& p, std::vector<double>& u) {
+  const double tau = p[0];
+  if (tau <= 0.0) return;
+  const std::vector<double> in = u;
+  const std::size_t n = in.size();
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double when = r.t[k] - tau;
+    if (when <= r.t[0]) {
+      u[k] = in[0];
+      continue;
+    }
+    while (j + 1 < n && r.t[j + 1] < when) ++j;
+    const double a = (when - r.t[j]) / (r.t[j + 1] - r.t[j]);
+    u[k] = in[j] + a * (in[j + 1] - in[j]);
+  }
+}
+
+// The control-textbook dead zone (Tao & Kokotovic, "Adaptive Control of Systems with Actuator
+// and Sensor Nonlinearities", 1996, ch. 2): zero inside the band, the input less the band
+// beyond it. (Symmetric here: the disc's commands do not reverse, so a reverse width could not
+// be told from a recording of this machine.)
+void dead_zone(const Recording&, const std::vector<double>& p, std::vector<double>& u) {
+  if (p[0] <= 0.0) return;
+  for (auto& v : u) v = std::abs(v) <= p[0] ? 0.0 : v - std::copysign(p[0], v);
+}
+
+void backlash(const Recording&, const std::vector<double>& p, std::vector<double>& u) {
+  if (p[0] <= 0.0) return;
+  const double half = 0.5 * p[0];
+  double y = u[0];
+  for (auto& v : u) {
+    y = std::clamp(y, v - half, v + half);
+    v = y;
+  }
+}
+
+// A generalized Maxwell model (a Prony series; Findley, "Creep and Relaxation of Nonlinear
+// Viscoelastic Materials", ch. 5): each branch i follows frac_i * y with time constant tau_i and
+// is no longer carried, so a step in load gives the full force, which then decays towards
+// (1 - sum frac_i) of it. The second branch, when the fit has one, acts here with the first.
+void relaxation(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  std::vector<std::pair<double, double>> branches{{p[0], p[1]}};
+  if (c.effects != nullptr)
+    if (const Effect* second = find_effect(*c.effects, EffectKind::kRelaxation2))
+      branches.emplace_back(second->values[0], second->values[1]);
+  std::vector<double> relaxed;
+  for (const auto& [frac, tau] : branches) relaxed.push_back(frac * y[0]);
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    const double dt = k > 0 ? c.r.t[k] - c.r.t[k - 1] : 0.0;
+    double carried = y[k];
+    for (std::size_t b = 0; b < branches.size(); ++b) {
+      const auto [frac, tau] = branches[b];
+      relaxed[b] += (frac * y[k] - relaxed[b]) * std::min(1.0, dt / tau);
+      carried -= relaxed[b];
+    }
+    // A contact force cannot pull: the relaxed branches lower the output towards zero, never
+    // past it (an opened clamp reads nothing while the branches recover).
+    y[k] = y[k] >= 0.0 ? std::max(0.0, carried) : std::min(0.0, carried);
+  }
+}
+
+// Hysteresis in the Bouc-Wen form (Wen, J. Eng. Mech. Div. ASCE 102(2), 1976; the survey of
+// Ismail, Ikhouane & Rodellar, Arch. Comput. Methods Eng. 16, 2009), with n = 1 and
+// beta = gamma = 1 / (2 delta): z' = (x' - |x'| z / 2 - x' |z| / 2) / delta. Along a move in one
+// direction it is solved exactly: against the move z recovers linearly (d|z|/dx = 1/delta),
+// with it z approaches +-1 as 1 - exp(-travel / delta). It adds H z.
+void hysteresis(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  if (c.displacement == nullptr || p[0] == 0.0) return;
+  const std::vector<double>& x = *c.displacement;
+  const double height = p[0], delta = p[1];
+  double z = 0.0;
+  for (std::size_t k = 1; k < y.size(); ++k) {
+    const double dx = x[k] - x[k - 1];
+    if (dx != 0.0) {
+      const double s = dx > 0.0 ? 1.0 : -1.0;
+      double u = s * z, travel = std::abs(dx);  // u: z along the move
+      if (u < 0.0) {
+        const double to_zero = -u * delta;
+        if (travel <= to_zero) {
+          u += travel / delta;
+          travel = 0.0;
+        } else {
+          travel -= to_zero;
+          u = 0.0;
+        }
+      }
+      if (travel > 0.0) u = 1.0 - (1.0 - u) * std::exp(-travel / delta);
+      z = s * u;
+    }
+    y[k] += height * z;
+  }
+}
+
+void sag(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  if (c.load == nullptr) return;
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] -= p[0] * (*c.load)[k] / 1000.0;
+}
+
+void slip_with_draft(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  if (c.load == nullptr) return;
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] *= 1.0 - p[0] * (*c.load)[k] / 1000.0;
+}
+
+// The sign of the speed, smoothed over kFrictionSmoothing_radps: sharp, as the disc turns slowly.
+constexpr double kFrictionSmoothing_radps = 0.005;
+double friction_sign(double w) { return std::tanh(w / kFrictionSmoothing_radps); }
+
+void coulomb(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  if (c.speed == nullptr) return;
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] += p[0] * friction_sign((*c.speed)[k]);
+}
+
+// Stribeck friction in its usual exponential form (Armstrong-Helouvry, Dupont & Canudas de
+// Wit, Automatica 30(7), 1994, eq. 1): the Coulomb level plus an extra that fades with speed.
+// With no extra it is Coulomb friction, which it must then beat by a margin (mismatch.cpp).
+void stribeck(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  if (c.speed == nullptr) return;
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    const double w = (*c.speed)[k] / p[2];
+    y[k] += (p[0] + p[1] * std::exp(-w * w)) * friction_sign((*c.speed)[k]);
+  }
+}
+
+void scale(const OutputContext&, const std::vector<double>& p, std::vector<double>& y) {
+  for (auto& v : y) v *= 1.0 + p[0];
+}
+
+void offset(const OutputContext&, const std::vector<double>& p, std::vector<double>& y) {
+  for (auto& v : y) v += p[0];
+}
+
+void drift(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  for (std::size_t k = 0; k < y.size(); ++k) y[k] += p[0] * (c.r.t[k] - c.r.t[0]);
+}
+
+void periodic(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  for (std::size_t k = 0; k < y.size(); ++k)
+    y[k] += p[0] * std::sin(kTwoPi * p[1] * c.r.t[k] + p[2]);
+}
+
+// The spacing of the grid a signal's values lie on: the median gap between its distinct values
+// (a quantised sensor's step, or a tiny gap for a continuous one).
+double value_grid(const std::vector<double>& y) {
+  std::vector<double> v = y;
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  std::vector<double> gaps;
+  for (std::size_t k = 1; k < v.size(); ++k) gaps.push_back(v[k] - v[k - 1]);
+  if (gaps.empty()) return 0.0;
+  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2),
+                   gaps.end());
+  return gaps[gaps.size() / 2];
+}
+
+void quantisation(const OutputContext&, const std::vector<double>& p, std::vector<double>& y) {
+  if (p[0] <= 0.0) return;
+  for (auto& v : y) v = p[0] * std::round(v / p[0]);
+}
+
+// The periodic effect starts at the residual spectrum's peak: a coarse scan up to the analysed
+// rate's own Nyquist frequency, then a fine search around the best bin (over a long record a
+// small frequency error turns into a large phase error). Faster tones are removed before
+// decimation and looked for at the recording's rate (tones.h).
+std::vector<double> periodic_start(const Recording& r, const std::vector<double>& residual) {
+  const std::size_t n = std::min<std::size_t>(residual.size(), 40000);
+  const double duration = r.t[n - 1] - r.t[0];
+  const double f_max = 0.45 * static_cast<double>(n - 1) / duration;
+  const double coarse = std::max(0.02, 0.5 / duration);
+  double best_f = 1.0, best_a = -1.0;
+  for (double f = 0.2; f <= f_max; f += coarse) {
+    const double a = project_tone(r.t, residual, n, f).amplitude;
+    if (a > best_a) best_a = a, best_f = f;
+  }
+  const Tone tone = refine_tone(r.t, residual, n, best_f - coarse, best_f + coarse);
+  return {tone.amplitude, tone.frequency_hz, tone.phase_rad};
+}
+
+// One entry per effect, in the order they are applied: input effects, then output effects;
+// the two that change a channel's dynamics last.
+const std::vector<EffectSpec>& library() {
+  static const std::vector<EffectSpec> lib = [] {
+    std::vector<EffectSpec> l;
+    auto add = [&l](EffectSpec e) { l.push_back(std::move(e)); };
+    add({.kind = EffectKind::kDelay,
+         .name = "transport delay",
+         .signature = "residual follows the input's derivative",
+         .params = {{"delay_s", "s", 0.0, 0.0, 0.5, true}},
+         .on_input = delay,
+         .separating_experiment = "a step of the command: a delay shifts the whole response late, "
+                                  "a slower lag only rounds it"});
+    add({.kind = EffectKind::kDeadZone,
+         .name = "dead zone",
+         .signature = "no response to small inputs, the band missing from larger ones",
+         .params = {{"width", "input units", 0.0, 0.0, 0.0, true}},
+         .on_input = dead_zone,
+         .grid_upper = [](double in_span, double,
+                          const std::vector<double>&) { return 0.3 * in_span; },
+         .separating_experiment = "a slow ramp of the command up from zero: a dead zone answers "
+                                  "only past its band, and then short by the band"});
+    add({.kind = EffectKind::kBacklash,
+         .name = "backlash (play)",
+         .signature = "lag at every reversal of the input",
+         .params = {{"gap", "input units", 0.0, 0.0, 0.0, true}},
+         .on_input = backlash,
+         .grid_upper = [](double in_span, double,
+                          const std::vector<double>&) { return 0.2 * in_span; },
+         .separating_experiment =
+             "a command that reverses slowly: play shows only just after each reversal"});
+    add({.kind = EffectKind::kRelaxation,
+         .name = "viscoelastic relaxation (creep) of the clamp",
+         .signature = "output decays towards a lower level after each load change",
+         .params = {{"fraction", "1", 0.1, 0.0, 0.9}, {"tau_s", "s", 2.0, 0.05, 60.0}},
+         .on_output = relaxation,
+         .extra_starts = {{0.2, 0.5}, {0.2, 3.0}, {0.2, 15.0}},
+         .separating_experiment = "the clamp held closed at one position for a minute or more: "
+                                  "relaxation settles, drift keeps growing"});
+    add({.kind = EffectKind::kRelaxation2,
+         .name = "viscoelastic relaxation, a second time scale (Prony series)",
+         .signature = "after a load change, a fast decay and then a slow one",
+         .params = {{"fraction2", "1", 0.1, 0.0, 0.9}, {"tau2_s", "s", 30.0, 0.05, 3600.0}},
+         .extra_starts = {{0.1, 0.5}, {0.1, 10.0}, {0.1, 100.0}},
+         .needs = EffectKind::kRelaxation,
+         .separating_experiment = "the clamp held closed at one position for ten minutes or "
+                                  "more: each time scale settles in its turn"});
+    add({.kind = EffectKind::kHysteresis,
+         .name = "hysteresis of the clamp (Bouc-Wen)",
+         .signature = "closing and opening give different forces at the same position",
+         // A passive clamp dissipates: the loading branch lies above the unloading one (H > 0).
+         .params = {{"height", "output units", 0.0, 0.0, 2.0, false, true},
+                    {"delta", "input units", 0.5, 0.01, 100.0}},
+         .on_output = hysteresis,
+         .extra_starts = {{0.0, 0.1}, {0.0, 2.0}},
+         .separating_experiment = "the clamp closed and opened slowly over its range: "
+                                  "hysteresis draws a loop whose width does not depend on the "
+                                  "speed, relaxation one that does"});
+    add({.kind = EffectKind::kSag,
+         .name = "actuator compliance (sag) under load",
+         .signature = "residual proportional to the load on the actuator",
+         .params = {{"sag_per_kN", "output units/kN", 0.0, -100.0, 100.0}},
+         .on_output = sag,
+         .separating_experiment = "one depth held while the draft changes (a lighter and a heavier "
+                                  "soil): sag follows the load"});
+    add({.kind = EffectKind::kSlipWithDraft,
+         .name = "wheel slip growing with draft load",
+         .signature = "speed deficit proportional to speed times opener draft",
+         .params = {{"slip_per_kN", "1/kN", 0.0, -0.5, 0.5}},
+         .on_output = slip_with_draft,
+         .separating_experiment = "the same stretch driven with the opener lowered and raised: "
+                                  "slip with draft goes with the draft"});
+    // Friction opposes motion: the drive pays it in the direction of motion, never gets it.
+    const std::string friction_sweep =
+        "a slow speed sweep through zero: Coulomb friction is one level at every speed, "
+        "Stribeck friction peaks near standstill";
+    add({.kind = EffectKind::kCoulomb,
+         .name = "Coulomb friction",
+         .signature = "a step in the residual at each speed reversal",
+         .params = {{"coulomb", "output units", 0.0, 0.0, 2.0, false, true}},
+         .on_output = coulomb,
+         .separating_experiment = friction_sweep});
+    add({.kind = EffectKind::kStribeck,
+         .name = "Stribeck friction",
+         .signature = "extra resistance at low speed",
+         .params = {{"coulomb", "output units", 0.0, 0.0, 2.0, false, true},
+                    {"stribeck_extra", "output units", 0.0, 0.0, 2.0, false, true},
+                    // Below four times the sign's smoothing, a Stribeck speed would only
+                    // reshape that smoothing (a Coulomb step would pass for Stribeck).
+                    {"stribeck_speed", "input units", 0.1, 4.0 * kFrictionSmoothing_radps, 5.0}},
+         .on_output = stribeck,
+         .extends = EffectKind::kCoulomb,
+         .separating_experiment = friction_sweep});
+    add({.kind = EffectKind::kWheelRadius,
+         .name = "wrong effective wheel radius",
+         .signature = "speed error proportional to speed",
+         .params = {{"radius_error", "1", 0.0, -0.3, 0.3}},
+         .on_output = scale,
+         .separating_experiment =
+             "a measured distance driven at two speeds: a radius error is the same share at both"});
+    add({.kind = EffectKind::kGain,
+         .name = "sensor gain error",
+         .signature = "residual proportional to the output",
+         .params = {{"gain_error", "1", 0.0, -0.5, 0.5}},
+         .on_output = scale,
+         .separating_experiment =
+             "two held loads of known size: a gain error grows with the load, an offset does not"});
+    add({.kind = EffectKind::kOffset,
+         .name = "sensor offset",
+         .signature = "a constant residual",
+         .params = {{"offset", "output units", 0.0, -2.0, 2.0, false, true}},
+         .on_output = offset,
+         .separating_experiment = "readings at zero load (the clamp open, the disc at rest): an "
+                                  "offset reads there too"});
+    add({.kind = EffectKind::kDrift,
+         .name = "sensor drift",
+         .signature = "a residual growing linearly with time",
+         .params = {{"drift_per_s", "output units/s", 0.0, -1.0, 1.0, false, true}},
+         .on_output = drift,
+         .separating_experiment = "the machine held still for several minutes: drift keeps "
+                                  "growing, relaxation settles"});
+    add({.kind = EffectKind::kPeriodic,
+         .name = "periodic disturbance (vibration)",
+         .signature = "a peak in the residual spectrum",
+         .params = {{"amplitude", "output units", 0.0, 0.0, 2.0, false, true},
+                    {"frequency_hz", "Hz", 1.0, 0.01, 1e4},
+                    {"phase_rad", "rad", 0.0, -20.0, 20.0}},
+         .on_output = periodic,
+         .start = periodic_start,
+         .separating_experiment =
+             "a run at another engine or disc speed: a vibration moves with its source"});
+    add({.kind = EffectKind::kQuantisation,
+         .name = "quantisation",
+         .signature = "a staircase residual, uniform within a step",
+         .params = {{"step", "output units", 0.0, 0.0, 0.0, true}},
+         .on_output = quantisation,
+         // A sensor that quantises records values on its step's grid: a step coarser than the
+         // grid the recorded values lie on would be a staircase the recording does not have.
+         .grid_upper =
+             [](double, double out_span, const std::vector<double>& y) {
+               return std::min(0.05 * out_span, 1.5 * value_grid(y));
+             },
+         .separating_experiment =
+             "a slow ramp of the output: a quantised sensor steps in one step size"});
+    // Applied inside the channels whose dynamics they change (channels.cpp).
+    add({.kind = EffectKind::kRateLimit,
+         .name = "rate limit",
+         .signature = "residual at large steps, linear ramps",
+         .params = {{"rate_per_s", "output units/s", 1.0, 1e-3, 1e4}},
+         .separating_experiment = "a large step of the command: a rate limit ramps at one slope "
+                                  "whatever the step's size"});
+    add({.kind = EffectKind::kStiction,
+         .name = "stiction (the disc held by static friction)",
+         .signature = "torque while the speed is zero and the command is not",
+         .params = {{"effort_gain", "N m s/rad", 10.0, 0.0, 1e3},
+                    {"breakaway", "N m", 1.0, 0.0, 100.0}},
+         .separating_experiment = "starts from rest with a slowly rising command: stiction holds "
+                                  "the disc until breakaway"});
+    return l;
+  }();
+  return lib;
+}
+
+}  // namespace
+
+const EffectSpec& effect_spec(EffectKind kind) {
+  for (const auto& e : library())
+    if (e.kind == kind) return e;
+  throw std::logic_error("effect kind without an entry in the library");
+}
+
+const Effect* find_effect(const std::vector<Effect>& fx, EffectKind kind) {
+  for (const auto& e : fx)
+    if (e.spec->kind == kind) return &e;
+  return nullptr;
+}
+
+void order_prony_terms(std::vector<Effect>& fx, std::vector<std::vector<double>>& sd) {
+  std::size_t one = fx.size(), two = fx.size();
+  for (std::size_t e = 0; e < fx.size(); ++e) {
+    if (fx[e].spec->kind == EffectKind::kRelaxation) one = e;
+    if (fx[e].spec->kind == EffectKind::kRelaxation2) two = e;
+  }
+  if (one == fx.size() || two == fx.size() || fx[one].values[1] <= fx[two].values[1]) return;
+  std::swap(fx[one].values, fx[two].values);
+  if (one < sd.size() && two < sd.size()) std::swap(sd[one], sd[two]);
+}
+
+std::vector<double> transform_input(const Recording& r, const std::vector<double>& u,
+                                    const std::vector<Effect>& fx) {
+  std::vector<double> out = u;
+  for (const EffectSpec& spec : library()) {
+    if (spec.on_input == nullptr) continue;
+    if (const Effect* e = find_effect(fx, spec.kind)) spec.on_input(r, e->values, out);
+  }
+  return out;
+}
+
+void apply_output(const Recording& r, const std::vector<Effect>& fx,
+                  const std::vector<double>* load, const std::vector<double>* speed,
+                  std::vector<double>& y, const std::vector<double>* displacement) {
+  const OutputContext context{r, load, speed, &fx, displacement};
+  for (const EffectSpec& spec : library()) {
+    if (spec.on_output == nullptr) continue;
+    if (const Effect* e = find_effect(fx, spec.kind)) spec.on_output(context, e->values, y);
+  }
+}
+
+}  // namespace planter::analysis

@@ -1,0 +1,491 @@
+#include "analysis/mismatch.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <thread>
+
+#include "analysis/at_rest.h"
+#include "analysis/decimation.h"
+#include "analysis/effect_hooks.h"
+#include "analysis/model_file.h"
+#include "analysis/residual_stats.h"
+
+namespace planter::analysis {
+namespace {
+
+std::vector<double> residual_of(const std::vector<double>& pred, const std::vector<double>& y) {
+  std::vector<double> e(y.size());
+  for (std::size_t k = 0; k < y.size(); ++k) e[k] = pred[k] - y[k];
+  return e;
+}
+
+double correlation(const std::vector<double>& a, const std::vector<double>& b, std::size_t from,
+                   std::size_t to, long lag) {
+  double ma = 0, mb = 0;
+  std::size_t n = 0;
+  for (std::size_t k = from; k < to; ++k) {
+    const long j = static_cast<long>(k) + lag;
+    if (j < static_cast<long>(from) || j >= static_cast<long>(to)) continue;
+    ma += a[k];
+    mb += b[static_cast<std::size_t>(j)];
+    ++n;
+  }
+  if (n < 3) return 0.0;
+  ma /= static_cast<double>(n);
+  mb /= static_cast<double>(n);
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t k = from; k < to; ++k) {
+    const long j = static_cast<long>(k) + lag;
+    if (j < static_cast<long>(from) || j >= static_cast<long>(to)) continue;
+    const double x = a[k] - ma, z = b[static_cast<std::size_t>(j)] - mb;
+    sab += x * z;
+    saa += x * x;
+    sbb += z * z;
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
+Location locate(const ChannelModel& ch, const Recording& r, const std::vector<double>& e,
+                std::size_t end, double noise_rms) {
+  Location l;
+  // Residual tests on the calibration part, thinned to at most 20000 samples.
+  const std::size_t stride = std::max<std::size_t>(1, end / 20000);
+  std::vector<double> et, ut, tt;
+  const std::vector<double>* u = r.has(ch.input()) ? &r.at(ch.input()) : nullptr;
+  for (std::size_t k = 0; k < end; k += stride) {
+    et.push_back(e[k]);
+    tt.push_back(r.t[k]);
+    if (u) ut.push_back((*u)[k]);
+  }
+  const std::size_t n = et.size();
+  const double band = 1.96 / std::sqrt(static_cast<double>(n));
+  int outside = 0;
+  for (long lag = 1; lag <= 50; ++lag)
+    if (std::abs(correlation(et, et, 0, n, lag)) > band) ++outside;
+  l.whiteness_violations = outside / 50.0;
+  if (u) {
+    for (long lag = -20; lag <= 20; ++lag)
+      l.input_correlation = std::max(l.input_correlation, std::abs(correlation(ut, et, 0, n, lag)));
+  }
+  l.time_correlation = correlation(tt, et, 0, n, 0);
+  // Ten windows over the whole recording.
+  std::vector<double> w_rms;
+  const std::size_t total = e.size();
+  for (int w = 0; w < 10; ++w) {
+    const std::size_t a = total * w / 10, b = total * (w + 1) / 10;
+    double s = 0;
+    for (std::size_t k = a; k < b; ++k) s += e[k] * e[k];
+    w_rms.push_back(std::sqrt(s / std::max<double>(1.0, static_cast<double>(b - a))));
+  }
+  std::vector<double> sorted = w_rms;
+  std::sort(sorted.begin(), sorted.end());
+  const auto worst = std::max_element(w_rms.begin(), w_rms.end()) - w_rms.begin();
+  l.worst_window_start_s = r.t[total * static_cast<std::size_t>(worst) / 10];
+  // Against the median window, but never below the noise: a window where the machine stands
+  // still fits to nothing and would make any other look infinitely worse.
+  const double typical = std::max(sorted[5], noise_rms);
+  l.worst_window_ratio = typical > 0 ? w_rms[static_cast<std::size_t>(worst)] / typical : 0.0;
+  // Regimes of the input and the load.
+  auto regime = [&](const std::string& name, const std::vector<bool>& in) {
+    double si = 0, so = 0;
+    std::size_t ni = 0, no = 0;
+    for (std::size_t k = 0; k < total; ++k) {
+      if (in[k])
+        si += e[k] * e[k], ++ni;
+      else
+        so += e[k] * e[k], ++no;
+    }
+    if (ni < 10 || no < 10) return;
+    l.regimes.push_back({name,
+                         std::sqrt(si / static_cast<double>(ni)) /
+                             std::max(1e-12, std::sqrt(so / static_cast<double>(no))),
+                         static_cast<double>(ni) / static_cast<double>(total)});
+  };
+  if (u) {
+    const double span = signal_span(*u);
+    std::vector<bool> near_zero(total), reversal(total, false), after_step(total, false);
+    for (std::size_t k = 0; k < total; ++k) near_zero[k] = std::abs((*u)[k]) < 0.1 * span;
+    regime("near zero " + ch.input(), near_zero);
+    double last_sign = 0;
+    for (std::size_t k = 1; k < total; ++k) {
+      const double d = (*u)[k] - (*u)[k - 1];
+      if (std::abs(d) < 1e-9 * span) continue;
+      const double s = d > 0 ? 1 : -1;
+      if (last_sign != 0 && s != last_sign)
+        for (std::size_t j = k; j < total && r.t[j] - r.t[k] < 0.5; ++j) reversal[j] = true;
+      last_sign = s;
+      if (std::abs(d) > 0.05 * span)
+        for (std::size_t j = k; j < total && r.t[j] - r.t[k] < 1.0; ++j) after_step[j] = true;
+    }
+    regime("at reversals of " + ch.input(), reversal);
+    regime("after steps of " + ch.input(), after_step);
+  }
+  if (r.has("depth_force")) {
+    std::vector<double> f = r.at("depth_force");
+    std::vector<double> s = f;
+    std::nth_element(s.begin(), s.begin() + static_cast<long>(3 * s.size() / 4), s.end());
+    const double q3 = s[3 * s.size() / 4];
+    std::vector<bool> high(total);
+    for (std::size_t k = 0; k < total; ++k) high[k] = f[k] > q3 && q3 > 0;
+    regime("at high draft load", high);
+  }
+  const Effect p = initial_effect(effect_spec(EffectKind::kPeriodic), r, e);
+  l.dominant_amplitude = p.values[0];
+  l.dominant_frequency_hz = p.values[1];
+  return l;
+}
+
+// The zero-load rows an offset needs to be told from the nominal's constants: twenty rows fix
+// a constant to about a quarter of the sensor's noise (1 / sqrt(20)).
+constexpr std::size_t kOffsetZeroLoadRows = 20;
+
+ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const FitOptions& o,
+                              const Split& split) {
+  ChannelReport rep;
+  rep.channel = &ch;
+  const std::vector<double>& y = r.at(ch.output());
+  rep.noise_rms = white_noise_rms(y, split.calibration_end);
+  // A model given with --model: its values start the fit and its effects are already known;
+  // the search is for what is missing beyond them.
+  const ModelChannel* given = nullptr;
+  for (const auto& m : o.start_model)
+    if (m.channel == &ch) given = &m;
+  const std::vector<Effect> known = given ? given->effects : std::vector<Effect>{};
+  // The data's own rough guess: the nominal fit's start, and a second start for candidates.
+  const std::vector<double> data_guess = ch.initial_guess(r);
+  rep.nominal = fit_channel(ch, r, split, given ? given->nominal : data_guess, known);
+  for (const std::vector<double>& start : ch.nominal_starts(r)) {
+    ChannelFit alt = fit_channel(ch, r, split, start, known);
+    if (alt.bic < rep.nominal.bic) rep.nominal = std::move(alt);
+  }
+  const std::vector<double> e = residual_of(rep.nominal.prediction, y);
+  rep.location = locate(ch, r, e, split.calibration_end, rep.noise_rms);
+
+  // Earning its parameters: a clear BIC gain, half of the residual beyond noise explained,
+  // a gain in blocked cross-validation (or on the held-out part), and no loss on the held-out
+  // part. (Closed-loop records excite some effects only at starts and stops, so the held-out
+  // part alone may not see them.)
+  // Blocked cross-validation: each of three contiguous calibration blocks is left out in
+  // turn; base and candidate are refitted without it and judged on it.
+  const std::size_t end = split.calibration_end;
+  auto fold_errors = [&](const ChannelFit& fit, double noise) {
+    std::vector<double> out;
+    for (std::size_t b = 0; b < 3; ++b) {
+      Split fold = split;
+      fold.fold_from = end * b / 3;
+      fold.fold_to = end * (b + 1) / 3;
+      // Below the noise a fold has nothing to gain or lose (a stretch at rest fits to zero).
+      out.push_back(std::max(fold_rms(ch, r, fold, fit), noise));
+    }
+    return out;
+  };
+  auto blocked_cv = [&](const std::vector<double>& base_errors, const ChannelFit& with,
+                        double noise) {
+    const std::vector<double> with_errors = fold_errors(with, noise);
+    std::vector<double> gains;
+    for (std::size_t b = 0; b < base_errors.size(); ++b)
+      gains.push_back(base_errors[b] > 0 ? 1.0 - with_errors[b] / base_errors[b] : 0.0);
+    // The best fold must gain, and no fold may lose: an effect excited only at a start or
+    // a stop shows in one fold, but a wrong one costs somewhere else.
+    std::sort(gains.begin(), gains.end());
+    return gains.front() < -0.02 ? gains.front() : gains.back();
+  };
+  auto earns = [&](const Candidate& c) { return rejection(c, o).empty(); };
+  auto try_effects = [&](const ChannelFit& base, std::vector<Effect> start) {
+    std::vector<Candidate> out;
+    const std::vector<double> base_e = residual_of(base.prediction, y);
+    // The noise under this base: from its residual, so that an effect already modelled (a
+    // vibration near the thinned Nyquist rate) no longer counts as noise.
+    const double noise = std::min(rep.noise_rms, white_noise_rms(base_e, split.calibration_end));
+    const std::vector<double> base_fold_errors = fold_errors(base, noise);
+    for (const EffectSpec* spec : ch.candidates(r)) {
+      // Not twice, and not beside an effect it holds or that holds it (Stribeck and Coulomb).
+      bool used = false;
+      for (const auto& s : start)
+        used = used || s.spec == spec || spec->extends == s.spec->kind ||
+               s.spec->extends == spec->kind;
+      // A term that only makes sense beside another (a second Prony term) waits for it.
+      bool present = !spec->needs;
+      for (const auto& s : start) present = present || s.spec->kind == *spec->needs;
+      if (used || !present) continue;
+      std::vector<Effect> fx = start;
+      fx.push_back(initial_effect(*spec, r, base_e));
+      Candidate c;
+      c.spec = spec;
+      c.effect = spec->name;
+      c.fit = fit_channel(ch, r, split, base.nominal, fx);
+      // The base fit may have bent its parameters to mimic the effect (an offset looks like
+      // a contact point below the open clamp, relaxation like a softer law): start once more
+      // from the data's own guess, and for relaxation from several time constants.
+      {
+        ChannelFit alt = fit_channel(ch, r, split, data_guess, fx);
+        if (alt.bic < c.fit.bic) c.fit = std::move(alt);
+      }
+      for (const std::vector<double>& values : spec->extra_starts) {
+        fx.back().values = values;
+        ChannelFit alt = fit_channel(ch, r, split, data_guess, fx);
+        if (alt.bic < c.fit.bic) c.fit = std::move(alt);
+      }
+      if (spec->kind == EffectKind::kOffset) {
+        const std::optional<std::size_t> at_zero =
+            ch.zero_load_rows(r, c.fit.nominal, split.calibration_end);
+        if (at_zero && *at_zero < kOffsetZeroLoadRows)
+          c.not_separable =
+              "cannot be told from the nominal's own constants: " + std::to_string(*at_zero) +
+              " rows at zero load, " + std::to_string(kOffsetZeroLoadRows) + " needed; record " +
+              spec->separating_experiment;
+      }
+      c.delta_bic = c.fit.bic - base.bic;
+      c.held_out_improvement =
+          base.rms_held_out > 0 ? 1.0 - c.fit.rms_held_out / base.rms_held_out : 0.0;
+      c.cv_improvement = blocked_cv(base_fold_errors, c.fit, noise);
+      // The share of the residual beyond the noise that the effect accounts for: a real
+      // mechanism explains the shape of what is left, a wrong name only bends it a little.
+      const double noise2 = noise * noise;
+      const double before2 = base.rms_calibration * base.rms_calibration;
+      const double after2 = c.fit.rms_calibration * c.fit.rms_calibration;
+      c.explained = before2 > noise2 ? (before2 - after2) / (before2 - noise2) : 0.0;
+      out.push_back(std::move(c));
+    }
+    std::sort(out.begin(), out.end(),
+              [](const Candidate& a, const Candidate& b) { return a.delta_bic < b.delta_bic; });
+    return out;
+  };
+  // The candidate that earns its parameters with the best BIC; then parsimony: an effect that
+  // holds a simpler one (Stribeck holds Coulomb) gives way to it unless it beats it clearly.
+  // Candidates that earn theirs and come within a tie of the chosen one are reported as ties.
+  auto choose = [&](const std::vector<Candidate>& cands) -> const Candidate* {
+    const Candidate* best = nullptr;
+    for (const auto& c : cands)
+      if (earns(c) && (!best || c.delta_bic < best->delta_bic)) best = &c;
+    for (bool simpler = true; simpler && best && best->spec->extends;) {
+      simpler = false;
+      const Candidate* richer = best;
+      for (const auto& c : cands)
+        if (c.spec->kind == *richer->spec->extends && earns(c) &&
+            (richer->delta_bic > c.delta_bic - o.nested_delta_bic ||
+             richer->explained < c.explained + o.nested_min_explained)) {
+          best = &c;
+          simpler = true;
+        }
+    }
+    if (!best) return nullptr;
+    for (const auto& c : cands) {
+      if (&c == best || !earns(c) || c.delta_bic - best->delta_bic >= o.tie_delta_bic) continue;
+      const std::string& a = best->spec->separating_experiment;
+      const std::string& b = c.spec->separating_experiment;
+      rep.ties.push_back(
+          {best->effect, c.effect, c.delta_bic - best->delta_bic, a == b ? a : a + "; " + b});
+    }
+    return best;
+  };
+  rep.ranked = try_effects(rep.nominal, known);
+  rep.final_fit = rep.nominal;
+  if (const Candidate* best = choose(rep.ranked)) {
+    rep.chosen.push_back(*best);
+    rep.final_fit = best->fit;
+    const std::vector<Candidate> pairs = try_effects(best->fit, best->fit.effects);
+    if (const Candidate* second = choose(pairs)) {
+      rep.chosen.push_back(*second);
+      rep.final_fit = second->fit;
+      order_prony_terms(rep.final_fit.effects, rep.final_fit.effect_sd);
+    }
+  }
+  // What is left is unexplained when it is well above the measurement noise, structured
+  // (not white), and a real share of the output's size in the held-out part: half a percent
+  // of its RMS (below that it is a numerical detail of the model, not physics to act on).
+  // Its size, not its spread: a stop in the held-out part must not hide a residual.
+  // The noise is re-estimated under the final model: what it now explains is not noise.
+  rep.noise_rms = std::min(rep.noise_rms, white_noise_rms(residual_of(rep.final_fit.prediction, y),
+                                                          split.calibration_end));
+  double mean_square = 0;
+  const std::size_t from = split.calibration_end, n = y.size() - from;
+  for (std::size_t k = from; k < y.size(); ++k) mean_square += y[k] * y[k] / static_cast<double>(n);
+  auto unexplained = [&] {
+    const double left = rep.final_fit.rms_held_out;
+    return left > 3.0 * std::max(rep.noise_rms, 1e-12) && rep.location.whiteness_violations > 0.5 &&
+           left > o.min_unexplained_share * std::sqrt(mean_square);
+  };
+  rep.unexplained = unexplained();
+  // What is left may be one parameter that changed during the recording.
+  if (rep.unexplained) {
+    if (std::optional<ChangePoint> cp =
+            find_change_point(ch, r, split, rep.final_fit, rep.noise_rms)) {
+      const double noise2 = rep.noise_rms * rep.noise_rms;
+      const double before2 = rep.final_fit.rms_calibration * rep.final_fit.rms_calibration;
+      const double after2 = cp->rms_calibration * cp->rms_calibration;
+      const double explained = before2 > noise2 ? (before2 - after2) / (before2 - noise2) : 0.0;
+      const double held_out_gain = rep.final_fit.rms_held_out > 0
+                                       ? 1.0 - cp->rms_held_out / rep.final_fit.rms_held_out
+                                       : 0.0;
+      if (cp->delta_bic < -o.min_delta_bic && explained >= o.min_explained &&
+          held_out_gain >= o.min_improvement && !cp->changed.empty()) {
+        rep.final_fit.nominal = cp->after.nominal;
+        rep.final_fit.nominal_sd = cp->after.nominal_sd;
+        rep.final_fit.effects = cp->after.effects;
+        rep.final_fit.effect_sd = cp->after.effect_sd;
+        rep.final_fit.prediction = cp->prediction;
+        rep.final_fit.rms_calibration = cp->rms_calibration;
+        rep.final_fit.rms_held_out = cp->rms_held_out;
+        rep.change = std::move(cp);
+        rep.noise_rms = std::min(
+            rep.noise_rms,
+            white_noise_rms(residual_of(rep.final_fit.prediction, y), split.calibration_end));
+        rep.unexplained = unexplained();
+      }
+    }
+  }
+  const std::vector<ParamSpec> specs = ch.nominal_params();
+  for (std::size_t i = 0; i < specs.size() && i < rep.final_fit.nominal.size(); ++i) {
+    const ParamSpec& p = specs[i];
+    const double v = rep.final_fit.nominal[i], tolerance = 1e-6 * (p.upper - p.lower);
+    // A lower bound of 0 is the physics' own limit (no lag, no inertia): ending there is an
+    // answer, not a sign of a wrong structure.
+    const bool at_lower = v <= p.lower + tolerance && p.lower != 0.0;
+    if (p.grid || (!at_lower && v < p.upper - tolerance)) continue;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s = %.4g %s (range %.4g to %.4g)", p.name.c_str(), v,
+                  p.unit.c_str(), p.lower, p.upper);
+    rep.at_range_edge.emplace_back(buf);
+  }
+  if (rep.chosen.empty() && !rep.change)
+    rep.verdict = rep.unexplained ? "unexplained residual" : "no significant mismatch";
+  else
+    rep.verdict =
+        rep.unexplained ? "effect(s) found; a residual is still unexplained" : "effect(s) found";
+  return rep;
+}
+
+}  // namespace
+
+std::vector<std::string> channel_columns() {
+  std::vector<std::string> read;
+  for (const ChannelModel* ch : all_channels())
+    for (const std::string& c : ch->needs())
+      if (std::find(read.begin(), read.end(), c) == read.end()) read.push_back(c);
+  return read;
+}
+
+Recording analysed_recording(const Recording& full, const FitOptions& o,
+                             const std::vector<Glitch>& glitches) {
+  // At most max_rows rows: the fits simulate the whole record for each evaluation. The
+  // columns the channels read are low-pass filtered first, so a fast vibration is removed
+  // rather than aliased (it is looked for at the recording's own rate: fast_tones.h).
+  const std::size_t stride = (full.size() + o.max_rows - 1) / o.max_rows;
+  const Recording& clean = glitches.empty() ? full : without_glitches(full, glitches);
+  Recording out = decimated(clean, stride, channel_columns());
+  if (stride <= 1 || !clean.has("v_wheel")) return out;
+  // The standstills at the full rate, kept row by row: the filter leaves no exact zero in the
+  // wheel's speed.
+  const std::vector<bool> rest = wheel_at_rest(clean);
+  std::vector<double>& column = out.signals[kAtRestColumn];
+  for (std::size_t k = 0; k < rest.size(); k += stride) column.push_back(rest[k] ? 1.0 : 0.0);
+  return out;
+}
+
+std::string rejection(const Candidate& c, const FitOptions& o) {
+  if (!c.not_separable.empty()) return c.not_separable;
+  char buf[200];
+  if (c.delta_bic >= -o.min_delta_bic) {
+    std::snprintf(buf, sizeof buf, "lowers BIC by %.1f; %.0f is required", -c.delta_bic,
+                  o.min_delta_bic);
+    return buf;
+  }
+  if (c.explained < o.min_explained) {
+    std::snprintf(buf, sizeof buf,
+                  "explains %.0f %% of the residual beyond noise; %.0f %% is required",
+                  100.0 * c.explained, 100.0 * o.min_explained);
+    return buf;
+  }
+  if (c.cv_improvement < o.min_improvement && c.held_out_improvement < o.min_improvement) {
+    std::snprintf(buf, sizeof buf,
+                  "improves the best fold by %.1f %% and the held-out part by %.1f %%; %.0f %% "
+                  "is required of one",
+                  100.0 * c.cv_improvement, 100.0 * c.held_out_improvement,
+                  100.0 * o.min_improvement);
+    return buf;
+  }
+  if (c.held_out_improvement <= -0.02) {
+    std::snprintf(buf, sizeof buf, "worsens the held-out part by %.1f %%",
+                  -100.0 * c.held_out_improvement);
+    return buf;
+  }
+  return "";
+}
+
+FitReport analyse(const Recording& full, const FitOptions& o) {
+  FitReport rep;
+  rep.options = o;
+  rep.glitches = find_glitches(full, channel_columns());
+  const Recording r = analysed_recording(full, o, rep.glitches);
+  rep.rate_hz = sample_rate_hz(full);
+  const bool decimated = r.size() < full.size();
+  rep.analysed_up_to_hz =
+      decimated ? kAntiAliasCutoffShare * 0.5 * sample_rate_hz(r) : 0.5 * rep.rate_hz;
+  rep.analysed_rows = r.size();
+  rep.file = r.file;
+  rep.rows = full.size();
+  rep.duration_s = r.t.back() - r.t.front();
+  rep.split.calibration_end =
+      static_cast<std::size_t>(static_cast<double>(r.size()) * (1.0 - o.held_out_fraction));
+  rep.held_out_from_s = r.t[rep.split.calibration_end];
+  std::vector<const ChannelModel*> todo;
+  for (const ChannelModel* ch : all_channels()) {
+    bool ok = true;
+    for (const auto& c : ch->needs()) ok = ok && r.has(c);
+    // A channel whose output never moves says nothing about its physics.
+    if (ok && signal_span(r.at(ch->output())) <= 0.0) ok = false;
+    if (ok)
+      todo.push_back(ch);
+    else
+      rep.unobservable.push_back(ch->subsystem() + ": " + ch->output());
+  }
+  if (todo.empty())
+    throw RecordingError(r.file, 1,
+                         "no observable subsystem: the header needs, for example, omega_cmd and "
+                         "omega (disc drive), clamp_pos_mm and clamp_force (clamp), "
+                         "depth_cmd_mm and depth_mm (depth), or v_ground and v_wheel (ground)");
+  rep.channels.resize(todo.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex progress;
+  std::size_t done = 0;
+  auto worker = [&] {
+    for (std::size_t k = next++; k < todo.size(); k = next++) {
+      rep.channels[k] = analyse_channel(*todo[k], r, o, rep.split);
+      if (o.on_channel_done) {
+        const std::lock_guard<std::mutex> lock(progress);
+        o.on_channel_done(++done, todo.size(), todo[k]->output());
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(todo.size())); ++j)
+    pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  // What the decimation removed: vibration above the analysed rate, looked for in each final
+  // residual at the recording's own rate (a 38 Hz tone is named at 38 Hz, not at its alias).
+  if (decimated) {
+    const Recording clean =
+        rep.glitches.empty() ? Recording{} : without_glitches(full, rep.glitches);
+    const Recording& at_rate = rep.glitches.empty() ? full : clean;
+    const auto held_out = static_cast<std::size_t>(
+        std::lower_bound(at_rate.t.begin(), at_rate.t.end(), rep.held_out_from_s) -
+        at_rate.t.begin());
+    for (auto& c : rep.channels) {
+      std::vector<double> pred;
+      c.channel->simulate(at_rate, c.final_fit.nominal, c.final_fit.effects, pred);
+      const std::vector<double> e = residual_of(pred, at_rate.at(c.channel->output()));
+      c.fast_tones = find_fast_tones(at_rate.t, e, rep.analysed_up_to_hz, held_out);
+      if (!c.fast_tones.empty() && c.chosen.empty() && !c.change)
+        c.verdict =
+            c.unexplained ? "effect(s) found; a residual is still unexplained" : "effect(s) found";
+    }
+  }
+  return rep;
+}
+
+}  // namespace planter::analysis

@@ -1,0 +1,135 @@
+#pragma once
+// planter-fit's analysis of one recording: for every observable channel, calibrate the
+// nominal structure, locate where its residual concentrates, score the named candidate
+// effects (and pairs) by BIC and held-out error, and refit the chosen ones.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "analysis/change_points.h"
+#include "analysis/channel_fit.h"
+#include "analysis/day_report.h"
+#include "analysis/glitches.h"
+#include "analysis/model_file.h"
+#include "analysis/tones.h"
+
+namespace planter::analysis {
+
+struct Regime {
+  std::string name;        // "near zero input", "at reversals", "after steps", ...
+  double rms_ratio = 0.0;  // residual RMS inside the regime over outside it
+  double share = 0.0;      // share of the samples in the regime
+};
+
+struct Location {
+  double whiteness_violations = 0.0;  // share of lags 1-50 outside +-1.96/sqrt(N)
+  double input_correlation = 0.0;     // largest |cross-correlation| with the input, lags +-20
+  double worst_window_start_s = 0.0;  // of ten windows, the one with the largest RMS
+  double worst_window_ratio = 0.0;    // its RMS over the median window's
+  double time_correlation = 0.0;      // residual against time (drift)
+  double dominant_frequency_hz = 0.0;
+  double dominant_amplitude = 0.0;
+  std::vector<Regime> regimes;
+};
+
+struct Candidate {
+  const EffectSpec* spec = nullptr;
+  std::string effect;
+  double delta_bic = 0.0;             // against the model it would extend
+  double held_out_improvement = 0.0;  // 1 - rms_after / rms_before on the held-out part
+  double cv_improvement = 0.0;        // blocked cross-validation: the best of 3 folds (or a loss)
+  double explained = 0.0;  // share of the calibration residual beyond noise it accounts for
+  // Non-empty when the recording cannot tell this effect from the nominal's own parameters:
+  // why, and the experiment that would (rejection() returns it first).
+  std::string not_separable;
+  ChannelFit fit;
+};
+
+// Two effects this recording cannot separate: both earn their parameters, and their BIC differ
+// by less than FitOptions::tie_delta_bic. The chosen one is kept; the experiment tells them apart.
+struct Tie {
+  std::string chosen;
+  std::string alternative;
+  double delta_bic = 0.0;  // the alternative's BIC less the chosen one's
+  std::string experiment;
+};
+
+struct ChannelReport {
+  const ChannelModel* channel = nullptr;
+  ChannelFit nominal;
+  double noise_rms = 0.0;  // white measurement noise: second differences of the final residual
+  Location location;
+  std::vector<Candidate> ranked;  // single effects, best BIC first
+  std::vector<Candidate> chosen;  // accepted (one or two)
+  std::vector<Tie> ties;          // near ties with what was chosen
+  // Vibration above the analysed rate, found in the final residual at the recording's own rate.
+  std::vector<FastTone> fast_tones;
+  // A parameter that changed once, when the fit without it leaves a structured residual and the
+  // change earns its parameters by the same rules as an effect. The final fit then holds the
+  // values after the change.
+  std::optional<ChangePoint> change;
+  ChannelFit final_fit;
+  std::string verdict;  // "no significant mismatch", "effect(s) found", "unexplained residual"
+  bool unexplained = false;
+  // The final fit's nominal parameters that ended at an edge of their range, as
+  // "name = value (range lo to hi)": the nominal structure may be wrong there, and a residual
+  // beside it is not evidence of a missing effect (issue 32, item 1).
+  std::vector<std::string> at_range_edge;
+};
+
+struct FitOptions {
+  double held_out_fraction = 0.3;
+  double min_improvement = 0.10;  // a fold's RMS must fall by at least this share
+  double min_delta_bic = 20.0;
+  double min_explained = 0.5;
+  // BIC differences on the scale of Kass & Raftery (JASA 90, 1995): under 6 is no strong
+  // evidence either way (a tie); an effect holding a simpler one as a special case must beat it
+  // by 10 ("very strong") and explain 5 % more of the residual beyond noise, or the simpler one
+  // is named. (Residuals of a closed-loop record are not white, so BIC alone overstates the
+  // evidence: the extra parameters must also buy a share of the residual.)
+  double tie_delta_bic = 6.0;
+  double nested_delta_bic = 10.0;
+  double nested_min_explained = 0.05;
+  double min_unexplained_share = 0.005;  // of the output's held-out RMS, to call a residual
+  int jobs = 1;
+  // Told as each channel's analysis ends (from any worker, one call at a time): for progress.
+  std::function<void(std::size_t done, std::size_t total, const std::string& channel)>
+      on_channel_done;
+  std::size_t max_rows = 12000;  // longer recordings are decimated to this many rows
+  // A recording longer than this many rows is analysed on its first window of them and its
+  // model tracked across the rest, window by window (day_tracks.h): 10 minutes at 100 Hz.
+  std::size_t window_rows = 60000;
+  std::vector<ModelChannel> start_model;  // from --model: start values and known effects
+};
+
+struct FitReport {
+  std::string file;
+  FitOptions options;  // the criteria the candidates were held to
+  std::size_t rows = 0;
+  std::size_t analysed_rows = 0;   // after decimation
+  double rate_hz = 0.0;            // the recording's sample rate
+  double analysed_up_to_hz = 0.0;  // the anti-alias cut-off (the rate's Nyquist if none)
+  double duration_s = 0.0;
+  Split split;
+  double held_out_from_s = 0.0;
+  std::vector<ChannelReport> channels;
+  std::vector<std::string> unobservable;  // channels whose columns are missing
+  std::vector<Glitch> glitches;           // samples excluded as single-sample glitches
+  std::optional<DayReport> day;           // a recording longer than one window: across it
+};
+
+// Why a candidate does not earn its place, in words (the first criterion it fails), or "" when
+// it does. The analysis decides by this, and the report prints it.
+std::string rejection(const Candidate& c, const FitOptions& o);
+
+// Throws RecordingError when no channel is observable. Glitches are excluded first
+// (glitches.h) and listed in the report.
+FitReport analyse(const Recording& r, const FitOptions& o);
+// What the analysis works on: the recording without its glitches, decimated to at most
+// max_rows with the columns the channels read low-pass filtered first (decimation.h).
+Recording analysed_recording(const Recording& r, const FitOptions& o,
+                             const std::vector<Glitch>& glitches);
+// The columns the channels read, each once.
+std::vector<std::string> channel_columns();
+
+}  // namespace planter::analysis

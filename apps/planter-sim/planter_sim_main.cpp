@@ -1,0 +1,352 @@
+// planter-sim: runs a scenario in lockstep and writes recording.csv, summary.json, report.html;
+// `devices` runs the plant in real time on a real CAN bus and gpio-sim for host-in-the-loop.
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "config/cli_range.h"
+#include "config/config_error.h"
+#include "config/output_set.h"
+#include "hal/linux/hal_error.h"
+#include "apps/planter-sim/replay.h"
+#ifdef PLANTER_WITH_CONSOLE
+#include "apps/planter-sim/live.h"
+#endif
+#include "apps/planter-sim/sensitivity.h"
+#include "apps/planter-sim/sweep.h"
+#include "sim/hil/realtime_devices.h"
+#ifdef PLANTER_WITH_REPLAY
+#include "analysis/recording.h"
+#endif
+#include "sim/plant/effect_keys.h"
+#include "sim/plant/model_values.h"
+#include "sim/runner/lockstep_runner.h"
+#include "sim/runner/model_assumptions.h"
+#include "sim/runner/recording_writer.h"
+#include "sim/seedling/measured_strength.h"
+
+namespace fs = std::filesystem;
+using namespace planter;
+using namespace planter::sim;
+
+namespace {
+
+void print_summary(const Summary& s) {
+  std::printf("scenario            %s\n", s.scenario.c_str());
+  std::printf("distance            %.2f m in %.1f s simulated (%.2f s wall, %.0fx real time)\n",
+              s.distance_m, s.sim_seconds, s.wall_seconds, s.realtime_factor);
+  std::printf("seedlings planted   %d  (per 3 m plot:", s.seedlings_planted);
+  for (int c : s.plot_counts) std::printf(" %d", c);
+  std::printf(")\n");
+  std::printf("uprightness         %.2f %%, %d lodged   (paper: 94.8 predicted, 93.86 field)\n",
+              s.uprightness_pct, s.seedlings_lodged);
+  std::printf("damage rate         %.2f %%   (paper: 3 predicted, 2.76 field)\n", s.damage_pct);
+  if (s.seedlings_damaged > 0)
+    std::printf(
+        "damaged seedlings   mean strength %.1f N, %d below the weakest measured (%.1f N)\n",
+        s.damaged_strength_mean_N, s.damaged_below_measured, measured_strength().min_N);
+  std::printf(
+      "in the clamp        %d fell in the carry (skips), %d slid > 5 mm, %d turned > 5 deg\n",
+      s.seedlings_fell_in_carry, s.seedlings_slid_in_clamp, s.seedlings_turned_in_clamp);
+  std::printf("plant spacing       %.1f mm mean, CV %.1f %%   (agronomy: 20-30 mm)\n",
+              s.spacing_mean_mm, s.spacing_cv_pct);
+  if (s.monitor_fitted) {
+    const PlantingFigures& m = s.monitor;
+    std::printf(
+        "planting monitor    %.0f seen, spacing %.1f mm CV %.3f, singulation %.2f %% (%.0f skips, "
+        "%.0f multiples)%s\n",
+        m.seedlings, m.spacing_mean_mm, m.spacing_cv, m.singulation_pct, m.skips, m.multiples,
+        (s.warnings_seen & warning::kEmptyBelt) != 0 ? ", empty belt warned" : "");
+    std::printf("                    truth: %d planted, %d skips, %d multiples\n",
+                s.seedlings_planted, s.truth_skips, s.truth_multiples);
+  } else {
+    std::printf("planting monitor    none: the board has no seedling photo-eye\n");
+  }
+  std::printf("sigma (true)        mean %.4f, RMS error %.2f %%   (controller's view: %.2f %%)\n",
+              s.sigma_true_mean, s.sigma_true_rms_error_pct, s.sigma_ctrl_rms_error_pct);
+  std::printf("clamp force         mean %.1f N, max %.1f N, ceiling %.1f N\n", s.clamp_force_mean_N,
+              s.clamp_force_max_N, s.clamp_ceiling_N);
+  std::printf("furrow depth        mean %.1f mm, RMS error %.2f mm (target %.1f)\n",
+              s.depth_mean_mm, s.depth_rms_error_mm, s.depth_target_mm);
+  std::printf("CAN bus             %llu frames, load %.1f %%\n",
+              static_cast<unsigned long long>(s.can_frames), s.can_bus_load_pct);
+  std::printf("final state         %s (faults 0x%x", s.final_state.c_str(), s.faults);
+  for (int bit = 0; bit < fault::kCount; ++bit) {
+    if ((s.faults >> bit) & 1u)
+      std::printf("%s%s", bit == std::countr_zero(s.faults) ? ": " : ", ", fault::name(bit));
+  }
+  std::printf(")\n");
+}
+
+std::string seedlings_csv(const SeedlingProcess& process) {
+  std::ostringstream csv;
+  // tilt_deg: + top forward, 90 lodged; sigma_at_release empty when released standing.
+  // fell_in_carry 1: dropped from the clamp before the soil (a skip; no position or tilt).
+  csv << "x_m,release_t,diameter_mm,length_mm,strength_N,peak_force_N,damaged,tilt_deg,sigma_"
+         "at_release,burial_mm,clamp_turn_deg,lip_drag_deg,lodged,clamp_slip_mm,fall_deg,"
+         "fell_in_carry\n";
+  for (std::size_t i = 0; i < process.released(); ++i) {
+    const Seedling& s = process.seedlings()[i];
+    csv << s.x_m << ',' << s.release_time_s << ',' << s.diameter_mm << ',' << s.length_mm << ','
+        << s.strength_N << ',' << s.peak_force_N << ',' << (s.damaged ? 1 : 0) << ',' << s.tilt_deg
+        << ',';
+    if (std::isfinite(s.sigma_at_release)) csv << s.sigma_at_release;
+    csv << ',' << s.release.burial_mm << ',' << s.release.clamp_turn_deg << ','
+        << s.release.lip_drag_deg << ',' << (s.release.lodged ? 1 : 0) << ','
+        << s.release.clamp_slip_mm << ',' << s.release.fall_deg << ','
+        << (s.release.fell_in_carry ? 1 : 0) << '\n';
+  }
+  return csv.str();
+}
+
+// The scenario (with another board if one is given), its board's warnings printed once: every
+// subcommand runs a board, so every one says what is in range but doubtful about it.
+Scenario load_scenario_warned(const std::string& scenario_path, const std::string& board_path) {
+  Scenario scenario = load_scenario(scenario_path);
+  if (!board_path.empty()) scenario.board = config::load_board(board_path);
+  for (const auto& w : scenario.board.warnings)
+    std::fprintf(stderr, "planter-sim: warning: %s\n", w.c_str());
+  return scenario;
+}
+
+int run_scenario(const std::string& scenario_path, const std::string& out_dir, bool quiet,
+                 bool force) {
+  const Scenario scenario = load_scenario_warned(scenario_path, "");
+  config::OutputSet out(out_dir, "planter-sim run", force);
+  LockstepRunner runner(scenario);
+  RecordingWriter recording(out.path("recording.csv"), out.shown("recording.csv"),
+                            {{"source", "planter-sim"},
+                             {"scenario", scenario.name},
+                             {"board", scenario.board.name},
+                             {"seed", std::to_string(scenario.seed)},
+                             {"units", "1"}});
+  ReportSeries series;
+  std::uint64_t tick = 0;
+  runner.set_observer([&](const TickRecord& row) {
+    recording.write(row);
+    if (tick++ % 10 == 0) series.add(row);
+  });
+  Summary summary = runner.run();
+  summary.assumptions = model_assumptions(scenario);
+  recording.close();
+  out.write("summary.json", summary.to_json() + "\n");
+  out.write("seedlings.csv", seedlings_csv(runner.plant().seedlings()));
+  out.write("report.html", report_html(scenario, summary, series, runner.plant().seedlings()));
+  out.commit();
+  if (!quiet) print_summary(summary);
+  for (const auto& note : summary.notes) std::printf("note: %s\n", note.c_str());
+  std::printf("wrote %s/{recording.csv,seedlings.csv,summary.json,report.html}\n", out_dir.c_str());
+  // A machine that never moved, with no fault the scenario scripted, is a broken board or
+  // machine file, not a result (issue 28, item 12: an hour of a boot fault exited 0).
+  const FaultEvents& scripted = scenario.faults;
+  if (summary.distance_m <= 0.0 && scripted.estop_at_s < 0.0 && scripted.silent_node.empty()) {
+    std::fprintf(stderr,
+                 "planter-sim: the machine never moved: final state %s, faults 0x%X (the "
+                 "controller did not reach running; recording.csv shows its boot)\n",
+                 summary.final_state.c_str(), summary.faults);
+    return 1;
+  }
+  return 0;
+}
+
+std::atomic<bool> g_stop{false};  // set from the signal handler; read by the device loop
+void on_signal(int) { g_stop = true; }
+
+int run_devices(const std::string& scenario_path, const std::string& board_path,
+                RealtimeDevicesOptions options) {
+  const Scenario scenario = load_scenario_warned(scenario_path, board_path);
+  std::signal(SIGTERM, on_signal);
+  std::signal(SIGINT, on_signal);
+  const RealtimeDevicesResult r = run_realtime_devices(scenario, options, g_stop);
+  std::printf(
+      "devices ran %.1f s: %.2f m, %d seedlings planted; CAN in %llu out %llu lost %llu; "
+      "gpio writes %u; link downs %u reopens %u; late steps %llu\n",
+      r.seconds, r.distance_m, r.seedlings_planted, static_cast<unsigned long long>(r.frames_in),
+      static_cast<unsigned long long>(r.frames_out), static_cast<unsigned long long>(r.frames_lost),
+      r.gpio_writes, r.link_downs, r.reopens, static_cast<unsigned long long>(r.late_steps));
+  return 0;
+}
+
+// The [effects] keys a scenario may set: what each hides in the plant, its range and unit.
+int print_effect_keys() {
+  std::printf(
+      "[effects] keys of a scenario (all off by default; README \"Adding a physical "
+      "effect\"):\n");
+  for (const EffectKey& k : kEffectKeys) {
+    char range[64];
+    std::snprintf(range, sizeof range, "%g to %g %s", k.min, k.max, k.unit);
+    std::printf("  %-28s %-24s %s\n", k.key, range, k.what);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"planter-sim: the transplanter's plant model and lockstep simulation runner"};
+  app.require_subcommand(1);
+  std::string scenario, out = "out";
+  bool quiet = false, force = false;
+#ifdef PLANTER_WITH_SWEEP
+  SweepOptions sweep_options;
+#endif
+  auto* run = app.add_subcommand("run", "run a scenario: recording.csv, summary.json, report.html");
+  run->add_option("scenario", scenario, "scenario file (TOML)")->required();
+  run->add_option("--out", out, "output directory")->capture_default_str();
+  run->add_flag("--quiet", quiet, "do not print the summary");
+  run->add_flag("--force", force, "replace --out even if it holds something other than a run");
+#ifdef PLANTER_WITH_SWEEP
+  auto* sweep = app.add_subcommand(
+      "sweep", "the paper's Box-Behnken experiment: replicated runs, response surfaces, optimum");
+  sweep->add_option("scenario", scenario, "base scenario file (TOML)")->required();
+  sweep->add_option("--out", out, "output directory")->capture_default_str();
+  sweep->add_flag("--force", sweep_options.force,
+                  "replace --out even if it holds something other than a sweep");
+  sweep->add_option("--distance", sweep_options.distance_m, "metres per run")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0.5, 1000.0));
+  sweep->add_option("--replicates", sweep_options.replicates, "runs per design point, at least")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(1, 50));
+  sweep
+      ->add_option("--max-replicates", sweep_options.max_replicates,
+                   "runs per design point, at most, while its damage rate is not resolved")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(1, 200));
+  sweep
+      ->add_option("--damage-precision", sweep_options.damage_precision_pts,
+                   "goal for the standard error of each point's damage rate, in points")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0.01, 50.0));
+  sweep->add_option("--jobs", sweep_options.jobs, "runs at a time (0: one per core)")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0, 256));
+  SensitivityOptions sensitivity_options;
+  auto* sensitivity = app.add_subcommand(
+      "sensitivity",
+      "which model values the figures rest on: Morris elementary effects over their ranges");
+  sensitivity->add_option("scenario", scenario, "base scenario file (TOML)")->required();
+  sensitivity->add_option("--out", out, "output directory")->capture_default_str();
+  sensitivity->add_flag("--force", sensitivity_options.force,
+                        "replace --out even if it holds something other than an analysis");
+  sensitivity->add_option("--trajectories", sensitivity_options.trajectories, "Morris's r")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(2, 100));
+  sensitivity->add_option("--distance", sensitivity_options.distance_m, "metres per run")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0.5, 1000.0));
+  sensitivity->add_flag(
+      "--optimum", sensitivity_options.optimum,
+      "also run the paper's design (15 runs) at each point: the optimum's spread");
+  sensitivity->add_option("--jobs", sensitivity_options.jobs, "runs at a time (0: one per core)")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0, 256));
+#endif
+  auto* values = app.add_subcommand(
+      "values", "every model value the conclusions rest on: value, unit, range, origin, source");
+  std::string values_scenario;
+  values->add_option("scenario", values_scenario, "scenario file (default: the built-in values)");
+  auto* effects =
+      app.add_subcommand("effects", "list the [effects] keys a scenario may set to hide physics");
+  RealtimeDevicesOptions devices_options;
+  std::string devices_board;
+  auto* devices = app.add_subcommand(
+      "devices", "the plant and its CANopen nodes in real time on a real CAN bus and gpio-sim");
+  devices->add_option("scenario", scenario, "scenario file (TOML)")->required();
+  devices->add_option("--can", devices_options.can_interface, "SocketCAN interface")->required();
+  devices->add_option("--gpio", devices_options.gpio_chip, "gpio-sim chip (name, path or label)")
+      ->required();
+  devices->add_option("--board", devices_board, "board file (default: the scenario's)");
+  devices->add_option("--truth", devices_options.truth_path, "write ground truth CSV here");
+  devices->add_option("--duration", devices_options.duration_s, "seconds (0 = whole route)")
+      ->check(planter::config::finite_range(0.0, 1e6));
+#ifdef PLANTER_WITH_CONSOLE
+  LiveOptions live_options;
+  auto* live = app.add_subcommand(
+      "live", "the simulated machine in real time, with the operator's console in a browser");
+  live->add_option("scenario", scenario, "scenario file (TOML)")->required();
+  live->add_option("--port", live_options.console.port, "TCP port of the console (0: any free)")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0, 65535));
+  live->add_option("--bind", live_options.console.bind,
+                   "address to serve on (0.0.0.0: every network of this machine)")
+      ->capture_default_str();
+  live->add_option("--duration", live_options.duration_s, "simulated seconds (0: until Ctrl-C)")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0.0, 1e6));
+  live->add_option("--speed", live_options.speed, "simulated seconds per wall-clock second")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0.1, 100.0));
+  live->add_option("--dir", live_options.dir,
+                   "where the console's recordings (recordings/) and audit.log go")
+      ->capture_default_str();
+  live->add_option("--pairing-secret-file", live_options.pairing_secret_file,
+                   "the operator's pairing secret (default: a new one, shown on the terminal)");
+  live->add_option("--viewer-secret-file", live_options.viewer_secret_file,
+                   "viewing needs this secret (default: viewing is open)");
+  live->add_flag("--view-only", live_options.view_only, "the console takes no command");
+#endif
+#ifdef PLANTER_WITH_REPLAY
+  std::string model, recording;
+  auto* replay = app.add_subcommand(
+      "replay", "run planter-fit's augmented model (model.toml) on a recording's inputs");
+  replay->add_option("model", model, "model.toml from planter-fit")->required();
+  replay->add_option("recording", recording, "recording CSV")->required();
+  replay->add_option("--out", out, "output directory (replay.csv)")->capture_default_str();
+  replay->add_flag("--force", force,
+                   "replace --out even if it holds something other than a replay");
+#endif
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
+  }
+  try {
+    if (*run) return run_scenario(scenario, out, quiet, force);
+#ifdef PLANTER_WITH_SWEEP
+    if (*sweep) {
+      sweep_options.max_replicates =
+          std::max(sweep_options.max_replicates, sweep_options.replicates);
+      return run_sweep(scenario, out, sweep_options);
+    }
+    if (*sensitivity) return run_sensitivity(scenario, out, sensitivity_options);
+#endif
+    if (*values) {
+      const PlantConfig plant =
+          values_scenario.empty() ? PlantConfig{} : load_scenario(values_scenario).plant;
+      std::printf("%-40s %9s %-7s %19s %-10s %s\n", "value", "in use", "unit", "plausible range",
+                  "origin", "source");
+      std::fputs(model_values_text(plant).c_str(), stdout);
+      return 0;
+    }
+    if (*effects) return print_effect_keys();
+    if (*devices) return run_devices(scenario, devices_board, devices_options);
+#ifdef PLANTER_WITH_CONSOLE
+    if (*live) return run_live(scenario, live_options);
+#endif
+#ifdef PLANTER_WITH_REPLAY
+    if (*replay) return run_replay(model, recording, out, force);
+  } catch (const analysis::RecordingError& e) {
+    std::fprintf(stderr, "planter-sim: %s\n", e.what());
+    return 2;
+#endif
+  } catch (const config::ConfigError& e) {
+    std::fprintf(stderr, "planter-sim: %s\n", e.what());
+    return 2;
+  } catch (const hal::linux_backend::HalError& e) {
+    std::fprintf(stderr, "planter-sim: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "planter-sim: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,495 @@
+#include "apps/planter-sim/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "config/output_set.h"
+#include "doe/doe.h"
+#include "doe/doe_report.h"
+#include "sim/plant/model_values.h"
+#include "report/html_text.h"
+#include "sim/runner/model_assumptions.h"
+#include "sim/runner/run_many.h"
+#include "sim/runner/scenario.h"
+
+namespace planter::sim {
+namespace {
+
+// The paper's factors (Table 4): centre and half-range of each, coded -1, 0, +1.
+struct Factor {
+  const char* name;
+  const char* unit;
+  double centre, half_range;
+  [[nodiscard]] double value(double coded) const { return centre + half_range * coded; }
+  [[nodiscard]] double coded(double value) const { return (value - centre) / half_range; }
+};
+constexpr Factor kFactors[3] = {{"contact area", "mm^2", 255.0, 150.0},
+                                {"disc speed", "rad/s", 0.25, 0.10},
+                                {"depth", "mm", 100.0, 60.0}};
+const std::vector<std::string> kTermNames{"A", "B", "C"};
+
+// The paper's findings for uprightness (its Tables 5-6 and optimisation): the significant
+// terms, the optimum and the centre point.
+const std::vector<std::string> kPaperSignificant{"A", "B", "C", "BC", "A^2", "B^2", "C^2"};
+constexpr int kCentrePoints = 3;
+constexpr double kForceCurve_N[] = {40.0, 60.0, 80.0, 90.0, 100.0, 120.0};
+
+struct Run {
+  int point = 0, replicate = 0;
+  double uprightness_pct = 0, damage_pct = 0, peak_force_N = 0, clamp_force_max_N = 0;
+  int planted = 0, damaged = 0;
+};
+
+// The standard error of a point's damage rate in points, pooled over its replicates, with
+// the Agresti-Coull adjustment so that no damaged seedling does not read as exact.
+double damage_standard_error_pts(const std::vector<Run>& runs, int point) {
+  double n = 0, k = 0;
+  for (const Run& r : runs) {
+    if (r.point != point) continue;
+    n += r.planted;
+    k += r.damaged;
+  }
+  const double p = (k + 2.0) / (n + 4.0);
+  return 100.0 * std::sqrt(p * (1.0 - p) / (n + 4.0));
+}
+
+// The base scenario at one coded point of the design, on `distance_m` without stops.
+Scenario design_point(const Scenario& base, const Eigen::RowVector3d& coded, double distance_m,
+                      std::uint64_t seed) {
+  Scenario s = base;
+  s.plant.route.distance_m = distance_m;
+  s.plant.route.stops.clear();
+  s.seed = seed;
+  const double omega = kFactors[1].value(coded(1));
+  const double sigma = omega * s.board.controller.sigma.disc_radius_m / s.plant.route.speed_mps;
+  set_operating_point(s, sigma, kFactors[2].value(coded(2)), kFactors[0].value(coded(0)));
+  return s;
+}
+
+// Desirability as Design-Expert sets it by default: each goal over the observed range of its
+// response; uprightness up, the peak radial force on the seedling down.
+doe::Optimum optimum_of(const doe::Anova& upright_fit, const Eigen::VectorXd& upright,
+                        const doe::Anova& force_fit, const Eigen::VectorXd& force) {
+  return doe::desirability_optimum_3({{&upright_fit, upright.minCoeff(), upright.maxCoeff()},
+                                      {&force_fit, force.maxCoeff(), force.minCoeff()}});
+}
+
+// Runs the (point, replicate) pairs `todo`, `jobs` at a time; each its own runner and seed.
+std::vector<Run> run_all(const Scenario& base, const Eigen::MatrixXd& design,
+                         const std::vector<std::pair<int, int>>& todo, double distance_m,
+                         int jobs) {
+  std::vector<Scenario> scenarios;
+  for (const auto& [point, replicate] : todo)
+    scenarios.push_back(design_point(base, design.row(point), distance_m,
+                                     base.seed + 1000u * static_cast<std::uint64_t>(replicate) +
+                                         static_cast<std::uint64_t>(point)));
+  const std::vector<Summary> results = run_many(scenarios, jobs, "sweep");
+  std::vector<Run> out;
+  for (std::size_t i = 0; i < todo.size(); ++i) {
+    const Summary& r = results[i];
+    out.push_back({todo[i].first, todo[i].second, r.uprightness_pct, r.damage_pct,
+                   r.seedling_peak_force_mean_N, r.clamp_force_max_N, r.seedlings_planted,
+                   r.seedlings_damaged});
+  }
+  return out;
+}
+
+std::string fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+nlohmann::json anova_json(const doe::Anova& a, const doe::LackOfFit& l) {
+  nlohmann::json j = doe::anova_json(a);
+  if (l.available) j["lack_of_fit"] = doe::lack_of_fit_json(l);
+  return j;
+}
+
+std::string anova_html(const std::string& title, const std::string& unit, const doe::Anova& a,
+                       const doe::LackOfFit& l) {
+  std::ostringstream h;
+  h << "<h3>" << title << " [" << unit << "]</h3>" << doe::anova_table_html(a) << "<p>Lack of fit ";
+  if (l.available)
+    h << "F " << fmt("%.3g", l.f_value) << " on " << l.df << " and " << l.pure_error_df << " df, p "
+      << fmt("%.3g", l.p_value) << (l.p_value < 0.05 ? " (significant)" : "");
+  else
+    h << "not testable (no replicates)";
+  h << ". Bold: p &lt; 0.05.</p>";
+  return h.str();
+}
+
+// Dark blue (low, u = 0) to yellow (high, u = 1).
+std::string colour(double u) {
+  char b[32];
+  std::snprintf(b, sizeof b, "rgb(%d,%d,%d)", static_cast<int>(30 + 220 * u),
+                static_cast<int>(40 + 180 * u), static_cast<int>(120 - 90 * u));
+  return b;
+}
+
+// A filled map of a surface over two factors, the third held at `fixed`, with the paper's
+// optimum (cross) and this sweep's (circle) marked.
+std::string surface_map(const std::string& title, const std::string& unit, const doe::Anova& a,
+                        int fx, int fy, const Eigen::Vector3d& fixed, const Eigen::Vector3d& paper,
+                        const Eigen::Vector3d& found, double physical_min, double physical_max) {
+  constexpr int kCells = 40;
+  constexpr double kSize = 320, kLeft = 70, kTop = 30;
+  std::vector<double> z;
+  for (int j = 0; j < kCells; ++j) {
+    for (int i = 0; i < kCells; ++i) {
+      Eigen::Vector3d x = fixed;
+      x(fx) = -1.0 + 2.0 * (i + 0.5) / kCells;
+      x(fy) = 1.0 - 2.0 * (j + 0.5) / kCells;
+      // The quadratic extrapolates past what the quantity can be (uprightness above 100 %):
+      // shown clipped to its physical range, and said under the map.
+      z.push_back(std::clamp(doe::predict_quadratic_3(a, x), physical_min, physical_max));
+    }
+  }
+  const double lo = *std::min_element(z.begin(), z.end());
+  const double hi = *std::max_element(z.begin(), z.end());
+  std::ostringstream s;
+  const double width = kLeft + kSize + 300, height = kTop + kSize + 64;
+  // viewBox: the map scales down whole on a phone instead of being cut.
+  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
+    << "' viewBox='0 0 " << width << ' ' << height << "' font-family='sans-serif' font-size='11'>"
+    << "<text x='" << kLeft << "' y='16' font-size='12'>" << report::html_escape(title) << " ["
+    << unit << "], " << kFactors[3 - fx - fy].name << " at "
+    << fmt("%.4g", kFactors[3 - fx - fy].value(fixed(3 - fx - fy))) << " "
+    << kFactors[3 - fx - fy].unit << "</text>";
+  const double cell = kSize / kCells;
+  for (int j = 0; j < kCells; ++j) {
+    for (int i = 0; i < kCells; ++i) {
+      const double u = hi > lo ? (z[static_cast<std::size_t>(j * kCells + i)] - lo) / (hi - lo) : 0;
+      s << "<rect x='" << kLeft + i * cell << "' y='" << kTop + j * cell << "' width='"
+        << cell + 0.5 << "' height='" << cell + 0.5 << "' fill='" << colour(u) << "'/>";
+    }
+  }
+  auto px = [&](double c) { return kLeft + (c + 1.0) / 2.0 * kSize; };
+  auto py = [&](double c) { return kTop + (1.0 - c) / 2.0 * kSize; };
+  for (double c : {-1.0, 0.0, 1.0}) {
+    s << "<text x='" << px(c) - 12 << "' y='" << kTop + kSize + 14 << "'>"
+      << fmt("%.4g", kFactors[fx].value(c)) << "</text><text x='" << kLeft - 40 << "' y='"
+      << py(c) + 4 << "'>" << fmt("%.4g", kFactors[fy].value(c)) << "</text>";
+  }
+  s << "<text x='" << kLeft + kSize / 2 - 40 << "' y='" << kTop + kSize + 32 << "'>"
+    << kFactors[fx].name << " [" << kFactors[fx].unit << "]</text>"
+    << "<text x='12' y='" << kTop + kSize / 2 << "' transform='rotate(-90 12 " << kTop + kSize / 2
+    << ")'>" << kFactors[fy].name << " [" << kFactors[fy].unit << "]</text>";
+  s << "<path d='M" << px(paper(fx)) - 7 << ',' << py(paper(fy)) - 7 << " l14,14 m0,-14 l-14,14' "
+    << "stroke='white' stroke-width='2.5'/><circle cx='" << px(found(fx)) << "' cy='"
+    << py(found(fy)) << "' r='6' fill='none' stroke='red' stroke-width='2.5'/>";
+  // The colour scale: a bar from low to high with five labelled steps.
+  const double lx = kLeft + kSize + 16;
+  for (int k = 0; k < 20; ++k) {
+    s << "<rect x='" << lx << "' y='" << kTop + kSize - (k + 1) * kSize / 20 << "' width='14' "
+      << "height='" << kSize / 20 + 0.5 << "' fill='" << colour((k + 0.5) / 20.0) << "'/>";
+  }
+  for (int k = 0; k <= 4; ++k) {
+    s << "<text x='" << lx + 18 << "' y='" << kTop + kSize - k * kSize / 4 + 4 << "'>"
+      << fmt("%.4g", lo + (hi - lo) * k / 4.0) << " " << unit << "</text>";
+  }
+  const double nx = lx + 70;
+  s << "<text x='" << nx << "' y='" << kTop + kSize / 2 - 8
+    << "'>x paper's optimum (projected)</text>"
+    << "<text x='" << nx << "' y='" << kTop + kSize / 2 + 8 << "' fill='red'>o this sweep's</text>"
+    << "<text x='" << kLeft << "' y='" << kTop + kSize + 50 << "'>the quadratic, clipped to "
+    << (std::isfinite(physical_max) ? fmt("%.4g", physical_min) + "-" + fmt("%.4g", physical_max)
+                                    : "at least " + fmt("%.4g", physical_min))
+    << " " << unit << " where it extrapolates past what can be</text></svg>";
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<Scenario> design_scenarios(const Scenario& base, double distance_m) {
+  const Eigen::MatrixXd design = doe::box_behnken_3(kCentrePoints);
+  std::vector<Scenario> out;
+  for (Eigen::Index p = 0; p < design.rows(); ++p)
+    out.push_back(
+        design_point(base, design.row(p), distance_m, base.seed + static_cast<std::uint64_t>(p)));
+  return out;
+}
+
+DesignOptimum design_optimum(const std::vector<Summary>& results) {
+  const Eigen::MatrixXd design = doe::box_behnken_3(kCentrePoints);
+  const Eigen::Index n = design.rows();
+  Eigen::VectorXd upright(n), force(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    upright(i) = results[static_cast<std::size_t>(i)].uprightness_pct;
+    force(i) = results[static_cast<std::size_t>(i)].seedling_peak_force_mean_N;
+  }
+  const doe::Anova upright_fit = doe::fit_quadratic_3(design, upright, kTermNames);
+  const doe::Optimum best =
+      optimum_of(upright_fit, upright, doe::fit_quadratic_3(design, force, kTermNames), force);
+  DesignOptimum o{kFactors[0].value(best.coded(0)),
+                  kFactors[1].value(best.coded(1)),
+                  kFactors[2].value(best.coded(2)),
+                  best.desirability,
+                  {}};
+  for (const auto& t : upright_fit.terms)
+    if (t.p_value < 0.05) o.significant_terms.push_back(t.name);
+  return o;
+}
+
+const std::vector<std::string>& paper_significant_terms() { return kPaperSignificant; }
+
+std::string optimum_text(double area_mm2, double disc_speed_radps, double depth_mm) {
+  return fmt("%.0f", area_mm2) + " mm^2, " + fmt("%.3f", disc_speed_radps) + " rad/s, " +
+         fmt("%.0f", depth_mm) + " mm";
+}
+
+double design_span(int factor) { return 2.0 * kFactors[factor].half_range; }
+
+int run_sweep(const std::string& scenario_path, const std::string& out_dir, const SweepOptions& o) {
+  Scenario base = load_scenario(scenario_path);
+  for (const auto& w : base.board.warnings)
+    std::fprintf(stderr, "planter-sim: warning: %s\n", w.c_str());
+  config::OutputSet out(out_dir, "planter-sim sweep", o.force);
+  const Eigen::MatrixXd design = doe::box_behnken_3(kCentrePoints);
+  const int points = static_cast<int>(design.rows());
+  const int jobs =
+      o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+
+  // Every point with the first replicates; then one more where damage is not yet resolved.
+  std::vector<Run> runs;
+  std::vector<int> replicates(static_cast<std::size_t>(points), 0);
+  std::vector<std::pair<int, int>> todo;
+  for (int rep = 0; rep < o.replicates; ++rep)
+    for (int p = 0; p < points; ++p) todo.emplace_back(p, rep);
+  while (!todo.empty()) {
+    for (const Run& r : run_all(base, design, todo, o.distance_m, jobs)) runs.push_back(r);
+    for (const auto& [p, rep] : todo) replicates[static_cast<std::size_t>(p)] = rep + 1;
+    todo.clear();
+    for (int p = 0; p < points; ++p) {
+      const int n = replicates[static_cast<std::size_t>(p)];
+      if (n < o.max_replicates && damage_standard_error_pts(runs, p) > o.damage_precision_pts)
+        todo.emplace_back(p, n);
+    }
+  }
+  std::sort(runs.begin(), runs.end(), [](const Run& a, const Run& b) {
+    return a.point != b.point ? a.point < b.point : a.replicate < b.replicate;
+  });
+
+  // The surfaces: one observation per run.
+  const auto n = static_cast<Eigen::Index>(runs.size());
+  Eigen::MatrixXd coded(n, 3);
+  Eigen::VectorXd upright(n), damage(n), force(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Run& r = runs[static_cast<std::size_t>(i)];
+    coded.row(i) = design.row(r.point);
+    upright(i) = r.uprightness_pct;
+    damage(i) = r.damage_pct;
+    force(i) = r.peak_force_N;
+  }
+  const doe::Anova a_up = doe::fit_quadratic_3(coded, upright, kTermNames);
+  const doe::Anova a_dmg = doe::fit_quadratic_3(coded, damage, kTermNames);
+  const doe::Anova a_force = doe::fit_quadratic_3(coded, force, kTermNames);
+  const doe::LackOfFit l_up = doe::lack_of_fit(coded, upright, a_up);
+  const doe::LackOfFit l_dmg = doe::lack_of_fit(coded, damage, a_dmg);
+  const doe::LackOfFit l_force = doe::lack_of_fit(coded, force, a_force);
+
+  const doe::Optimum best = optimum_of(a_up, upright, a_force, force);
+  const Eigen::Vector3d paper(kFactors[0].coded(kPaperOptimum[0]),
+                              kFactors[1].coded(kPaperOptimum[1]),
+                              kFactors[2].coded(kPaperOptimum[2]));
+  double opt[3];
+  for (int f = 0; f < 3; ++f) opt[f] = kFactors[f].value(best.coded(f));
+
+  // The centre point's means and the worst damage precision reached.
+  double centre_up = 0, centre_dmg = 0, worst_se = 0;
+  int centre_n = 0;
+  for (const Run& r : runs) {
+    if (design.row(r.point).norm() == 0.0) {
+      centre_up += r.uprightness_pct;
+      centre_dmg += r.damage_pct;
+      ++centre_n;
+    }
+  }
+  centre_up /= std::max(1, centre_n);
+  centre_dmg /= std::max(1, centre_n);
+  for (int p = 0; p < points; ++p)
+    worst_se = std::max(worst_se, damage_standard_error_pts(runs, p));
+
+  // The grip's trade-off at the design's centre: the clamp force set-point from 40 to 120 N
+  // (issue 27: both sides, slipping and crushing, before anyone optimises the force).
+  std::vector<Scenario> force_runs;
+  for (double f : kForceCurve_N) {
+    Scenario s = base;
+    s.plant.route.distance_m = o.distance_m;
+    s.plant.route.stops.clear();
+    const double sigma =
+        kFactors[1].centre * s.board.controller.sigma.disc_radius_m / s.plant.route.speed_mps;
+    set_operating_point(s, sigma, kFactors[2].centre, kFactors[0].centre);
+    s.board.controller.clamp.setpoint_N = f;
+    s.board.controller.clamp.ceiling_N = std::max(s.board.controller.clamp.ceiling_N, f + 20.0);
+    force_runs.push_back(std::move(s));
+  }
+  const std::vector<Summary> force_curve = run_many(force_runs, jobs, "sweep: clamp force");
+
+  // Interior maxima of uprightness along disc speed and depth, through the optimum: where the
+  // surface's slope along the factor is zero, if it curves down.
+  auto interior_max = [&](int f) {
+    const auto& t = a_up.beta;
+    // d/dx_f of the quadratic at the optimum's other coordinates: linear + interactions + 2 q x.
+    const int lin = 1 + f, sq = 7 + f;
+    const int inter[3][3] = {{-1, 4, 5}, {4, -1, 6}, {5, 6, -1}};
+    double slope0 = t(lin);
+    for (int g = 0; g < 3; ++g)
+      if (g != f) slope0 += t(inter[f][g]) * best.coded(g);
+    const double curvature = 2.0 * t(sq);
+    if (curvature >= 0.0) return std::string("no: the surface curves up or is flat");
+    const double x = -slope0 / curvature;
+    if (x <= -1.0 || x >= 1.0)
+      return "no: the maximum lies outside the design, at " + fmt("%.4g", kFactors[f].value(x)) +
+             " " + kFactors[f].unit;
+    return "yes, at " + fmt("%.4g", kFactors[f].value(x)) + " " + kFactors[f].unit;
+  };
+  std::vector<std::string> differ;
+  for (const auto& t : a_up.terms) {
+    const bool ours = t.p_value < 0.05;
+    const bool theirs = std::find(kPaperSignificant.begin(), kPaperSignificant.end(), t.name) !=
+                        kPaperSignificant.end();
+    if (ours != theirs)
+      differ.push_back(t.name + (ours ? " (significant here, not in the paper)"
+                                      : " (significant in the paper, not here)"));
+  }
+  std::string differ_text;
+  for (const auto& d : differ) differ_text += (differ_text.empty() ? "" : ", ") + d;
+  if (differ_text.empty()) differ_text = "none";
+
+  // sweep.csv: every run.
+  std::ostringstream csv;
+  csv << "point,replicate,contact_area_mm2,disc_speed_radps,depth_mm,uprightness_pct,damage_pct,"
+         "seedling_peak_force_mean_N,clamp_force_max_N,seedlings_planted,seedlings_damaged\n";
+  for (const Run& r : runs) {
+    csv << r.point + 1 << ',' << r.replicate + 1 << ',' << kFactors[0].value(design(r.point, 0))
+        << ',' << kFactors[1].value(design(r.point, 1)) << ','
+        << kFactors[2].value(design(r.point, 2)) << ',' << r.uprightness_pct << ',' << r.damage_pct
+        << ',' << r.peak_force_N << ',' << r.clamp_force_max_N << ',' << r.planted << ','
+        << r.damaged << '\n';
+  }
+  nlohmann::json j;
+  j["scenario"] = base.name;
+  j["runs"] = runs.size();
+  j["distance_m_per_run"] = o.distance_m;
+  j["damage_standard_error_pts_worst"] = worst_se;
+  j["uprightness"] = anova_json(a_up, l_up);
+  j["damage"] = anova_json(a_dmg, l_dmg);
+  j["seedling_peak_force"] = anova_json(a_force, l_force);
+  j["optimum"] = {{"contact_area_mm2", opt[0]},
+                  {"disc_speed_radps", opt[1]},
+                  {"depth_mm", opt[2]},
+                  {"desirability", best.desirability},
+                  {"uprightness_pct", doe::predict_quadratic_3(a_up, best.coded)},
+                  {"seedling_peak_force_N", doe::predict_quadratic_3(a_force, best.coded)}};
+  j["paper_optimum"] = {{"contact_area_mm2", kPaperOptimum[0]},
+                        {"disc_speed_radps", kPaperOptimum[1]},
+                        {"depth_mm", kPaperOptimum[2]}};
+  j["terms_differing_from_paper"] = differ;
+  j["centre_uprightness_pct"] = centre_up;
+  j["centre_damage_pct"] = centre_dmg;
+  j["paper_centre"] = {{"uprightness_pct", kPaperCentreUprightness_pct},
+                       {"damage_pct", kPaperCentreDamage_pct}};
+  for (std::size_t i = 0; i < force_curve.size(); ++i) {
+    const Summary& f = force_curve[i];
+    j["force_curve"].push_back({{"clamp_force_N", kForceCurve_N[i]},
+                                {"uprightness_pct", f.uprightness_pct},
+                                {"damage_pct", f.damage_pct},
+                                {"skips", f.truth_skips},
+                                {"fell_in_carry", f.seedlings_fell_in_carry},
+                                {"turned_in_clamp", f.seedlings_turned_in_clamp},
+                                {"slid_in_clamp", f.seedlings_slid_in_clamp},
+                                {"planted", f.seedlings_planted}});
+  }
+
+  std::ostringstream html;
+  html << "<!doctype html><html><head>" << report::kReportHead
+       << "<title>Sweep: " << report::html_escape(base.name) << "</title>"
+       << report::kTablePageStyle << "</head><body>"
+       << "<h1>The paper's Box-Behnken experiment, simulated</h1><p>" << runs.size() << " runs of "
+       << o.distance_m << " m on " << points << " design points (" << kCentrePoints
+       << " centre points), at least " << o.replicates
+       << " replicates each, more where the damage rate's standard error was above "
+       << o.damage_precision_pts << " points (worst reached: " << fmt("%.2f", worst_se)
+       << ").</p><h2>Optimum (desirability: uprightness up, peak radial force down)</h2><p>"
+       << optimum_text(opt[0], opt[1], opt[2]) << " (desirability "
+       << fmt("%.3f", best.desirability)
+       << "); the paper's: " << optimum_text(kPaperOptimum[0], kPaperOptimum[1], kPaperOptimum[2])
+       << ". Terms of uprightness whose significance differs from the paper's: "
+       << report::html_escape(differ_text) << ". Centre point: uprightness "
+       << fmt("%.2f", centre_up) << " % (paper " << fmt("%.1f", kPaperCentreUprightness_pct)
+       << " predicted), damage " << fmt("%.2f", centre_dmg) << " % (paper "
+       << fmt("%.0f", kPaperCentreDamage_pct) << ").</p>"
+       << surface_map("uprightness", "%", a_up, 1, 2, best.coded, paper, best.coded, 0.0, 100.0)
+       << surface_map("uprightness", "%", a_up, 0, 1, best.coded, paper, best.coded, 0.0, 100.0)
+       << surface_map("peak radial force on the seedling", "N", a_force, 1, 2, best.coded, paper,
+                      best.coded, 0.0, std::numeric_limits<double>::infinity())
+       << "<h2>Response surfaces (coded factors A area, B disc speed, C depth)</h2>"
+       << anova_html("Uprightness", "%", a_up, l_up) << anova_html("Damage rate", "%", a_dmg, l_dmg)
+       << anova_html("Peak radial force on the seedling", "N", a_force, l_force)
+       << "<h2>Clamp force: grip against crushing, at the design's centre</h2>"
+       << "<table><tr><th>set-point [N]</th><th>uprightness [%]</th><th>damage [%]</th>"
+          "<th>skips</th><th>fell from the clamp</th><th>turned in the clamp</th><th>slid in "
+          "the clamp</th><th>planted</th></tr>";
+  for (std::size_t i = 0; i < force_curve.size(); ++i) {
+    const Summary& f = force_curve[i];
+    html << "<tr><td>" << kForceCurve_N[i] << "</td><td>" << fmt("%.2f", f.uprightness_pct)
+         << "</td><td>" << fmt("%.2f", f.damage_pct) << "</td><td>" << f.truth_skips << "</td><td>"
+         << f.seedlings_fell_in_carry << "</td><td>" << f.seedlings_turned_in_clamp << "</td><td>"
+         << f.seedlings_slid_in_clamp << "</td><td>" << f.seedlings_planted << "</td></tr>";
+  }
+  html << "</table><h2>Model values</h2><p>Every value the figures rest on, its origin and "
+          "plausible range; <code>planter-sim sensitivity</code> ranks them.</p>"
+       << model_values_html(base.plant) << "<h2>Model assumptions</h2><ul>";
+  for (const std::string& a : model_assumptions(base))
+    html << "<li>" << report::html_escape(a) << "</li>";
+  html << "</ul></body></html>";
+
+  out.write("sweep.csv", csv.str());
+  out.write("sweep.json", j.dump(2) + "\n");
+  out.write("report.html", html.str());
+  out.commit();
+
+  auto print_anova = [](const char* name, const doe::Anova& a, const doe::LackOfFit& l) {
+    std::printf(
+        "%s: R^2 %.4f, adjusted %.4f, model p %.3g, lack of fit %s\n  significant (p < 0.05):",
+        name, a.r2, a.r2_adjusted, a.model_p,
+        l.available ? fmt("p %.3g", l.p_value).c_str() : "not testable");
+    for (const auto& t : a.terms)
+      if (t.p_value < 0.05) std::printf(" %s", t.name.c_str());
+    std::printf("\n");
+  };
+  std::printf(
+      "%zu runs of %.0f m on %d points, %d jobs; damage resolved to +-%.2f points (worst "
+      "point; goal %.2f)\n",
+      runs.size(), o.distance_m, points, jobs, worst_se, o.damage_precision_pts);
+  print_anova("uprightness", a_up, l_up);
+  print_anova("damage", a_dmg, l_dmg);
+  print_anova("peak radial force", a_force, l_force);
+  std::printf("terms of uprightness differing from the paper: %s\n", differ_text.c_str());
+  std::printf("interior maximum of uprightness in disc speed: %s\n", interior_max(1).c_str());
+  std::printf("interior maximum of uprightness in depth: %s\n", interior_max(2).c_str());
+  std::printf(
+      "centre point: uprightness %.2f %% (paper %.1f; the tilt scatter is calibrated to it), "
+      "damage %.2f %% (paper %.0f)\n",
+      centre_up, kPaperCentreUprightness_pct, centre_dmg, kPaperCentreDamage_pct);
+  std::printf(
+      "clamp force at the centre: set-point, uprightness, damage, skips, turned in clamp\n");
+  for (std::size_t i = 0; i < force_curve.size(); ++i)
+    std::printf("  %5.0f N  %6.2f %%  %5.2f %%  %3d  %4d\n", kForceCurve_N[i],
+                force_curve[i].uprightness_pct, force_curve[i].damage_pct,
+                force_curve[i].truth_skips, force_curve[i].seedlings_turned_in_clamp);
+  std::printf("wrote %s/{sweep.csv,sweep.json,report.html}\n", out_dir.c_str());
+  std::printf("optimum: %s (desirability %.3f); paper: %s\n",
+              optimum_text(opt[0], opt[1], opt[2]).c_str(), best.desirability,
+              optimum_text(kPaperOptimum[0], kPaperOptimum[1], kPaperOptimum[2]).c_str());
+  return 0;
+}
+
+}  // namespace planter::sim

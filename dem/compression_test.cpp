@@ -1,0 +1,107 @@
+#include "dem/compression_test.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace planter::dem {
+
+void find_first_peak(CompressionResult& r, double drop_fraction) {
+  // Smoothed over a few samples, so that one noisy sample is not a peak; the seating of
+  // the first few tenths of a millimetre is not either.
+  constexpr double kSeating_m = 0.3e-3;
+  const std::size_t n = r.curve.size();
+  const std::size_t half = std::max<std::size_t>(1, n / 120);
+  std::vector<double> smooth(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t lo = k >= half ? k - half : 0;
+    const std::size_t hi = std::min(n - 1, k + half);
+    for (std::size_t m = lo; m <= hi; ++m) smooth[k] += r.curve[m].force_N;
+    smooth[k] /= static_cast<double>(hi - lo + 1);
+  }
+  r.first_peak_found = false;
+  double best = -1.0;
+  std::size_t best_k = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (r.curve[k].displacement_m < kSeating_m) continue;
+    if (smooth[k] > best) {
+      best = smooth[k];
+      best_k = k;
+    } else if (best > 0.0 && smooth[k] < (1.0 - drop_fraction) * best) {
+      r.first_peak_found = true;
+      break;
+    }
+  }
+  // Report the raw curve's largest value around the smoothed peak.
+  r.peak_force_N = 0.0;
+  r.peak_displacement_m = 0.0;
+  if (best < 0.0) return;
+  const std::size_t lo = best_k >= half ? best_k - half : 0;
+  for (std::size_t m = lo; m <= std::min(n - 1, best_k + half); ++m) {
+    if (r.curve[m].force_N > r.peak_force_N) {
+      r.peak_force_N = r.curve[m].force_N;
+      r.peak_displacement_m = r.curve[m].displacement_m;
+    }
+  }
+}
+
+CompressionWorld make_compression_world(const CompressionSetup& s) {
+  CompressionWorld c{DemWorld(s.seedling_material, s.bonds, s.platen_material), {}, 0, 0.0};
+  c.world.set_local_damping(s.local_damping);
+  c.seedling = build_seedling(c.world, s.seedling);
+  c.platen_speed_mps = s.platen_speed_mps * s.speedup;
+  Platen lower;
+  lower.point = Vec3(0.0, c.seedling.min_y_m, 0.0);
+  lower.normal = Vec3::UnitY();
+  c.world.add_platen(lower);
+  Platen upper;
+  upper.point = Vec3(0.0, c.seedling.max_y_m, 0.0);
+  upper.normal = -Vec3::UnitY();
+  upper.velocity = Vec3(0.0, -c.platen_speed_mps, 0.0);
+  c.upper_platen = c.world.add_platen(upper);
+  return c;
+}
+
+long compression_steps(const CompressionSetup& s) {
+  return std::lround(s.stroke_m / (s.platen_speed_mps * s.speedup) / s.time_step_s);
+}
+
+CompressionResult run_compression(const CompressionSetup& s) {
+  CompressionWorld c = make_compression_world(s);
+  DemWorld& world = c.world;
+  const SeedlingBuild& built = c.seedling;
+  const double speed = c.platen_speed_mps;
+  const int top = c.upper_platen;
+
+  CompressionResult r;
+  r.particles = built.particles;
+  r.bonds = built.bonds;
+  const long total_steps = compression_steps(s);
+  const long per_sample = std::max(1L, total_steps / std::max(1, s.samples));
+  double force_sum = 0.0;
+  double work_J = 0.0;
+  long in_sample = 0;
+  for (long k = 1; k <= total_steps; ++k) {
+    world.step(s.time_step_s);
+    const double f = world.platens()[static_cast<std::size_t>(top)].force_N;
+    force_sum += f;
+    work_J += f * speed * s.time_step_s;
+    if (++in_sample == per_sample || k == total_steps) {
+      CurvePoint p;
+      p.displacement_m = speed * s.time_step_s * static_cast<double>(k);
+      p.force_N = force_sum / static_cast<double>(in_sample);
+      p.broken_bonds = world.broken_bonds();
+      r.curve.push_back(p);
+      if (p.displacement_m > 0.1 * s.stroke_m && work_J > 0.0) {
+        r.max_kinetic_to_work = std::max(r.max_kinetic_to_work, world.kinetic_energy() / work_J);
+      }
+      force_sum = 0.0;
+      in_sample = 0;
+    }
+  }
+  r.steps = world.steps();
+  r.broken_bonds = world.broken_bonds();
+  find_first_peak(r, s.peak_drop_fraction);
+  return r;
+}
+
+}  // namespace planter::dem

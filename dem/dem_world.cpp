@@ -1,0 +1,235 @@
+#include "dem/dem_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace planter::dem {
+namespace {
+
+double max_radius(const std::vector<Particle>& ps) {
+  double r = 0.0;
+  for (const auto& p : ps) r = std::max(r, p.radius_m);
+  return r;
+}
+
+// Cundall's local damping on one vector: each component loses `fraction` of its size,
+// in the direction that opposes the matching velocity component.
+void damp(Vec3& load, const Vec3& velocity, double fraction) {
+  for (int k = 0; k < 3; ++k) {
+    const double s = velocity[k] > 0.0 ? 1.0 : (velocity[k] < 0.0 ? -1.0 : 0.0);
+    load[k] -= fraction * std::abs(load[k]) * s;
+  }
+}
+
+}  // namespace
+
+int DemWorld::add_particle(const Particle& p) {
+  particles_.push_back(p);
+  neighbours_valid_ = false;
+  return static_cast<int>(particles_.size() - 1);
+}
+
+void DemWorld::add_bond(int i, int j) {
+  Bond b;
+  b.i = std::min(i, j);
+  b.j = std::max(i, j);
+  const Particle& pi = particles_[static_cast<std::size_t>(b.i)];
+  const Particle& pj = particles_[static_cast<std::size_t>(b.j)];
+  b.rest_overlap_m = std::max(0.0, pi.radius_m + pj.radius_m - (pj.x - pi.x).norm());
+  bonds_.push_back(b);
+  neighbours_valid_ = false;
+}
+
+int DemWorld::bond_neighbours(double gap_m) {
+  cells_.build(particles_, 2.0 * max_radius(particles_) + gap_m);
+  cells_.pairs(particles_, pairs_scratch_);
+  int added = 0;
+  for (const auto& [i, j] : pairs_scratch_) {
+    const Particle& a = particles_[static_cast<std::size_t>(i)];
+    const Particle& b = particles_[static_cast<std::size_t>(j)];
+    if ((b.x - a.x).norm() <= a.radius_m + b.radius_m + gap_m) {
+      add_bond(i, j);
+      ++added;
+    }
+  }
+  return added;
+}
+
+int DemWorld::add_platen(const Platen& p) {
+  platens_.push_back(p);
+  platens_.back().normal.normalize();
+  neighbours_valid_ = false;
+  return static_cast<int>(platens_.size() - 1);
+}
+
+bool DemWorld::neighbours_stale() const {
+  if (!neighbours_valid_) return true;
+  const double limit2 = 0.25 * skin_m_ * skin_m_;
+  for (std::size_t k = 0; k < particles_.size(); ++k) {
+    if ((particles_[k].x - x_at_rebuild_[k]).squaredNorm() > limit2) return true;
+  }
+  return false;
+}
+
+void DemWorld::rebuild_neighbours() {
+  const double r_max = max_radius(particles_);
+  skin_m_ = 0.2 * r_max;
+  cells_.build(particles_, 2.0 * r_max + skin_m_);
+  cells_.pairs(particles_, pairs_scratch_);
+  std::sort(pairs_scratch_.begin(), pairs_scratch_.end());
+  // Bonds ordered by pair, to mark bonded candidates by a merge.
+  std::vector<std::pair<std::pair<int, int>, int>> bond_keys;
+  bond_keys.reserve(bonds_.size());
+  for (std::size_t b = 0; b < bonds_.size(); ++b) {
+    bond_keys.push_back({{bonds_[b].i, bonds_[b].j}, static_cast<int>(b)});
+  }
+  std::sort(bond_keys.begin(), bond_keys.end());
+  previous_.swap(candidates_);  // ordered by (i, j) as built last time
+  candidates_.clear();
+  candidates_.reserve(pairs_scratch_.size());
+  std::size_t prev = 0;
+  std::size_t bk = 0;
+  for (const auto& key : pairs_scratch_) {
+    Candidate c;
+    c.i = key.first;
+    c.j = key.second;
+    while (bk < bond_keys.size() && bond_keys[bk].first < key) ++bk;
+    if (bk < bond_keys.size() && bond_keys[bk].first == key) c.bond = bond_keys[bk].second;
+    while (prev < previous_.size() && std::make_pair(previous_[prev].i, previous_[prev].j) < key) {
+      ++prev;
+    }
+    if (prev < previous_.size() && previous_[prev].i == c.i && previous_[prev].j == c.j) {
+      c.spring = previous_[prev].spring;
+    }
+    const Particle& a = particles_[static_cast<std::size_t>(c.i)];
+    const Particle& b = particles_[static_cast<std::size_t>(c.j)];
+    c.props = pair_properties(material_, a.radius_m, b.radius_m, a.mass_kg, b.mass_kg);
+    candidates_.push_back(c);
+  }
+  x_at_rebuild_.resize(particles_.size());
+  for (std::size_t k = 0; k < particles_.size(); ++k) x_at_rebuild_[k] = particles_[k].x;
+  platen_springs_.resize(platens_.size() * particles_.size(), Vec3::Zero());
+  // Every platen is the same steel: one pair per particle, not one per contact and step.
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  platen_props_.clear();
+  for (const auto& p : particles_) {
+    platen_props_.push_back(pair_properties(material_, platen_material_,
+                                            platen_material_.restitution, p.radius_m, kInf,
+                                            p.mass_kg, kInf));
+  }
+  neighbours_valid_ = true;
+  ++rebuilds_;
+}
+
+void DemWorld::particle_contacts(double dt) {
+  for (auto& c : candidates_) {
+    // The Hertz contact acts in parallel with a bond (Potyondy and Cundall 2004: the parallel
+    // bond is "in parallel with" the contact), from the pair's as-built overlap. Switching it on
+    // only when the bond broke started it at the full overlap the soft bond had allowed: energy
+    // from nothing, which shattered the seedling.
+    const double rest = rest_overlap(c);
+    Particle& a = particles_[static_cast<std::size_t>(c.i)];
+    Particle& b = particles_[static_cast<std::size_t>(c.j)];
+    const double reach = a.radius_m + b.radius_m - rest;
+    if ((b.x - a.x).squaredNorm() >= reach * reach) {
+      c.spring.setZero();
+      continue;
+    }
+    const ContactResult r = hertz_mindlin(material_, c.props, a, b, dt, c.spring, rest);
+    a.f += r.force_on_i;
+    b.f -= r.force_on_i;
+    a.tau += r.torque_on_i;
+    b.tau += r.torque_on_j;
+  }
+}
+
+void DemWorld::platen_contacts(double dt) {
+  // A wall is a sphere of infinite radius and mass at the particle's foot point.
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const std::size_t n = particles_.size();
+  for (std::size_t k = 0; k < platens_.size(); ++k) {
+    Platen& w = platens_[k];
+    w.force_N = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      Particle& p = particles_[i];
+      Vec3& spring = platen_springs_[k * n + i];
+      const double h = (p.x - w.point).dot(w.normal);
+      if (h >= p.radius_m) {
+        spring.setZero();
+        continue;
+      }
+      Particle wall;
+      wall.radius_m = 1.0;  // geometry only: R* below treats the wall as flat
+      wall.x = p.x - (h + wall.radius_m) * w.normal;
+      wall.v = w.velocity;
+      wall.mass_kg = kInf;
+      const ContactResult r =
+          hertz_mindlin(platen_material_, platen_props_[i], p, wall, dt, spring);
+      p.f += r.force_on_i;
+      p.tau += r.torque_on_i;
+      w.force_N += r.normal_force_N;
+    }
+  }
+}
+
+void DemWorld::integrate(double dt) {
+  for (auto& p : particles_) {
+    if (p.fixed) continue;
+    if (local_damping_ > 0.0) {
+      damp(p.f, p.v, local_damping_);
+      damp(p.tau, p.w, local_damping_);
+    }
+    p.v += p.f / p.mass_kg * dt;
+    p.x += p.v * dt;
+    if (p.inertia_kgm2 > 0.0) p.w += p.tau / p.inertia_kgm2 * dt;
+  }
+  for (auto& w : platens_) w.point += w.velocity * dt;
+}
+
+void DemWorld::step(double dt) {
+  if (neighbours_stale()) rebuild_neighbours();
+  for (auto& p : particles_) {
+    p.f.setZero();
+    p.tau.setZero();
+  }
+  for (auto& b : bonds_) {
+    update_bond(b, bond_params_, particles_[static_cast<std::size_t>(b.i)],
+                particles_[static_cast<std::size_t>(b.j)], dt);
+  }
+  particle_contacts(dt);
+  platen_contacts(dt);
+  integrate(dt);
+  ++steps_;
+}
+
+int DemWorld::broken_bonds() const {
+  return static_cast<int>(
+      std::count_if(bonds_.begin(), bonds_.end(), [](const Bond& b) { return b.broken; }));
+}
+
+double DemWorld::kinetic_energy() const {
+  double e = 0.0;
+  for (const auto& p : particles_) {
+    e += 0.5 * p.mass_kg * p.v.squaredNorm() + 0.5 * p.inertia_kgm2 * p.w.squaredNorm();
+  }
+  return e;
+}
+
+double DemWorld::contact_energy() const {
+  double e = 0.0;
+  for (const auto& c : candidates_) {
+    const Particle& a = particles_[static_cast<std::size_t>(c.i)];
+    const Particle& b = particles_[static_cast<std::size_t>(c.j)];
+    e += hertz_energy(c.props, a.radius_m + b.radius_m - rest_overlap(c) - (b.x - a.x).norm());
+  }
+  return e;
+}
+
+double DemWorld::bond_energy() const {
+  double e = 0.0;
+  for (const auto& b : bonds_) e += dem::bond_energy(b, bond_params_);
+  return e;
+}
+
+}  // namespace planter::dem

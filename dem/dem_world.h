@@ -1,0 +1,94 @@
+#pragma once
+// The bonded-particle world: particles, parallel bonds, Hertz-Mindlin contacts (between
+// particles and with rigid platens), integrated with the symplectic (leapfrog) Euler step.
+// Single-threaded and deterministic: the same input gives bit-identical results.
+#include <utility>
+#include <vector>
+
+#include "dem/cell_list.h"
+#include "dem/hertz_mindlin.h"
+#include "dem/parallel_bond.h"
+
+namespace planter::dem {
+
+// A rigid plane that pushes particles on its positive side: point, outward normal, velocity.
+struct Platen {
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();
+  Vec3 velocity = Vec3::Zero();
+  double force_N = 0.0;  // normal force the particles put on it this step
+};
+
+class DemWorld {
+ public:
+  // `platen_material` is the platen's (the steel fixture in the paper): its elastic values,
+  // and the particle-platen restitution and friction. By default the particles' own.
+  DemWorld(const ContactMaterial& material, const BondParameters& bonds)
+      : DemWorld(material, bonds, material) {}
+  DemWorld(const ContactMaterial& material, const BondParameters& bonds,
+           const ContactMaterial& platen_material)
+      : material_(material), platen_material_(platen_material), bond_params_(bonds) {}
+
+  int add_particle(const Particle& p);
+  // Bonds every pair whose centres are within (r_i + r_j) + `gap_m`.
+  int bond_neighbours(double gap_m);
+  void add_bond(int i, int j);
+  int add_platen(const Platen& p);
+  // Cundall's local non-viscous damping (Yade's NewtonIntegrator damping): each force and
+  // torque component is reduced by `fraction` of its size against the motion. 0 = none.
+  void set_local_damping(double fraction) { local_damping_ = fraction; }
+
+  void step(double dt);
+
+  [[nodiscard]] std::vector<Particle>& particles() { return particles_; }
+  [[nodiscard]] const std::vector<Particle>& particles() const { return particles_; }
+  [[nodiscard]] const std::vector<Bond>& bonds() const { return bonds_; }
+  [[nodiscard]] std::vector<Platen>& platens() { return platens_; }
+  [[nodiscard]] int broken_bonds() const;
+  [[nodiscard]] double kinetic_energy() const;
+  [[nodiscard]] double bond_energy() const;
+  // Elastic energy in particle-particle overlaps of unbonded pairs (a diagnostic, O(n^2)).
+  [[nodiscard]] double contact_energy() const;
+  [[nodiscard]] long steps() const { return steps_; }
+  [[nodiscard]] long neighbour_rebuilds() const { return rebuilds_; }
+
+ private:
+  // A candidate pair of the Verlet list and its contact history.
+  struct Candidate {
+    int i = 0;
+    int j = 0;
+    int bond = -1;  // index into bonds_ for a pair bonded at build (broken or not)
+    PairProperties props;
+    Vec3 spring = Vec3::Zero();
+  };
+  void rebuild_neighbours();
+  [[nodiscard]] double rest_overlap(const Candidate& c) const {
+    return c.bond >= 0 ? bonds_[static_cast<std::size_t>(c.bond)].rest_overlap_m : 0.0;
+  }
+  [[nodiscard]] bool neighbours_stale() const;
+  void particle_contacts(double dt);
+  void platen_contacts(double dt);
+  void integrate(double dt);
+
+  ContactMaterial material_;
+  ContactMaterial platen_material_;
+  BondParameters bond_params_;
+  std::vector<Particle> particles_;
+  std::vector<Bond> bonds_;
+  std::vector<Platen> platens_;
+  double local_damping_ = 0.0;
+  // Verlet list: pairs within 2 r_max + skin; rebuilt when any particle has moved skin/2.
+  CellList cells_;
+  std::vector<std::pair<int, int>> pairs_scratch_;
+  std::vector<Candidate> candidates_;
+  std::vector<Candidate> previous_;
+  std::vector<Vec3> x_at_rebuild_;
+  double skin_m_ = 0.0;
+  bool neighbours_valid_ = false;
+  std::vector<Vec3> platen_springs_;          // [platen * n + particle]
+  std::vector<PairProperties> platen_props_;  // [particle], against the platen material
+  long steps_ = 0;
+  long rebuilds_ = 0;
+};
+
+}  // namespace planter::dem

@@ -1,0 +1,41 @@
+#pragma once
+// Potyondy-Cundall parallel bond between two particles (EDEM's "Hertz-Mindlin with Bonding"):
+// loads grow from zero when the bond forms, by stiffness per unit area times the relative
+// motion, and the bond breaks on its signed tensile or its shear criterion.
+#include "dem/material.h"
+#include "dem/particle.h"
+
+namespace planter::dem {
+
+struct Bond {
+  int i = 0;
+  int j = 0;
+  double normal_force_N = 0.0;         // along n (i -> j) on j; negative = tension
+  Vec3 shear_force = Vec3::Zero();     // on j, in the contact plane
+  double twist_moment = 0.0;           // about n, on j
+  Vec3 bending_moment = Vec3::Zero();  // in the contact plane, on j
+  bool broken = false;
+  // The particles' overlap when the bond formed (the builder packs rings a radius apart). The
+  // pair's Hertz contact counts overlap beyond it, so the as-built packing holds no stress.
+  double rest_overlap_m = 0.0;
+};
+
+struct BondGeometry {
+  double area_m2;     // A = pi R_B^2
+  double polar_m4;    // J = pi R_B^4 / 2
+  double bending_m4;  // I = J / 2
+};
+BondGeometry bond_geometry(double radius_m);
+
+// Tensile and shear stress at the bond's rim now (the breakage criteria's left sides).
+double bond_tensile_stress(const Bond& b, const BondParameters& p);
+double bond_shear_stress(const Bond& b, const BondParameters& p);
+
+// Advances the bond's loads over dt from the particles' current motion, checks breakage, and
+// adds the loads to the particles' force and torque (nothing when broken).
+void update_bond(Bond& b, const BondParameters& p, Particle& pi, Particle& pj, double dt);
+
+// Elastic energy stored in the bond (for the energy balance).
+double bond_energy(const Bond& b, const BondParameters& p);
+
+}  // namespace planter::dem

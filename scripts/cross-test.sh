@@ -92,7 +92,7 @@ for p in "${presets[@]}"; do
       >/dev/null || { echo "cross: $p: planterd with the console does not start under qemu-user" >&2; exit 1; }
     echo "cross: $p: planterd serves the operator's console (links libcpp-httplib; starts under qemu-user)"
   else
-    echo "cross: $p: planterd has NO operator's console (no cpp-httplib for $a: README, 'the console')"
+    echo "cross: $p: planterd has NO operator's console (no cpp-httplib for $a: docs/planterd.md, the operator's console)"
   fi
 done
 for p in "${presets[@]}"; do

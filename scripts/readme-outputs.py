@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""The README's printed outputs, from real runs.
+"""The printed outputs of the README and the docs (docs/*.md), from real runs.
 
-Each block of the README that shows what a command prints follows a marker line
+Each block of those pages that shows what a command prints follows a marker line
 
     <!-- output NAME: COMMAND -->
 
@@ -22,7 +22,7 @@ import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-README = ROOT / "README.md"
+PAGES = [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md"))
 MARKER = re.compile(r"^<!-- output ([\w-]+): (.*) -->$")
 # The figures that measure the machine, not the software.
 TIMING = [re.compile(p) for p in (r"\d+(\.\d+)? s wall", r"\d+x real time", r"\d+ jobs",
@@ -68,34 +68,40 @@ def main():
     if len(sys.argv) < 3 or sys.argv[1] not in ("update", "check"):
         sys.exit(__doc__)
     mode, build, names = sys.argv[1], Path(sys.argv[2]).resolve(), sys.argv[3:]
-    lines = README.read_text().split("\n")
-    found = blocks(lines)
-    unknown = set(names) - {b[0] for b in found}
+    pages = {page: page.read_text().split("\n") for page in PAGES}
+    found = {page: blocks(lines) for page, lines in pages.items()}
+    every = [b[0] for page in found for b in found[page]]
+    twice = {n for n in every if every.count(n) > 1}
+    if twice:
+        sys.exit("readme-outputs: blocks named twice: %s" % ", ".join(sorted(twice)))
+    unknown = set(names) - set(every)
     if unknown:
-        sys.exit("readme-outputs: no block named %s in README.md" % ", ".join(sorted(unknown)))
+        sys.exit("readme-outputs: no block named %s in README.md or docs/" % ", ".join(sorted(unknown)))
     failed = 0
-    # From the last block up, so that rewriting one does not move the next.
-    for name, command, start, end in reversed(found):
-        if names and name not in names:
-            continue
-        with tempfile.TemporaryDirectory() as scratch:
-            fresh = run(command, build, Path(scratch) / "out")
+    for page, lines in pages.items():
+        where = page.relative_to(ROOT)
+        # From the last block up, so that rewriting one does not move the next.
+        for name, command, start, end in reversed(found[page]):
+            if names and name not in names:
+                continue
+            with tempfile.TemporaryDirectory() as scratch:
+                fresh = run(command, build, Path(scratch) / "out")
+            if mode == "update":
+                lines[start:end] = fresh
+                print("updated %s in %s (%d lines)" % (name, where, len(fresh)))
+                continue
+            old = lines[start:end]
+            if [masked(l) for l in old] != [masked(l) for l in fresh]:
+                failed += 1
+                print("%s block '%s' differs from '%s':" % (where, name, command))
+                for a, b in zip(old + [""] * len(fresh), fresh + [""] * len(old)):
+                    if masked(a) != masked(b):
+                        print("  page: %s\n  run:  %s" % (a.strip(), b.strip()))
+                print("  (scripts/readme-outputs.py update BUILD %s rewrites it)" % name)
+            else:
+                print("ok   %s block '%s' is what '%s' prints" % (where, name, command))
         if mode == "update":
-            lines[start:end] = fresh
-            print("updated %s (%d lines)" % (name, len(fresh)))
-            continue
-        old = lines[start:end]
-        if [masked(l) for l in old] != [masked(l) for l in fresh]:
-            failed += 1
-            print("README block '%s' differs from '%s':" % (name, command))
-            for a, b in zip(old + [""] * len(fresh), fresh + [""] * len(old)):
-                if masked(a) != masked(b):
-                    print("  README: %s\n  run:    %s" % (a.strip(), b.strip()))
-            print("  (scripts/readme-outputs.py update BUILD %s rewrites it)" % name)
-        else:
-            print("ok   README block '%s' is what '%s' prints" % (name, command))
-    if mode == "update":
-        README.write_text("\n".join(lines))
+            page.write_text("\n".join(lines))
     sys.exit(1 if failed else 0)
 
 

@@ -177,8 +177,7 @@ int run_devices(const std::string& scenario_path, const std::string& board_path,
 // The [effects] keys a scenario may set: what each hides in the plant, its range and unit.
 int print_effect_keys() {
   std::printf(
-      "[effects] keys of a scenario (all off by default; README \"Adding a physical "
-      "effect\"):\n");
+      "[effects] keys of a scenario (all off by default; docs/adding-an-effect.md):\n");
   for (const EffectKey& k : kEffectKeys) {
     char range[64];
     std::snprintf(range, sizeof range, "%g to %g %s", k.min, k.max, k.unit);

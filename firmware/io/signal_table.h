@@ -1,5 +1,5 @@
 #pragma once
-// Every signal of the machine, declared once: its recording column (../shared/PRODUCT.md), its
+// Every signal of the machine, declared once: its recording column (docs/recording-format.md), its
 // unit, where it comes from, and for a bus signal the node, the object and the scale. The I/O
 // layer's scaling, the recording header and row, planter-can's decode and monitor, the
 // simulated devices' unit conversion and planter-fit's column units all derive from this table.
@@ -38,7 +38,7 @@ enum class SignalSource : std::uint8_t {
 struct SignalDecl {
   std::string_view column;   // recording column; also the name every tool shows
   std::string_view unit;     // SI, or mm where the column says so
-  std::string_view meaning;  // PRODUCT.md's words
+  std::string_view meaning;  // the recording format's words
   SignalSource source;
   int decimals;   // printed precision in a recording row
   bool recorded;  // a column of the recording (false: in the process image only)
@@ -129,7 +129,7 @@ inline constexpr std::array kSignals = {
                           &MachineState::depth_force_N, NodeRole::kDepthActuator,
                           signal_decl::c402::kTorqueActual, 0, BusScale::kPerMilleRated),
     signal_decl::at("state", "-", "supervisor state name", SignalSource::kSupervisor, 0),
-    // The planting monitor (firmware/sensing/planting_monitor.h): new columns after PRODUCT.md's.
+    // The planting monitor (firmware/sensing/planting_monitor.h): the columns this project adds.
     signal_decl::at("warnings", "bits", "warnings holding (1 = empty belt)",
                     SignalSource::kWarnings, 0),
     signal_decl::monitored("seedlings", "count", "seedlings the photo-eye saw since start", 0,

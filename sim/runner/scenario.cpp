@@ -92,7 +92,7 @@ Scenario load_scenario(const std::string& path) {
     if (t->has("draft_coeff"))
       t->fail("draft_coeff",
               "was c_s in a draft proportional to speed, which was wrong; the draft now has "
-              "ASABE D497's form: set texture and, if measured, draft_a_N_per_cm (README, "
+              "ASABE D497's form: set texture and, if measured, draft_a_N_per_cm (docs/simulator.md, "
               "\"Model assumptions\")");
     soil::OpenerDraftLaw& d = p.soil.draft;
     const std::string texture = t->string("texture", "medium");

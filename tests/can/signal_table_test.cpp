@@ -1,7 +1,7 @@
 // The signal table (firmware/io/signal_table.h) is the one declaration of every recording
-// column: PRODUCT.md's columns match it name for name and unit for unit, the recording header
-// comes from it, and what planter-can decodes from the bus (decode and monitor share
-// FrameDecoder) is what the controller's telemetry holds, on a live lockstep run.
+// column: the recording format's columns (docs/recording-format.md) match it name for name and unit
+// for unit, the recording header comes from it, and what planter-can decodes from the bus (decode
+// and monitor share FrameDecoder) is what the controller's telemetry holds, on a live lockstep run.
 #include "firmware/io/signal_table.h"
 
 #include <gtest/gtest.h>
@@ -26,14 +26,16 @@ using namespace planter;
 
 namespace {
 
-// The first `| name | unit | meaning |` table of a markdown file: name -> unit.
-std::map<std::string, std::string> columns_table(const std::string& file) {
+// The first `| name | unit | meaning |` table under a heading of a markdown file: name -> unit.
+std::map<std::string, std::string> columns_table(const std::string& file,
+                                                 const std::string& heading) {
   std::ifstream in(file);
   std::map<std::string, std::string> cols;
   std::string line;
-  bool in_table = false;
+  bool under_heading = false, in_table = false;
   while (std::getline(in, line)) {
-    if (line.rfind("| name | unit | meaning |", 0) == 0) {
+    if (line == heading) under_heading = true;
+    if (under_heading && line.rfind("| name | unit | meaning |", 0) == 0) {
       in_table = true;
       continue;
     }
@@ -53,46 +55,51 @@ std::map<std::string, std::string> columns_table(const std::string& file) {
   }
   return cols;
 }
-// PRODUCT.md's recording table.
+// The recording format's columns of the controller, as the brief gave them
+// (docs/recording-format.md, the project's own copy of the format).
+const std::string kFormat = std::string(PLANTER_SOURCE_DIR) + "/docs/recording-format.md";
 std::map<std::string, std::string> product_columns() {
-  return columns_table(std::string(PLANTER_SOURCE_DIR) + "/../shared/PRODUCT.md");
+  return columns_table(kFormat, "## The controller's columns");
 }
-// The planting monitor's columns, which the README documents after PRODUCT.md's.
+// The planting monitor's columns, which the project adds after the controller's.
 std::map<std::string, std::string> readme_monitor_columns() {
-  return columns_table(std::string(PLANTER_SOURCE_DIR) + "/README.md");
+  return columns_table(kFormat, "## Columns this project adds");
 }
 
 }  // namespace
 
 TEST(SignalTable, EveryColumnIsDeclaredOnceWithProductsUnit) {
   const auto product = product_columns();
-  ASSERT_GE(product.size(), 15u) << "PRODUCT.md's recording table was not found";
+  ASSERT_GE(product.size(), 15u)
+      << "docs/recording-format.md's table of the controller's columns was not found";
   std::multiset<std::string_view> declared;
   for (const SignalDecl& s : kSignals) declared.insert(s.column);
   const auto monitor = readme_monitor_columns();
-  ASSERT_GE(monitor.size(), 10u) << "the README's table of our columns was not found";
+  ASSERT_GE(monitor.size(), 10u) << "docs/recording-format.md's table of our columns was not found";
   for (const SignalDecl& s : kSignals) {
     EXPECT_EQ(declared.count(s.column), 1u) << s.column;
     if (!s.recorded) continue;
     // The planting monitor's columns and the operator's depth target are this project's,
-    // documented in the README; the rest are PRODUCT.md's and keep its meaning.
+    // documented among the columns this project adds; the rest are the brief's.
     const bool ours =
         s.source == SignalSource::kMonitor || s.source == SignalSource::kWarnings ||
         (monitor.count(std::string(s.column)) && !product.count(std::string(s.column)));
     const auto& table = ours ? monitor : product;
     const auto it = table.find(std::string(s.column));
     ASSERT_NE(it, table.end()) << s.column << " is recorded but not in "
-                               << (ours ? "the README's planting-monitor table" : "PRODUCT.md");
+                               << (ours ? "the format's table of our columns"
+                                        : "the format's controller columns");
     EXPECT_EQ(it->second, s.unit) << s.column;
-    EXPECT_FALSE(ours && product.count(std::string(s.column))) << s.column << " is PRODUCT.md's";
+    EXPECT_FALSE(ours && product.count(std::string(s.column)))
+        << s.column << " is one of the controller's columns";
   }
   for (const auto& [name, unit] : monitor) EXPECT_NE(find_signal(name), nullptr) << name;
-  // Every PRODUCT.md column is declared, except v_ground: an independent speed sensor the
-  // controller does not have (the simulator writes its truth under that name).
+  // Every controller column of the format is declared, except v_ground: an independent speed sensor
+  // the controller does not have (the simulator writes its truth under that name).
   for (const auto& [name, unit] : product) {
     if (name == "v_ground") continue;
     const SignalDecl* s = find_signal(name);
-    ASSERT_NE(s, nullptr) << name << " is in PRODUCT.md but not declared";
+    ASSERT_NE(s, nullptr) << name << " is in the recording format but not declared";
     EXPECT_TRUE(s->recorded) << name;
   }
 }

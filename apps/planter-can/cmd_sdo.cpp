@@ -1,10 +1,13 @@
 #include "apps/planter-can/cmd_sdo.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <set>
 #include <sstream>
+#include <vector>
 
 #include "apps/planter-can/cmd_scan.h"
 #include "apps/planter-can/object_names.h"
@@ -159,38 +162,59 @@ int run_nmt(ToolContext& ctx, const std::string& command, const std::string& nod
     ctx.err << "planter-can: nmt: the frame could not be sent (transmit queue full or bus-off)\n";
     return kExitFailed;
   }
-  // Confirmation: the heartbeat (or boot-up) with the new state, within a second.
+  // Confirmation: the heartbeat (or boot-up) with the new state, within a second: of the node,
+  // or for "all" of every node of the board (without a board, of every node that answers).
+  std::set<int> waiting;
+  if (node != 0) {
+    waiting.insert(node);
+  } else if (ctx.board != nullptr) {
+    for (const NodeConfig& n : ctx.board->controller.nodes) waiting.insert(n.node_id);
+  }
+  const std::set<int> expected = waiting;
+  std::set<int> confirmed_ids;
   BusWatch watch;
   const std::int64_t t0 = ctx.link.now_ns();
   watch.start(t0);
-  bool confirmed = false;
   hal::CanFrame r;
-  while (!confirmed && ctx.link.receive_until(r, t0 + 1'000'000'000)) {
+  while ((waiting.empty() || !std::includes(confirmed_ids.begin(), confirmed_ids.end(),
+                                            waiting.begin(), waiting.end())) &&
+         ctx.link.receive_until(r, t0 + 1'000'000'000)) {
     watch.on_frame(r, ctx.link.now_ns());
-    if (node != 0 && r.is_standard_data() && r.cob_id() == canopen::kHeartbeatBase + node &&
-        r.dlc >= 1 && (r.data[0] & 0x7F) == row->expect) {
-      confirmed = true;
-    }
+    if (!r.is_standard_data() || r.dlc < 1) continue;
+    const int id = static_cast<int>(r.cob_id()) - static_cast<int>(canopen::kHeartbeatBase);
+    if (id < 1 || id > 127 || (r.data[0] & 0x7F) != row->expect) continue;
+    if (node == 0 || id == node) confirmed_ids.insert(id);
   }
+  std::vector<int> missing;
+  for (int id : expected)
+    if (!confirmed_ids.count(id)) missing.push_back(id);
+  const bool confirmed = expected.empty() ? !confirmed_ids.empty() : missing.empty();
+  auto ids_text = [](const auto& ids) {
+    std::string t;
+    for (int id : ids) t += (t.empty() ? "" : " ") + std::to_string(id);
+    return t;
+  };
   const std::string who = node == 0 ? "all nodes" : "node " + std::to_string(node);
   if (ctx.json) {
     nlohmann::json j{{"command", command},
                      {"node", node},
                      {"sent", true},
-                     {"confirmed", node != 0 ? nlohmann::json(confirmed) : nlohmann::json()}};
+                     {"confirmed", confirmed},
+                     {"confirmed_nodes", confirmed_ids},
+                     {"unconfirmed_nodes", missing}};
     ctx.out << j.dump(2) << "\n";
-  } else if (node == 0) {
-    ctx.out << command << " sent to all nodes\n";
   } else if (confirmed) {
     ctx.out << command << " " << who << ": confirmed, heartbeat says "
-            << nmt_state_name(row->expect) << "\n";
+            << nmt_state_name(row->expect)
+            << (node == 0 ? " (nodes " + ids_text(confirmed_ids) + ")" : std::string()) << "\n";
   } else {
     ctx.err << "planter-can: nmt: " << command << " " << who << ": sent, not confirmed: no "
             << "heartbeat within 1 s says " << nmt_state_name(row->expect)
+            << (missing.empty() ? std::string() : " from node(s) " + ids_text(missing))
             << " (no such node, or its heartbeat is off)\n";
   }
-  // README: a node that never answers is a timeout, exit 1; "all" has no one to confirm it.
-  return node == 0 || confirmed ? kExitOk : kExitFailed;
+  // A node that never answers is a timeout, exit 1 (docs/planter-can.md).
+  return confirmed ? kExitOk : kExitFailed;
 }
 
 }  // namespace planter::cantool

@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough();  // --json, --board ... may also follow the command
   std::string iface, board_path, scenario_path;
-  bool json = false, no_progress = false, sim_controller = false;
+  bool json = false, no_progress = false, sim_controller = false, no_sim_controller = false;
   int timeout_ms = 100;
   double push_m = 5.0;
   app.add_option("--iface", iface, "SocketCAN interface (can0, vcan0) or 'sim'");
@@ -55,7 +55,10 @@ int main(int argc, char** argv) {
   app.add_flag("--no-progress", no_progress, "no progress line on stderr");
   app.add_option("--sim-scenario", scenario_path, "sim: the machine and field to simulate");
   app.add_flag("--sim-controller", sim_controller,
-               "sim: planterd runs on the bus too (SYNC, PDOs, heartbeats)");
+               "sim: planterd runs on the bus too (SYNC, PDOs, heartbeats); the default but for "
+               "configure, calibrate, lss and replay, done with planterd stopped");
+  app.add_flag("--no-sim-controller", no_sim_controller,
+               "sim: no planterd on the bus (a machine just powered, its nodes pre-operational)");
   std::string session_log;
   app.add_option("--record", session_log,
                  "log the whole session (every frame seen and sent) to this candump -L file");
@@ -137,7 +140,8 @@ int main(int argc, char** argv) {
       ->check(planter::config::finite_range(0.001, 1000.0));
 
   std::string decode_log, decode_out;
-  auto* c_decode = app.add_subcommand("decode", "candump log -> recording CSV (PRODUCT.md)");
+  auto* c_decode =
+      app.add_subcommand("decode", "candump log -> recording CSV (docs/recording-format.md)");
   c_decode->add_option("log", decode_log)->required();
   c_decode->add_option("-o,--out", decode_out, "CSV file (default: stdout)");
 
@@ -228,7 +232,16 @@ int main(int argc, char** argv) {
         board = scenario.board;
       }
       SimLinkOptions so;
-      so.with_controller = sim_controller;
+      // As on the machine: planterd is running, except for what is done with it stopped.
+      const bool planterd_stopped =
+          c_configure->parsed() || c_cal->parsed() || c_lss->parsed() || c_replay->parsed();
+      if (sim_controller && no_sim_controller)
+        return fail(kExitBadInput, "--sim-controller and --no-sim-controller: give one");
+      so.with_controller = sim_controller || (!no_sim_controller && !planterd_stopped);
+      if (c_cal->parsed() && so.with_controller)
+        return fail(kExitBadInput,
+                    "calibrate needs the machine to itself: planterd must be stopped (leave out "
+                    "--sim-controller)");
       so.push_distance_m =
           c_cal->parsed() && calibrate.distance_m > 0 ? calibrate.distance_m : push_m;
       link = std::make_unique<SimLink>(scenario, so);

@@ -54,7 +54,7 @@ expect 2 "out of range 1-127" -- --iface sim --board "$board" lss assign 200
 expect 1 "node-ID 2 is already used by a node on the bus" -- --iface sim --board "$board" lss assign 2
 expect 0 "unconfigured -> 9, stored, boot-up seen" -- --iface sim --board "$board" lss assign 9
 expect 0 "4 node(s) on sim" -- --iface sim --board "$board" scan
-expect 1 "FAIL  SYNC rate" -- --iface sim --board "$board" check --skip-encoder
+expect 1 "FAIL  SYNC rate" -- --iface sim --no-sim-controller --board "$board" check --skip-encoder
 # The README's commissioning session on sim, as written: the controller has booted the nodes
 # before the tool speaks, and a healthy machine passes every item.
 expect 0 "all 26 items passed" -- --iface sim --board "$src/boards/host-sim/board.toml" --sim-controller check
@@ -124,5 +124,23 @@ expect 0 "not written into $work/cal/board.toml (give --write-sim" -- --iface si
 [ "$before" = "$(md5sum "$work/cal/calibration.toml" "$work/cal/board.toml")" ] && ! ls "$work/cal"/*.bak* >/dev/null 2>&1 ||
   { echo "FAIL: calibrate on sim changed the board's files"; fails=$((fails + 1)); }
 expect 0 "written to $work/cal/calibration.toml" -- --iface sim --board "$work/cal/board.toml" calibrate force --known-N 50 --ready-after-s 0 --write-sim
+# Issue 29: the commands of docs/planter-can.md, in its order, on sim as a newcomer types them
+# (no --board, no --sim-controller): each works, and the project's files stay as they were.
+tracked=$(cd "$src" && git status --porcelain -- boards machines 2>/dev/null | md5sum)
+expect 0 "4 node(s) on sim" -- --iface sim scan
+expect 0 "TPDO1" -- --iface sim info 2
+expect 0 "4202497" -- --iface sim sdo 2 r 0x1018 2 u32
+expect 0 "stop node 2: confirmed" -- --iface sim nmt stop 2
+expect 0 "start all nodes: confirmed, heartbeat says operational (nodes 2 3 4 5)" -- --iface sim nmt start all
+expect 1 "from node(s) 2 3 4 5" -- --iface sim --no-sim-controller nmt start all
+expect 0 "read back ok, stored" -- --iface sim configure
+expect 0 "not written" -- --iface sim calibrate force --known-N 50 --ready-after-s 0
+expect 0 "not written" -- --iface sim calibrate soil-wheel --distance-m 2 --ready-after-s 0
+expect 0 "control.depth_max_mm .* 165 " -- --iface sim calibrate depth --ready-after-s 0
+expect 2 "planterd must be stopped" -- --iface sim --sim-controller calibrate depth
+expect 0 "all 26 items passed" -- --iface sim check
+expect 0 "frames, bus load" -- --iface sim monitor --duration 1
+[ "$tracked" = "$(cd "$src" && git status --porcelain -- boards machines 2>/dev/null | md5sum)" ] ||
+  { echo "FAIL: the documented commands on sim changed the project's boards or machines"; fails=$((fails + 1)); }
 [ "$fails" -eq 0 ] && echo "planter-can command line: all cases behave"
 exit "$fails"

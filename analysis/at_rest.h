@@ -10,7 +10,7 @@
 namespace planter::analysis {
 
 // The column the analysed recording carries: 1 at rest, 0 moving. Its name cannot be a
-// recording column (they are identifiers; see PRODUCT.md's header rules).
+// recording column (they are identifiers; see docs/recording-format.md).
 inline const std::string kAtRestColumn = "(at rest)";
 
 // Half the window a standstill must last: covers the soil wheel's estimator lag at a start.

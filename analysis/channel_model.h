@@ -1,7 +1,7 @@
 #pragma once
 // One measured output of a subsystem and the nominal model that predicts it from recorded
-// inputs (PRODUCT.md's nominal structures), with hooks where a candidate effect acts:
-// on the input (delay, dead zone, play), on the state (rate limit), or on the output.
+// inputs (the nominal structures of docs/recording-format.md), with hooks where a candidate effect
+// acts: on the input (delay, dead zone, play), on the state (rate limit), or on the output.
 #include <optional>
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
-// The nominal structures of PRODUCT.md as channels: ground, disc drive (speed and torque),
-// clamp, depth (position and draft).
+// The nominal structures of docs/recording-format.md as channels: ground, disc drive (speed and
+// torque), clamp, depth (position and draft).
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -189,7 +189,7 @@ class ClampChannel : public ChannelModel {
     for (std::size_t k = 0; k < std::min(end, x.size()); ++k) n += x[k] <= p[1];
     return n;
   }
-  // n within 0.9-2.5: PRODUCT.md gives 1-1.5 from the DEM; a law much softer than linear
+  // n within 0.9-2.5: the format gives 1-1.5 from the DEM; a law much softer than linear
   // would be the fit bending to mimic creep. A sensor gain error is the same as a different
   // k_c: the nominal fit absorbs it.
   std::vector<const EffectSpec*> candidates(const Recording&) const override {

@@ -5,10 +5,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "config/output_set.h"
-#include "firmware/io/signal_table.h"
 #include "analysis/effect_hooks.h"
 #include "analysis/model_file.h"
+#include "config/output_set.h"
+#include "firmware/io/signal_table.h"
 #include "report/chart.h"
 #include "report/html_text.h"
 
@@ -204,7 +204,8 @@ std::string fit_json(const FitReport& r, double wall_s) {
 std::string fit_model_toml(const FitReport& r) {
   std::ostringstream s;
   s.precision(17);  // round trip: replay predicts what the fit predicted
-  s << "# The augmented model planter-fit found (nominal structures of PRODUCT.md plus the\n"
+  s << "# The augmented model planter-fit found (nominal structures of docs/recording-format.md "
+       "plus the\n"
        "# effects that earned their parameters). Run it: planter-sim replay MODEL RECORDING\n";
   for (const auto& c : r.channels) {
     s << "\n[[channel]]\noutput = \"" << c.channel->output() << "\"\nsubsystem = \""

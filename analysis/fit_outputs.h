@@ -5,8 +5,8 @@
 // augmented model, which `planter-sim replay` runs).
 #include <string>
 
-#include "config/output_set.h"
 #include "analysis/mismatch.h"
+#include "config/output_set.h"
 
 namespace planter::analysis {
 

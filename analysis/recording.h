@@ -1,7 +1,7 @@
 #pragma once
-// A recording in the PRODUCT.md format, as the analysis reads it: `#` metadata lines, a
-// header of signal names, one row per sample, time strictly increasing. Columns may be
-// absent; `state` is kept as text. Every defect is one RecordingError with its line.
+// A recording in the recording format (docs/recording-format.md), as the analysis reads it: `#`
+// metadata lines, a header of signal names, one row per sample, time strictly increasing. Columns
+// may be absent; `state` is kept as text. Every defect is one RecordingError with its line.
 #include <map>
 #include <memory>
 #include <stdexcept>

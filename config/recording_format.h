@@ -1,5 +1,5 @@
 #pragma once
-// The controller's part of a recording row (PRODUCT.md format), shared by planterd and the
+// The controller's part of a recording row (docs/recording-format.md), shared by planterd and the
 // simulator so that a field log and a simulated one have the same columns and precision. Both
 // the header and the row come from the signal table (firmware/io/signal_table.h).
 #include <cstddef>

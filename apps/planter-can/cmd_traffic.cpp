@@ -317,8 +317,8 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
     err << "planter-can: decode: " << log_path << " has no SYNC frames to sample the signals on\n";
     return kExitFailed;
   }
-  // Columns whose objects never appear in the log are left out (PRODUCT.md: columns may be
-  // absent); rows start once every present column has a value, so no cell is empty.
+  // Columns whose objects never appear in the log are left out (docs/recording-format.md: columns
+  // may be absent); rows start once every present column has a value, so no cell is empty.
   auto for_each_value = [&](const LogRecord& r, auto&& take) {
     const DecodedFrame d = decoder.decode(r.frame);
     if ((d.service != Service::kTpdo && d.service != Service::kRpdo) || d.malformed) return;

@@ -1,7 +1,7 @@
 #pragma once
 // Bus traffic: `monitor` (live decode with names, units and rates), `record` (a candump -L
 // log, the tool's own frames included), `replay` (a log back onto the bus, timed), and
-// `decode` (a log into the recording CSV of PRODUCT.md).
+// `decode` (a log into the recording CSV of docs/recording-format.md).
 #include <atomic>
 #include <string>
 

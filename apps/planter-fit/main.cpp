@@ -10,12 +10,12 @@
 #include <string>
 #include <thread>
 
-#include "config/cli_range.h"
-#include "config/config_error.h"
-#include "config/output_set.h"
 #include "analysis/day_tracks.h"
 #include "analysis/fit_outputs.h"
 #include "analysis/model_file.h"
+#include "config/cli_range.h"
+#include "config/config_error.h"
+#include "config/output_set.h"
 
 namespace {
 
@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
   std::string file, out = "fit-out";
   bool json = false;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  app.add_option("recording", file, "recording CSV (PRODUCT.md format)")->required();
+  app.add_option("recording", file, "recording CSV (docs/recording-format.md)")->required();
   std::string model;
   app.add_option("--model", model,
                  "a model.toml to start from: its values and effects are taken as known")

@@ -1,6 +1,6 @@
 #pragma once
-// planterd's telemetry recording (PRODUCT.md CSV) written so that a kill -9 or a power cut
-// loses at most the rows of the last unflushed block:
+// planterd's telemetry recording (docs/recording-format.md) written so that a kill -9 or a power
+// cut loses at most the rows of the last unflushed block:
 // - rows are formatted off the real-time thread and appended in blocks that end on a row
 //   boundary, each with one write() followed by fdatasync();
 // - a file left by an earlier run is never overwritten: its torn tail (if the power went

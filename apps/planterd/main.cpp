@@ -379,7 +379,7 @@ class OperatorConsole {
 int parse_options(int argc, char** argv, Options& opt) {
   CLI::App app{"planterd: the scallion transplanter's controller daemon"};
   app.add_option("--board", opt.board, "board file (boards/<board>/board.toml)")->required();
-  app.add_option("--record", opt.record, "record telemetry to this CSV (PRODUCT.md format)");
+  app.add_option("--record", opt.record, "record telemetry to this CSV (docs/recording-format.md)");
   app.add_flag("--run", opt.run, "start planting as soon as every node is ready (unattended)");
   app.add_option("--duration", opt.duration_s, "stop safely after this many seconds (tests)")
       ->check(planter::config::finite_range(0.0, 1e7));

@@ -1,7 +1,7 @@
 #pragma once
 // The keys of a scenario's [effects] table, declared once: the scenario loader reads them, the
 // report lists the ones that ran, and `planter-sim effects` prints them for a user. Each is an
-// effect hidden in the plant that the nominal structures of PRODUCT.md leave out.
+// effect hidden in the plant that the nominal structures (docs/recording-format.md) leave out.
 #include <array>
 
 #include "sim/plant/plant_config.h"

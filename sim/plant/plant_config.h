@@ -1,6 +1,6 @@
 #pragma once
 // Parameters of the machine-and-field model. Every richer effect is off by default, so the
-// base model is exactly the nominal structure of PRODUCT.md.
+// base model is exactly the nominal structures of docs/recording-format.md.
 #include <string>
 #include <vector>
 

@@ -46,7 +46,8 @@ std::string effects(const Effects& e) {
     if (v == k.fallback) continue;
     on += format("%s%s = %g %s (%s)", on.empty() ? "" : "; ", k.key, v, k.unit, k.what);
   }
-  if (on.empty()) return "Hidden effects: none; the plant is the nominal structure of PRODUCT.md.";
+  if (on.empty())
+    return "Hidden effects: none; the plant is the nominal structure of docs/recording-format.md.";
   return "Hidden effects on (the [effects] table): " + on + ".";
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// Writes the PRODUCT.md recording format: `#` metadata lines, a header, one row per tick.
-// Columns prefixed `true_` are the simulator's ground truth (absent from field logs).
+// Writes the recording format (docs/recording-format.md): `#` metadata lines, a header, one row per
+// tick. Columns prefixed `true_` are the simulator's ground truth (absent from field logs).
 #include <cstdio>
 #include <string>
 #include <utility>

@@ -21,4 +21,17 @@ if [ $rc -ne 0 ] && grep -q "bad-toolchain.toml:5: 'board.toolchain': 'aarch64-l
 else
   echo "FAIL missing toolchain not reported: $out"; fail=1
 fi
+# A toolchain file whose cross compiler is not installed says what installs it (issue 29: a cross
+# configure gave CMake's raw "aarch64-linux-gnu-g++ not found"). A triple no machine here has.
+printf 'set(PLANTER_TRIPLE riscv64-unknown-none)\nset(PLANTER_DEB_ARCH riscv64)\nset(PLANTER_QEMU qemu-riscv64)\ninclude(%s/cmake/toolchains/debian-multiarch.cmake)\n' \
+  "$root" >"$work/missing.cmake"
+mkdir -p "$work/src" && printf 'cmake_minimum_required(VERSION 3.25)\nproject(x CXX)\n' >"$work/src/CMakeLists.txt"
+out=$("$cmake" -S "$work/src" -B "$work/build" -DCMAKE_TOOLCHAIN_FILE="$work/missing.cmake" 2>&1)
+rc=$?
+out=$(tr -s ' \n' ' ' <<<"$out")
+if [ $rc -ne 0 ] && grep -q "no riscv64-unknown-none-g++ on PATH: .*scripts/cross-test.sh installs it" <<<"$out"; then
+  echo "ok   cross compiler missing: says scripts/cross-test.sh installs it"
+else
+  echo "FAIL a missing cross compiler is not said with what installs it: $out"; fail=1
+fi
 exit $fail

@@ -2,6 +2,14 @@
 # pkg-config and the emulator are looked up by name, libraries in the multiarch directory of
 # that triple. No absolute path is written here.
 set(CMAKE_SYSTEM_NAME Linux)
+# A missing cross compiler is said with what installs it, not as CMake's bare "not found".
+find_program(PLANTER_CROSS_CXX ${PLANTER_TRIPLE}-g++)
+if(NOT PLANTER_CROSS_CXX)
+  message(FATAL_ERROR "no ${PLANTER_TRIPLE}-g++ on PATH: the cross toolchain for this board is "
+    "not installed. scripts/cross-test.sh installs it (Debian's crossbuild-essential-"
+    "${PLANTER_DEB_ARCH} and the :${PLANTER_DEB_ARCH} libraries) and builds every board; "
+    "docs/boards.md says more.")
+endif()
 set(CMAKE_C_COMPILER ${PLANTER_TRIPLE}-gcc)
 set(CMAKE_CXX_COMPILER ${PLANTER_TRIPLE}-g++)
 set(CMAKE_LIBRARY_ARCHITECTURE ${PLANTER_TRIPLE})

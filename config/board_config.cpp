@@ -331,6 +331,12 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     c.monitor.multiple_ratio = mon->number("multiple_ratio", c.monitor.multiple_ratio, 0.1, 0.9);
     c.monitor.empty_clamps_to_warn = static_cast<std::uint32_t>(
         mon->integer("empty_clamps_to_warn", c.monitor.empty_clamps_to_warn, 1, 1000));
+    c.monitor.row_spacing_mm =
+        mon->number("row_spacing_mm", c.monitor.row_spacing_mm, 100.0, 5000.0, "mm");
+    c.monitor.spacing_cv_alarm =
+        mon->number("spacing_cv_alarm", c.monitor.spacing_cv_alarm, 0.01, 2.0);
+    c.monitor.singulation_alarm_pct =
+        mon->number("singulation_alarm_pct", c.monitor.singulation_alarm_pct, 50.0, 100.0, "%");
     mon->reject_unknown_keys();
   }
   c.monitor.target_spacing_mm = c.monitor.clamp_pitch_mm / c.sigma.sigma;

@@ -81,7 +81,8 @@ std::string ConsoleServer::state_json() {
   std::lock_guard<std::mutex> lock(history_mutex_);
   drain();
   if (history_.empty()) return "{\"t_s\":null,\"state\":\"no data yet\"}";
-  return to_json(history_.back());
+  return to_json(history_.back(),
+                 options_.recording != nullptr ? options_.recording->active() : std::string());
 }
 
 std::string ConsoleServer::history_json() {
@@ -132,6 +133,9 @@ void ConsoleServer::start() {
       {"title", info_.title},
       {"clamp_ceiling_N", info_.clamp_ceiling_N},
       {"target_spacing_mm", info_.target_spacing_mm},
+      {"row_spacing_mm", info_.row_spacing_mm},
+      {"spacing_cv_alarm", info_.spacing_cv_alarm},
+      {"singulation_alarm_pct", info_.singulation_alarm_pct},
       {"photo_eye", info_.photo_eye},
       {"simulated", info_.simulated},
       {"can_command", options_.commands != nullptr},

@@ -61,6 +61,9 @@ struct ConsoleInfo {
   std::string title;  // scenario or board name
   double clamp_ceiling_N = 0.0;
   double target_spacing_mm = 0.0;
+  double row_spacing_mm = 0.0;
+  double spacing_cv_alarm = 0.0;
+  double singulation_alarm_pct = 0.0;
   bool photo_eye = false;
   bool simulated = false;  // sigma_true is known
   SetpointRange depth_range_mm;
@@ -73,6 +76,9 @@ inline ConsoleInfo console_info(std::string title, const ControllerConfig& c, bo
   info.title = std::move(title);
   info.clamp_ceiling_N = c.clamp.ceiling_N;
   info.target_spacing_mm = c.monitor.target_spacing_mm;
+  info.row_spacing_mm = c.monitor.row_spacing_mm;
+  info.spacing_cv_alarm = c.monitor.spacing_cv_alarm;
+  info.singulation_alarm_pct = c.monitor.singulation_alarm_pct;
   info.photo_eye = c.monitor.sensor_fitted;
   info.simulated = simulated;
   info.depth_range_mm = depth_range_mm(c);

@@ -39,31 +39,33 @@ LiveSample live_sample(double t_s, const Telemetry& t) {
   return s;
 }
 
-std::string to_json(const LiveSample& s) {
+std::string to_json(const LiveSample& s, const std::string& recording) {
   const PlantingFigures& p = s.planting;
   const bool spaced = p.spacings > 0.0;
-  nlohmann::json j = {{"t_s", s.t_s},
-                      {"state", supervisor_state_name(s.state)},
-                      {"faults", fault_list(s.faults)},
-                      {"warnings", warning_list(s.warnings)},
-                      {"v_mps", number(s.v_mps)},
-                      {"sigma_seen", number(s.sigma_seen)},
-                      {"sigma_true", number(s.sigma_true)},
-                      {"omega_radps", number(s.omega_radps)},
-                      {"clamp_force_N", number(s.clamp_force_N)},
-                      {"clamp_force_target_N", number(s.clamp_force_target_N)},
-                      {"depth_mm", number(s.depth_mm)},
-                      {"depth_target_mm", number(s.depth_target_mm)},
-                      {"planting",
-                       {{"seedlings", p.seedlings},
-                        {"per_m", p.per_m},
-                        {"spacings", p.spacings},
-                        {"spacing_mean_mm", spaced ? number(p.spacing_mean_mm) : nullptr},
-                        {"spacing_cv", spaced ? number(p.spacing_cv) : nullptr},
-                        {"skips", p.skips},
-                        {"multiples", p.multiples},
-                        {"singulation_pct", spaced ? number(p.singulation_pct) : nullptr},
-                        {"empty_clamps_in_row", p.empty_clamps_in_row}}}};
+  nlohmann::json j = {
+      {"t_s", s.t_s},
+      {"state", supervisor_state_name(s.state)},
+      {"faults", fault_list(s.faults)},
+      {"warnings", warning_list(s.warnings)},
+      {"v_mps", number(s.v_mps)},
+      {"sigma_seen", number(s.sigma_seen)},
+      {"sigma_true", number(s.sigma_true)},
+      {"omega_radps", number(s.omega_radps)},
+      {"clamp_force_N", number(s.clamp_force_N)},
+      {"clamp_force_target_N", number(s.clamp_force_target_N)},
+      {"depth_mm", number(s.depth_mm)},
+      {"depth_target_mm", number(s.depth_target_mm)},
+      {"planting",
+       {{"seedlings", p.seedlings},
+        {"per_m", p.per_m},
+        {"spacings", p.spacings},
+        {"spacing_mean_mm", spaced ? number(p.spacing_mean_mm) : nullptr},
+        {"spacing_cv", spaced ? number(p.spacing_cv) : nullptr},
+        {"skips", p.skips},
+        {"multiples", p.multiples},
+        {"singulation_pct", spaced ? number(p.singulation_pct) : nullptr},
+        {"empty_clamps_in_row", p.empty_clamps_in_row}}},
+      {"recording", recording.empty() ? nlohmann::json() : nlohmann::json(recording)}};
   return j.dump();
 }
 

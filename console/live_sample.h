@@ -36,6 +36,7 @@ constexpr std::int64_t ticks_per_live_sample(std::int64_t period_ns) {
 // The sample a tick's telemetry gives (sigma_true left unknown).
 LiveSample live_sample(double t_s, const Telemetry& t);
 // The sample as one JSON object (NaN as null: the page shows "unknown").
-std::string to_json(const LiveSample& s);
+// `recording`: the file the operator's recording goes to, "" when none (the page shows it).
+std::string to_json(const LiveSample& s, const std::string& recording = "");
 
 }  // namespace planter::console

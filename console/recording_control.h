@@ -53,6 +53,8 @@ class RecordingControl {
   // (the file cannot be written), in the operator's words.
   virtual ConsoleReply start() = 0;
   virtual ConsoleReply stop() = 0;
+  // The file being recorded to, "" when none: the page's recording indicator.
+  virtual std::string active() = 0;
 };
 
 }  // namespace planter::console

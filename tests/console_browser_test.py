@@ -189,6 +189,32 @@ try:
     check(all(abs(float(r["depth_target_mm"]) - 90.0) < 1e-6 for r in after[-50:]),
           "after the refusal the recording still shows 90 mm")
     driver.save_screenshot(os.path.join(shots, "console.png"))
+    # Issue 29, item 5: the header says a recording is on; on a phone (390 x 844) every control
+    # is at least 44 px each way, Stop is the largest, nothing scrolls sideways, and the planting
+    # monitor shows the population and its alarms' limits.
+    check(el("recording").is_displayed() and el("recording").text.startswith("recording live-"),
+          "the header shows the recording in progress", el("recording").text)
+    driver.set_window_size(390, 844)
+    time.sleep(0.6)
+    sizes = driver.execute_script(
+        "return Array.from(document.querySelectorAll('#controls button, #controls input'))"
+        ".filter((e) => e.offsetParent !== null).map((e) => { const r = e.getBoundingClientRect();"
+        " return [e.id, r.width, r.height]; });")
+    small = [x for x in sizes if x[1] < 44 or x[2] < 44]
+    check(len(sizes) >= 8 and not small, "every control is at least 44 x 44 px on a phone",
+          small or "%d controls" % len(sizes))
+    areas = {x[0]: x[1] * x[2] for x in sizes}
+    check(max(areas, key=areas.get) == "cmd_stop", "Stop is the largest control",
+          "%s %.0f px^2" % (max(areas, key=areas.get), max(areas.values())))
+    wide = driver.execute_script("return document.documentElement.scrollWidth")
+    check(wide <= 390, "the console fits 390 px without scrolling sideways", "%d px" % wide)
+    wait(lambda: el("population").text not in ("-", "unknown"), 10, "the population is shown")
+    check(re.fullmatch(r"[\d,]+", el("population").text) is not None and
+          "rows 900 mm apart" in el("population_note").text and "0.17" in el("cv_note").text,
+          "the population per hectare and the alarms' limits are shown",
+          el("population").text + "; " + el("cv_note").text)
+    driver.save_screenshot(os.path.join(shots, "console-390.png"))
+    driver.set_window_size(1000, 2200)
 
     # 4. The e-stop at 25 s wins over every command.
     wait(lambda: el("state").text == "estop", 60, "the e-stop shows")

@@ -86,6 +86,11 @@ class LiveRecorder : public console::RecordingControl {
                                     "recording " + name_ + " closed");
   }
 
+  std::string active() override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return writer_ ? name_ : std::string();
+  }
+
   void write(const TickRecord& r) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!writer_) return;

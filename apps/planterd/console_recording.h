@@ -20,6 +20,10 @@ class ConsoleRecording : public console::RecordingControl {
 
   console::ConsoleReply start() override;
   console::ConsoleReply stop() override;
+  std::string active() override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return recording_ ? name_ : std::string();
+  }
   // The main thread's side.
   void add(double t_s, const Telemetry& row);
   void flush();

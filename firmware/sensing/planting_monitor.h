@@ -21,6 +21,11 @@ struct PlantingMonitorConfig {
   double skip_ratio = 1.5;
   double multiple_ratio = 0.5;
   std::uint32_t empty_clamps_to_warn = 5;  // this many clamps passed empty in a row: an empty belt
+  // What the operator's page shows beside the figures, as commercial planting monitors do: the
+  // population from the row spacing, and an alarm past either limit.
+  double row_spacing_mm = 900.0;        // the paper, Sec. 5: rows 90 cm apart at Zhangqiu
+  double spacing_cv_alarm = 0.17;       // spacing CV above this: the spacing is uneven
+  double singulation_alarm_pct = 95.0;  // assumed: singulation below this, skips or multiples
 };
 
 // What the monitor shows. Counts are whole numbers held in doubles, so every figure is one

@@ -11,11 +11,11 @@
 #include <iostream>
 #include <sstream>
 
+#include "apps/planter-sim/replay.h"
 #include "config/cli_range.h"
 #include "config/config_error.h"
 #include "config/output_set.h"
 #include "hal/linux/hal_error.h"
-#include "apps/planter-sim/replay.h"
 #ifdef PLANTER_WITH_CONSOLE
 #include "apps/planter-sim/live.h"
 #endif
@@ -176,8 +176,7 @@ int run_devices(const std::string& scenario_path, const std::string& board_path,
 
 // The [effects] keys a scenario may set: what each hides in the plant, its range and unit.
 int print_effect_keys() {
-  std::printf(
-      "[effects] keys of a scenario (all off by default; docs/adding-an-effect.md):\n");
+  std::printf("[effects] keys of a scenario (all off by default; docs/adding-an-effect.md):\n");
   for (const EffectKey& k : kEffectKeys) {
     char range[64];
     std::snprintf(range, sizeof range, "%g to %g %s", k.min, k.max, k.unit);

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <sstream>
 
-#include "config/output_set.h"
 #include "analysis/model_file.h"
+#include "config/output_set.h"
 
 namespace planter::sim {
 

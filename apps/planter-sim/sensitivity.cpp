@@ -11,10 +11,10 @@
 #include <thread>
 #include <vector>
 
-#include "config/output_set.h"
 #include "apps/planter-sim/sweep.h"
-#include "sim/plant/model_values.h"
+#include "config/output_set.h"
 #include "report/html_text.h"
+#include "sim/plant/model_values.h"
 #include "sim/runner/run_many.h"
 #include "sim/runner/scenario.h"
 

@@ -90,10 +90,11 @@ Scenario load_scenario(const std::string& path) {
     p.soil.slip_mean_pct = t->number("slip_mean_pct", 0.0, -20.0, 50.0, "%");
     p.soil.slip_variation_pct = t->number("slip_variation_pct", 0.0, 0.0, 20.0, "%");
     if (t->has("draft_coeff"))
-      t->fail("draft_coeff",
-              "was c_s in a draft proportional to speed, which was wrong; the draft now has "
-              "ASABE D497's form: set texture and, if measured, draft_a_N_per_cm (docs/simulator.md, "
-              "\"Model assumptions\")");
+      t->fail(
+          "draft_coeff",
+          "was c_s in a draft proportional to speed, which was wrong; the draft now has "
+          "ASABE D497's form: set texture and, if measured, draft_a_N_per_cm (docs/simulator.md, "
+          "\"Model assumptions\")");
     soil::OpenerDraftLaw& d = p.soil.draft;
     const std::string texture = t->string("texture", "medium");
     d.texture_factor = soil::texture_factor_of(texture);

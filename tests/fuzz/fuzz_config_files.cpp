@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <string>
 
-#include "config/config_error.h"
 #include "analysis/model_file.h"
+#include "config/config_error.h"
 #include "dem/dem_params.h"
 #include "sim/runner/scenario.h"
 

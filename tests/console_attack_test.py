@@ -17,6 +17,10 @@ Usage: console_attack_test.py PLANTER_SIM SOURCE_DIR [ATTACK_SECONDS]
 """
 import json, os, re, socket, subprocess, sys, tempfile, threading, time, urllib.error, urllib.request
 
+sys.dont_write_bytecode = True  # nothing written beside the sources
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from live_console import console_address  # noqa: E402
+
 sim, src = sys.argv[1], os.path.abspath(sys.argv[2])
 attack_s = float(sys.argv[3]) if len(sys.argv) > 3 else 40.0
 work = tempfile.mkdtemp(prefix="console-attack-")
@@ -178,18 +182,7 @@ server = subprocess.Popen([sim, "live", os.path.join(work, "field.toml"), "--por
                           stdout=out, stderr=subprocess.STDOUT)
 threads = []
 try:
-    url = secret = None
-    for _ in range(100):
-        text = open(os.path.join(work, "live.out")).read()
-        m = re.search(r"^console: (http://\S+) ", text, re.M)
-        s = re.search(r"pairing secret (\S+)", text)
-        if m and s:
-            url, secret = m.group(1).rstrip("/"), s.group(1)
-            break
-        time.sleep(0.1)
-    if not url:
-        print("FAIL planter-sim live did not start:\n" + open(os.path.join(work, "live.out")).read())
-        sys.exit(1)
+    url, secret = console_address(os.path.join(work, "live.out"))
     port = int(url.rsplit(":", 1)[1])
     url = "http://127.0.0.1:%d" % port
     print("console at %s; attacking for %.0f s" % (url, attack_s))

@@ -23,6 +23,10 @@ from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
 
+sys.dont_write_bytecode = True  # nothing written beside the sources
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from live_console import console_address  # noqa: E402
+
 sim, src, shots = sys.argv[1], os.path.abspath(sys.argv[2]), sys.argv[3]
 os.makedirs(shots, exist_ok=True)
 work = tempfile.mkdtemp(prefix="console-test-")
@@ -63,18 +67,7 @@ server = subprocess.Popen([sim, "live", os.path.join(work, "field-estop.toml"), 
                            "--duration", "150"], stdout=out, stderr=subprocess.STDOUT)
 driver = None
 try:
-    url = secret = None
-    for _ in range(100):
-        text = open(os.path.join(work, "live.out")).read()
-        m = re.search(r"^console: (http://\S+) ", text, re.M)
-        s = re.search(r"pairing secret (\S+)", text)
-        if m and s:
-            url, secret = m.group(1).rstrip("/"), s.group(1)
-            break
-        time.sleep(0.1)
-    if not url:
-        print("FAIL planter-sim live did not start:\n" + open(os.path.join(work, "live.out")).read())
-        sys.exit(1)
+    url, secret = console_address(os.path.join(work, "live.out"))
     print("console at %s" % url)
 
     options = webdriver.ChromeOptions()

@@ -165,6 +165,14 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
   if (b.name.empty()) board->fail("name", "is required");
   b.toolchain = board->string("toolchain", "native");
   const std::string machine = board->string("machine", "");
+  if (machine.empty())
+    board->fail("machine",
+                "is required: a board names its machine (machines/<name>.toml beside the board "
+                "or up to two folders above it). A board file that holds the machine's sections "
+                "itself, the format from before boards and machines were split, is no longer "
+                "read: move its [disc], [control], [planting_monitor], [nodes.*] and the "
+                "machine's keys of [encoder] and [supervisor] into machines/<name>.toml "
+                "(docs/boards.md)");
   const std::string calibration = board->string("calibration", "");
   Calibration cal;
   if (!calibration.empty()) {
@@ -182,16 +190,12 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     cal =
         read_calibration(calibration_override.empty() ? b.calibration_file : calibration_override);
   }
-  // The machine's sections come from machines/<machine>.toml; a board file that names no
-  // machine holds them itself (one file, as before the split).
-  std::optional<TomlDocument> machine_doc;
-  std::optional<TomlSection> machine_root_storage;
-  TomlSection* mroot = &root;
-  if (!machine.empty()) {
-    b.machine_file = find_machine(path, *board, machine);
-    machine_doc.emplace(b.machine_file);
-    machine_root_storage.emplace(machine_doc->root());
-    mroot = &*machine_root_storage;
+  // The machine's sections come from machines/<machine>.toml.
+  b.machine_file = find_machine(path, *board, machine);
+  TomlDocument machine_doc(b.machine_file);
+  TomlSection machine_root = machine_doc.root();
+  TomlSection* mroot = &machine_root;
+  {
     auto m = mroot->table("machine");
     if (!m) throw ConfigError(b.machine_file, 1, "machine", "table is missing (name)");
     b.machine_name = m->string("name", "");
@@ -201,15 +205,13 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     m->reject_unknown_keys();
   }
   board->reject_unknown_keys();
-  const bool split = mroot != &root;
   const std::string board_hint = "this key belongs in the board file (" + path +
                                  "): the board holds the bus, the lines, "
                                  "the encoder's counts and filter, and the loop's timing";
   const std::string machine_hint =
-      split ? "this key belongs in the machine file (" + b.machine_file +
-                  ") or the unit's calibration: the board holds the bus, the lines, the encoder's "
-                  "counts and filter, and the loop's timing"
-            : std::string();
+      "this key belongs in the machine file (" + b.machine_file +
+      ") or the unit's calibration: the board holds the bus, the lines, the encoder's counts and "
+      "filter, and the loop's timing";
 
   int bitrate_line = 1, sync_line = 1;
   if (auto can = root.table("can")) {
@@ -261,12 +263,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
   // wheel radius and the speed window are the machine's, the radius calibrated per unit.
   {
     auto board_enc = root.table("encoder");
-    std::optional<TomlSection> machine_enc_storage;
-    TomlSection* machine_enc = board_enc ? &*board_enc : nullptr;
-    if (split) {
-      if (auto t = mroot->table("encoder")) machine_enc_storage.emplace(std::move(*t));
-      machine_enc = machine_enc_storage ? &*machine_enc_storage : nullptr;
-    }
+    auto machine_enc = mroot->table("encoder");
     if (board_enc) {
       c.encoder.counts_per_rev =
           static_cast<std::uint32_t>(board_enc->integer("counts_per_rev", 4096, 4, 1 << 24));
@@ -279,7 +276,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     }
     if (cal.wheel_radius_m) c.encoder.wheel_radius_m = *cal.wheel_radius_m;
     if (board_enc) board_enc->reject_unknown_keys(machine_hint);
-    if (split && machine_enc) machine_enc->reject_unknown_keys(board_hint);
+    if (machine_enc) machine_enc->reject_unknown_keys(board_hint);
   }
   if (auto disc = mroot->table("disc")) {
     c.sigma.disc_radius_m = disc->number("radius_m", 0.300, 0.05, 1.0, "m");
@@ -343,12 +340,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
   // [supervisor]: the loop's timing is the board's; the plausibility limits are the machine's.
   {
     auto board_sup = root.table("supervisor");
-    std::optional<TomlSection> machine_sup_storage;
-    TomlSection* machine_sup = board_sup ? &*board_sup : nullptr;
-    if (split) {
-      if (auto t = mroot->table("supervisor")) machine_sup_storage.emplace(std::move(*t));
-      machine_sup = machine_sup_storage ? &*machine_sup_storage : nullptr;
-    }
+    auto machine_sup = mroot->table("supervisor");
     if (board_sup) {
       c.supervisor.overrun_threshold_ns =
           board_sup->integer("overrun_threshold_us", 15000, 100, 1000000) * 1000;
@@ -363,7 +355,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
           machine_sup->number("force_plausible_max_N", 400.0, 10.0, 10000.0, "N");
     }
     if (board_sup) board_sup->reject_unknown_keys(machine_hint);
-    if (split && machine_sup) machine_sup->reject_unknown_keys(board_hint);
+    if (machine_sup) machine_sup->reject_unknown_keys(board_hint);
   }
   // A PDO arrives once a SYNC period: one staler than that is every PDO (issue 28, item 12: a
   // 1000 ms SYNC against the 100 ms default passed and faulted the boot's first check).
@@ -396,14 +388,14 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
   auto nodes = mroot->table("nodes");
   if (!nodes)
     throw ConfigError(
-        split ? b.machine_file : path, 1, "nodes",
+        b.machine_file, 1, "nodes",
         "table is missing (disc_drive, roller_actuator, depth_actuator, force_sensor)");
   std::set<int> ids;
   for (std::size_t i = 0; i < kNodeCount; ++i)
     parse_node(*nodes, static_cast<NodeRole>(i), c.nodes[i], ids, c, cal);
   nodes->reject_unknown_keys();
   root.reject_unknown_keys(machine_hint);
-  if (split) mroot->reject_unknown_keys(board_hint);
+  mroot->reject_unknown_keys(board_hint);
   // CiA 301 leaves the budget to the integrator; above 100 % frames queue without bound, and
   // above half the bus a retransmission or a spare node's traffic already delays the PDOs.
   b.planned_bus_load_pct = planned_bus_load_pct(c);

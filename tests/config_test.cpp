@@ -318,6 +318,17 @@ std::string scratch_toml(const std::string& text) {
   return path;
 }
 
+// Issue 29: the one-file board (the machine's sections inside it) is no longer read; an old
+// file is told what to move where.
+TEST(BoardConfig, AnOldOneFileBoardIsRefusedWithWhatToMove) {
+  const std::string path = scratch_toml(
+      "[board]\nname = \"old\"\n\n[disc]\nradius_m = 0.3\n\n[nodes.disc_drive]\nid = 2\n");
+  const std::string e = error_of(path);
+  EXPECT_NE(e.find(":1: 'board.machine': is required"), std::string::npos) << e;
+  EXPECT_NE(e.find("is no longer read: move its [disc]"), std::string::npos) << e;
+  std::filesystem::remove(path);
+}
+
 TEST(TomlBounds, AKeyOfFortyThousandPartsIsRefusedNotACrash) {
   std::string key = "a";
   for (int i = 0; i < 40000; ++i) key += ".a";

@@ -20,7 +20,8 @@ namespace {
 void write(const std::string& path, std::string_view text) {
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (f == nullptr) return;
-  std::fwrite(text.data(), 1, text.size(), f);
+  if (!text.empty())
+    std::fwrite(text.data(), 1, text.size(), f);  // an empty view's data() may be null
   std::fclose(f);
 }
 std::string_view cut(std::string_view& rest, std::string_view marker) {

@@ -30,23 +30,18 @@ canopen::PdoMapping parse_pdo(TomlSection& node, const std::string& key, std::ui
       node.fail(key, "entry \"" + text +
                          "\" must be \"index:sub:bits\" (hex index and sub, bits 8, 16 or 32)");
     }
-    const canopen::MappingCheck served = canopen::check_mapping(
-        static_cast<std::uint16_t>(profile), static_cast<std::uint16_t>(index),
-        static_cast<std::uint8_t>(sub), static_cast<std::uint8_t>(bits), tpdo);
-    if (served != canopen::MappingCheck::kOk && served != canopen::MappingCheck::kUnchecked) {
-      std::string size;
-      if (served == canopen::MappingCheck::kSizeDiffers)
-        size = " (" +
-               std::to_string(8 * canopen::find_profile_object(profile,
-                                                               static_cast<std::uint16_t>(index),
-                                                               static_cast<std::uint8_t>(sub))
-                                      ->size) +
-               " bits)";
-      node.fail(key, "entry \"" + text + "\": " + canopen::mapping_check_text(served) + size +
-                         " (CiA " + std::to_string(profile) + ")");
+    const canopen::PdoEntry entry{static_cast<std::uint16_t>(index), static_cast<std::uint8_t>(sub),
+                                  static_cast<std::uint8_t>(bits)};
+    const canopen::MappingVerdict verdict =
+        canopen::check_mapping(profile, entry.index, entry.sub, entry.bits, tpdo);
+    if (!verdict.served()) {
+      const std::string size = verdict.check == canopen::MappingCheck::kSizeDiffers
+                                   ? " (" + std::to_string(8 * verdict.object->size) + " bits)"
+                                   : std::string();
+      node.fail(key, "entry \"" + text + "\": " + canopen::mapping_check_text(verdict.check) +
+                         size + " (CiA " + std::to_string(profile) + ")");
     }
-    m.entries[m.count++] = {static_cast<std::uint16_t>(index), static_cast<std::uint8_t>(sub),
-                            static_cast<std::uint8_t>(bits)};
+    m.entries[m.count++] = entry;
   }
   if (m.total_bits() > 64) node.fail(key, "mapped objects exceed 8 bytes");
   return m;

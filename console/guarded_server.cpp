@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstring>
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -20,28 +21,21 @@ using Clock = std::chrono::steady_clock;
 // How often a wait looks whether the server is stopping.
 constexpr std::chrono::milliseconds kStopCheck{100};
 
-std::string address_of(socket_t sock, bool peer) {
+// One end of a connection as numbers: the peer's (getpeername) or ours (getsockname).
+Endpoint endpoint_of(socket_t sock, bool peer) {
   sockaddr_storage addr{};
   socklen_t len = sizeof addr;
   const int got = peer ? getpeername(sock, reinterpret_cast<sockaddr*>(&addr), &len)
                        : getsockname(sock, reinterpret_cast<sockaddr*>(&addr), &len);
-  if (got != 0) return {};
+  Endpoint e;
   char host[NI_MAXHOST];
-  if (getnameinfo(reinterpret_cast<sockaddr*>(&addr), len, host, sizeof host, nullptr, 0,
-                  NI_NUMERICHOST) != 0)
-    return {};
-  return host;
-}
-
-int port_of(socket_t sock, bool peer) {
-  sockaddr_storage addr{};
-  socklen_t len = sizeof addr;
-  const int got = peer ? getpeername(sock, reinterpret_cast<sockaddr*>(&addr), &len)
-                       : getsockname(sock, reinterpret_cast<sockaddr*>(&addr), &len);
-  if (got != 0) return 0;
-  if (addr.ss_family == AF_INET) return ntohs(reinterpret_cast<sockaddr_in*>(&addr)->sin_port);
-  if (addr.ss_family == AF_INET6) return ntohs(reinterpret_cast<sockaddr_in6*>(&addr)->sin6_port);
-  return 0;
+  if (got != 0 || getnameinfo(reinterpret_cast<sockaddr*>(&addr), len, host, sizeof host, nullptr,
+                              0, NI_NUMERICHOST) != 0)
+    return e;
+  e.ip = host;
+  if (addr.ss_family == AF_INET) e.port = ntohs(reinterpret_cast<sockaddr_in*>(&addr)->sin_port);
+  if (addr.ss_family == AF_INET6) e.port = ntohs(reinterpret_cast<sockaddr_in6*>(&addr)->sin6_port);
+  return e;
 }
 
 // A whole answer in one send that never waits: for a client refused before it was read. Built
@@ -65,8 +59,10 @@ std::string refusal(std::initializer_list<std::string_view> parts) {
 // The connection as cpp-httplib reads and writes it, with a byte budget and deadlines.
 class BoundedStream final : public httplib::Stream {
  public:
-  BoundedStream(socket_t sock, const std::atomic<socket_t>& listening, const ConnectionTimes& t)
-      : sock_(sock), listening_(listening), times_(t) {}
+  // `peer`: the client's end, read once when the connection was admitted.
+  BoundedStream(socket_t sock, Endpoint peer, const std::atomic<socket_t>& listening,
+                const ConnectionTimes& t)
+      : sock_(sock), peer_(std::move(peer)), listening_(listening), times_(t) {}
 
   // Each request gets the whole budget and its own deadlines.
   void next_request() {
@@ -145,12 +141,13 @@ class BoundedStream final : public httplib::Stream {
   }
 
   void get_remote_ip_and_port(std::string& ip, int& port) const override {
-    ip = address_of(sock_, true);
-    port = port_of(sock_, true);
+    ip = peer_.ip;
+    port = peer_.port;
   }
   void get_local_ip_and_port(std::string& ip, int& port) const override {
-    ip = address_of(sock_, false);
-    port = port_of(sock_, false);
+    Endpoint ours = endpoint_of(sock_, false);
+    ip = std::move(ours.ip);
+    port = ours.port;
   }
   socket_t socket() const override { return sock_; }
 
@@ -173,6 +170,7 @@ class BoundedStream final : public httplib::Stream {
   }
 
   socket_t sock_;
+  Endpoint peer_;
   const std::atomic<socket_t>& listening_;
   const ConnectionTimes& times_;
   char buffer_[4096];
@@ -186,49 +184,12 @@ class BoundedStream final : public httplib::Stream {
 
 }  // namespace
 
-ConnectionWorkers::ConnectionWorkers(std::size_t workers) {
-  for (std::size_t i = 0; i < workers; ++i)
-    threads_.emplace_back([this] {
-      for (;;) {
-        std::function<void()> job;
-        {
-          std::unique_lock<std::mutex> lock(mutex_);
-          wake_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
-          if (jobs_.empty()) return;  // stopping, and nothing left
-          job = std::move(jobs_.front());
-          jobs_.pop_front();
-        }
-        job();
-      }
-    });
-}
-
-ConnectionWorkers::~ConnectionWorkers() { shutdown(); }
-
-void ConnectionWorkers::enqueue(std::function<void()> fn) {
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    jobs_.push_back(std::move(fn));
-  }
-  wake_.notify_one();
-}
-
-void ConnectionWorkers::shutdown() {
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    stop_ = true;
-  }
-  wake_.notify_all();
-  for (std::thread& t : threads_)
-    if (t.joinable()) t.join();
-}
-
 GuardedServer::GuardedServer(ConnectionLimits& limits, ConnectionTimes times)
     : limits_(limits), times_(times) {
   // More workers than connections can be admitted, so a refusal is never queued behind them.
   const ConnectionCaps& caps = limits_.caps();
   const std::size_t workers = caps.total + caps.operators_remembered * caps.per_address + 8;
-  new_task_queue = [workers] { return new ConnectionWorkers(workers); };
+  new_task_queue = [workers] { return new httplib::ThreadPool(workers); };
 }
 
 void GuardedServer::widen_backlog() {
@@ -237,7 +198,8 @@ void GuardedServer::widen_backlog() {
 }
 
 bool GuardedServer::process_and_close_socket(socket_t sock) {
-  const std::string address = address_of(sock, true);
+  Endpoint peer = endpoint_of(sock, true);
+  const std::string address = peer.ip;
   const Ticket ticket = limits_.admit(address);
   bool served = false;
   if (ticket.admission == Admission::kAddressFull) {
@@ -247,7 +209,7 @@ bool GuardedServer::process_and_close_socket(socket_t sock) {
   } else if (ticket.admission == Admission::kServerFull) {
     refuse(sock, 503, "Service Unavailable", refusal({"the console is busy; try again"}));
   } else {
-    served = serve(sock);
+    served = serve(sock, std::move(peer));
   }
   limits_.release(address, ticket);
   shutdown(sock, SHUT_RDWR);
@@ -255,8 +217,8 @@ bool GuardedServer::process_and_close_socket(socket_t sock) {
   return served;
 }
 
-bool GuardedServer::serve(socket_t sock) {
-  BoundedStream stream(sock, svr_sock_, times_);
+bool GuardedServer::serve(socket_t sock, Endpoint peer) {
+  BoundedStream stream(sock, std::move(peer), svr_sock_, times_);
   bool ok = false;
   for (std::size_t n = 0; n < times_.requests_per_connection; ++n) {
     if (!stream.next_request_arrives()) break;

@@ -9,19 +9,13 @@
 // - at most a fixed number of bytes read for one request, headers and body together, however
 //   many header lines are sent: past that the request is answered 431 and the connection closed,
 //   so memory stays bounded whatever arrives;
-// - a fixed pool of workers (never one per connection) larger than the admitted connections, so
-//   a refusal never waits behind a slow connection.
+// - a fixed pool of workers (cpp-httplib's ThreadPool, sized here) larger than the connections
+//   admitted, so a refusal never waits behind a slow connection.
 #include <httplib.h>
 
 #include <chrono>
-#include <condition_variable>
 #include <cstddef>
-#include <deque>
-#include <functional>
-#include <mutex>
-#include <optional>
-#include <thread>
-#include <vector>
+#include <string>
 
 #include "console/connection_limits.h"
 
@@ -35,20 +29,10 @@ struct ConnectionTimes {
   std::size_t requests_per_connection = 50;
 };
 
-// A fixed pool: the accepting thread hands it each connection.
-class ConnectionWorkers : public httplib::TaskQueue {
- public:
-  explicit ConnectionWorkers(std::size_t workers);
-  ~ConnectionWorkers() override;
-  void enqueue(std::function<void()> fn) override;
-  void shutdown() override;
-
- private:
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::deque<std::function<void()>> jobs_;
-  bool stop_ = false;
-  std::vector<std::thread> threads_;
+// One end of a connection as numbers.
+struct Endpoint {
+  std::string ip;
+  int port = 0;
 };
 
 class GuardedServer : public httplib::Server {
@@ -63,7 +47,7 @@ class GuardedServer : public httplib::Server {
 
  private:
   bool process_and_close_socket(socket_t sock) override;
-  bool serve(socket_t sock);
+  bool serve(socket_t sock, Endpoint peer);
 
   ConnectionLimits& limits_;
   ConnectionTimes times_;

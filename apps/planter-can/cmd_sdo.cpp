@@ -164,20 +164,19 @@ int run_nmt(ToolContext& ctx, const std::string& command, const std::string& nod
   }
   // Confirmation: the heartbeat (or boot-up) with the new state, within a second: of the node,
   // or for "all" of every node of the board (without a board, of every node that answers).
-  std::set<int> waiting;
+  std::set<int> expected;
   if (node != 0) {
-    waiting.insert(node);
+    expected.insert(node);
   } else if (ctx.board != nullptr) {
-    for (const NodeConfig& n : ctx.board->controller.nodes) waiting.insert(n.node_id);
+    for (const NodeConfig& n : ctx.board->controller.nodes) expected.insert(n.node_id);
   }
-  const std::set<int> expected = waiting;
   std::set<int> confirmed_ids;
   BusWatch watch;
   const std::int64_t t0 = ctx.link.now_ns();
   watch.start(t0);
   hal::CanFrame r;
-  while ((waiting.empty() || !std::includes(confirmed_ids.begin(), confirmed_ids.end(),
-                                            waiting.begin(), waiting.end())) &&
+  while ((expected.empty() || !std::includes(confirmed_ids.begin(), confirmed_ids.end(),
+                                             expected.begin(), expected.end())) &&
          ctx.link.receive_until(r, t0 + 1'000'000'000)) {
     watch.on_frame(r, ctx.link.now_ns());
     if (!r.is_standard_data() || r.dlc < 1) continue;

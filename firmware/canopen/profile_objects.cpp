@@ -69,16 +69,16 @@ const ProfileObject* find_profile_object(std::uint16_t profile, std::uint16_t in
   return nullptr;
 }
 
-MappingCheck check_mapping(std::uint16_t profile, std::uint16_t index, std::uint8_t sub,
-                           std::uint8_t bits, bool tpdo) {
-  if (index < 0x1000 || (index >= 0x2000 && index < 0x6000)) return MappingCheck::kUnchecked;
-  if (index < 0x2000) return MappingCheck::kCommunication;
+MappingVerdict check_mapping(std::uint16_t profile, std::uint16_t index, std::uint8_t sub,
+                             std::uint8_t bits, bool tpdo) {
+  if (index < 0x1000 || (index >= 0x2000 && index < 0x6000)) return {MappingCheck::kUnchecked};
+  if (index < 0x2000) return {MappingCheck::kCommunication};
   const ProfileObject* o = find_profile_object(profile, index, sub);
-  if (o == nullptr) return MappingCheck::kNotInProfile;
-  if (static_cast<int>(o->size) * 8 != bits) return MappingCheck::kSizeDiffers;
-  if (tpdo && !readable(o->access)) return MappingCheck::kNotReadable;
-  if (!tpdo && !writable(o->access)) return MappingCheck::kNotWritable;
-  return MappingCheck::kOk;
+  if (o == nullptr) return {MappingCheck::kNotInProfile};
+  if (static_cast<int>(o->size) * 8 != bits) return {MappingCheck::kSizeDiffers, o};
+  if (tpdo && !readable(o->access)) return {MappingCheck::kNotReadable, o};
+  if (!tpdo && !writable(o->access)) return {MappingCheck::kNotWritable, o};
+  return {MappingCheck::kOk, o};
 }
 
 const char* mapping_check_text(MappingCheck c) {

@@ -33,9 +33,16 @@ enum class MappingCheck : std::uint8_t {
   kNotReadable,    // in a TPDO: the device cannot send it
   kNotWritable,    // in an RPDO: the device cannot take it
 };
+struct MappingVerdict {
+  MappingCheck check = MappingCheck::kOk;
+  const ProfileObject* object = nullptr;  // the profile's object, where there is one
+  [[nodiscard]] bool served() const {
+    return check == MappingCheck::kOk || check == MappingCheck::kUnchecked;
+  }
+};
 // Whether a node of this profile can serve the entry, sent (tpdo) or received.
-MappingCheck check_mapping(std::uint16_t profile, std::uint16_t index, std::uint8_t sub,
-                           std::uint8_t bits, bool tpdo);
+MappingVerdict check_mapping(std::uint16_t profile, std::uint16_t index, std::uint8_t sub,
+                             std::uint8_t bits, bool tpdo);
 const char* mapping_check_text(MappingCheck c);
 
 }  // namespace planter::canopen

@@ -24,7 +24,7 @@ struct PlantingMonitorConfig {
   // What the operator's page shows beside the figures, as commercial planting monitors do: the
   // population from the row spacing, and an alarm past either limit.
   double row_spacing_mm = 900.0;        // the paper, Sec. 5: rows 90 cm apart at Zhangqiu
-  double spacing_cv_alarm = 0.17;       // spacing CV above this: the spacing is uneven
+  double spacing_cv_alarm = 0.17;       // assumed (0.1-0.3): a CV above this is uneven spacing
   double singulation_alarm_pct = 95.0;  // assumed: singulation below this, skips or multiples
 };
 

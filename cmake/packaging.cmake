@@ -5,6 +5,13 @@
 # passed. `cpack` makes one .deb per target.
 include(GNUInstallDirs)
 install(TARGETS planterd planter-can RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# Their man pages (cmake/man_pages.cmake), where help2man could make them.
+foreach(program planterd planter-can)
+  if(TARGET ${program}-man)
+    install(FILES ${CMAKE_BINARY_DIR}/apps/${program}/${program}.1.gz
+            DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+  endif()
+endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/apps/planterd/planterd.service DESTINATION /lib/systemd/system)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/boards/ DESTINATION /etc/planter/boards
         FILES_MATCHING PATTERN "board.toml" PATTERN "calibration.toml")
@@ -22,20 +29,6 @@ install(FILES ${PROJECT_SOURCE_DIR}/packaging/default-planterd DESTINATION /etc/
 install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/packaging/copyright
         DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
-# Version from git: the project version plus commits and hash (0.1.0+git123.gabcdef0).
-find_package(Git QUIET)
-set(planter_version ${PROJECT_VERSION})
-if(GIT_FOUND AND EXISTS ${PROJECT_SOURCE_DIR}/.git)
-  execute_process(COMMAND ${GIT_EXECUTABLE} rev-list --count HEAD
-                  WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} OUTPUT_VARIABLE commits
-                  OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
-  execute_process(COMMAND ${GIT_EXECUTABLE} rev-parse --short=8 HEAD
-                  WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} OUTPUT_VARIABLE hash
-                  OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
-  if(commits AND hash)
-    set(planter_version "${PROJECT_VERSION}+git${commits}.g${hash}")
-  endif()
-endif()
 
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME planter)

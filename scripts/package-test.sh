@@ -21,7 +21,8 @@ for f in ./usr/bin/planterd ./usr/bin/planter-can ./lib/systemd/system/planterd.
          ./etc/planter/machines/scallion-transplanter.toml \
          ./etc/planter/boards/rpi4-canhat/board.toml ./etc/planter/boards/rpi4-canhat/calibration.toml \
          ./etc/planter/boards/bbb-dcan/board.toml ./etc/planter/boards/host-sim/board.toml \
-         ./usr/share/doc/planter/copyright; do
+         ./usr/share/doc/planter/copyright ./usr/share/man/man1/planterd.1.gz \
+         ./usr/share/man/man1/planter-can.1.gz; do
   grep -q " $f\$" <<<"$files" || fail "$deb lacks $f"
 done
 grep -q "conffiles" <<<"$info" || fail "no conffiles"

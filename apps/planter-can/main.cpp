@@ -18,6 +18,7 @@
 #include "apps/planter-can/cmd_traffic.h"
 #include "apps/planter-can/sim_link.h"
 #include "apps/planter-can/socket_link.h"
+#include "apps/version/version.h"
 #include "config/cli_range.h"
 #include "config/config_error.h"
 #include "config/durable_file.h"
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
   using namespace planter;
   using namespace planter::cantool;
   CLI::App app{"planter-can: CAN bus commissioning for the scallion transplanter"};
+  app.set_version_flag("--version", std::string("planter-can ") + planter::apps::version());
   app.require_subcommand(1);
   app.fallthrough();  // --json, --board ... may also follow the command
   std::string iface, board_path, scenario_path;

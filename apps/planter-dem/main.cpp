@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "apps/version/version.h"
 #include "config/cli_range.h"
 #include "config/config_error.h"
 #include "config/durable_file.h"
@@ -187,6 +188,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "planter-dem: the seedling's bonded-particle model, its calibration and the "
       "reduced-order force model"};
+  app.set_version_flag("--version", std::string("planter-dem ") + planter::apps::version());
   app.require_subcommand(1);
   Common common;
   auto add_common = [&](CLI::App* sub) {

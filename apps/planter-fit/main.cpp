@@ -13,6 +13,7 @@
 #include "analysis/day_tracks.h"
 #include "analysis/fit_outputs.h"
 #include "analysis/model_file.h"
+#include "apps/version/version.h"
 #include "config/cli_range.h"
 #include "config/config_error.h"
 #include "config/output_set.h"
@@ -118,6 +119,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "planter-fit: locate, name and model the physics a recording shows and the "
       "nominal model lacks"};
+  app.set_version_flag("--version", std::string("planter-fit ") + planter::apps::version());
   std::string file, out = "fit-out";
   bool json = false;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

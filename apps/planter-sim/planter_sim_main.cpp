@@ -25,6 +25,7 @@
 #ifdef PLANTER_WITH_REPLAY
 #include "analysis/recording.h"
 #endif
+#include "apps/version/version.h"
 #include "sim/plant/effect_keys.h"
 #include "sim/plant/model_values.h"
 #include "sim/runner/lockstep_runner.h"
@@ -189,6 +190,7 @@ int print_effect_keys() {
 
 int main(int argc, char** argv) {
   CLI::App app{"planter-sim: the transplanter's plant model and lockstep simulation runner"};
+  app.set_version_flag("--version", std::string("planter-sim ") + planter::apps::version());
   app.require_subcommand(1);
   std::string scenario, out = "out";
   bool quiet = false, force = false;

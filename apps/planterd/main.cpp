@@ -29,6 +29,7 @@
 #ifdef PLANTERD_WITH_CONSOLE
 #include "console/console_server.h"
 #endif
+#include "apps/version/version.h"
 #include "firmware/controller/control_cycle.h"
 #include "hal/linux/hal_error.h"
 #include "hal/linux/rt_loop.h"
@@ -378,6 +379,7 @@ class OperatorConsole {
 // The command line; -1 to go on, else the exit code (--help: 0, a bad option: 2).
 int parse_options(int argc, char** argv, Options& opt) {
   CLI::App app{"planterd: the scallion transplanter's controller daemon"};
+  app.set_version_flag("--version", std::string("planterd ") + planter::apps::version());
   app.add_option("--board", opt.board, "board file (boards/<board>/board.toml)")->required();
   app.add_option("--record", opt.record, "record telemetry to this CSV (docs/recording-format.md)");
   app.add_flag("--run", opt.run, "start planting as soon as every node is ready (unattended)");

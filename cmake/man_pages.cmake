@@ -1,0 +1,39 @@
+# Man pages for the programs, made by help2man from their own --help and --version, so the page
+# and the program cannot disagree. Without help2man (or on a cross build with no emulator to run
+# the program) there are none, and the build says so once.
+find_program(PLANTER_HELP2MAN help2man)
+if(NOT PLANTER_HELP2MAN)
+  message(STATUS "help2man not found: no man pages (scripts/setup.sh installs it)")
+endif()
+# planter_man_page(<program target> "<one line: what it is>")
+function(planter_man_page target what)
+  if(NOT PLANTER_HELP2MAN)
+    return()
+  endif()
+  set(run $<TARGET_FILE:${target}>)
+  if(CMAKE_CROSSCOMPILING)
+    if(NOT CMAKE_CROSSCOMPILING_EMULATOR)
+      return()
+    endif()
+    # help2man runs the program as one word: a wrapper gives it the emulator, and the console's
+    # private sysroot libraries where the build links them (console/CMakeLists.txt).
+    string(REPLACE ";" ":" libs "${PLANTER_CONSOLE_SYSROOT_LIBS}")
+    set(wrapper ${CMAKE_CURRENT_BINARY_DIR}/${target}-under-emulator)
+    file(GENERATE OUTPUT ${wrapper}
+         CONTENT "#!/bin/sh\nLD_LIBRARY_PATH='${libs}' exec ${CMAKE_CROSSCOMPILING_EMULATOR} $<TARGET_FILE:${target}> \"$@\"\n"
+         FILE_PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE
+                          WORLD_READ WORLD_EXECUTE)
+    set(run ${wrapper})
+  endif()
+  set(page ${CMAKE_CURRENT_BINARY_DIR}/${target}.1)
+  add_custom_command(
+    OUTPUT ${page}.gz
+    COMMAND ${PLANTER_HELP2MAN} --no-info --no-discard-stderr --section=1
+            "--name=${what}" --output=${page} ${run}
+    COMMAND gzip -n -9 -f ${page}
+    DEPENDS ${target}
+    COMMENT "man page for ${target} (help2man)"
+    VERBATIM)
+  add_custom_target(${target}-man ALL DEPENDS ${page}.gz)
+  set_property(GLOBAL APPEND PROPERTY planter_man_pages ${page}.gz)
+endfunction()

@@ -84,6 +84,7 @@ bool result_from_json(const nlohmann::json& j, CompressionResult& r) {
     if (x.size() != f.size() || x.size() != b.size()) return false;
     r.curve.clear();
     for (std::size_t k = 0; k < x.size(); ++k) r.curve.push_back({x[k], f[k], b[k]});
+    find_collapse(r);
     return true;
   } catch (const nlohmann::json::exception&) {
     return false;

@@ -59,12 +59,15 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
         {"predicted_N", r.predicted_N},
         {"verified_peak_N", got},
         {"verified_peak_displacement_mm", r.verification.result.peak_displacement_m * 1e3},
+        {"verified_collapse_force_N", r.verification.result.collapse_force_N},
         {"error_pct", 100.0 * (got - o.target_N) / o.target_N}};
     const auto& c = r.calibrated;
     j["calibrated"] = {{"normal_stiffness_N_m3", c.setup.bonds.normal_stiffness_N_m3},
                        {"tensile_strength_Pa", c.setup.bonds.tensile_strength_Pa},
                        {"peak_force_N", c.result.peak_force_N},
                        {"peak_displacement_mm", c.result.peak_displacement_m * 1e3},
+                       {"collapse_force_N", c.result.collapse_force_N},
+                       {"collapse_displacement_mm", c.result.collapse_displacement_m * 1e3},
                        {"refinement_runs", r.refinement.size()},
                        {"error_pct", 100.0 * (c.result.peak_force_N - o.target_N) / o.target_N}};
     config::write_output_file(o.out_dir + "/calibrated.toml", compression_setup_toml(c.setup));
@@ -105,7 +108,9 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
       << "Calibrated: S = " << c.setup.bonds.normal_stiffness_N_m3
       << " N/m<sup>3</sup>, sigma_c = " << c.setup.bonds.tensile_strength_Pa << " Pa: <b>"
       << c.result.peak_force_N << " N at " << c.result.peak_displacement_m * 1e3
-      << " mm</b>. Parameters: <code>calibrated.toml</code>.</p>";
+      << " mm</b> (first peak: the first 5 % drop); collapse (the largest fall) "
+      << c.result.collapse_force_N << " N at " << c.result.collapse_displacement_m * 1e3
+      << " mm. Both are marked on the chart. Parameters: <code>calibrated.toml</code>.</p>";
     std::vector<double> x, f;
     for (const auto& p : r.calibrated.result.curve) {
       x.push_back(p.displacement_m * 1e3);
@@ -115,9 +120,12 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
                        "N",
                        "displacement [mm]",
                        0.0,
-                       3.0 * o.target_N,
-                       {},
-                       {{o.target_N, "#36c", "target"}},
+                       std::max(1.15 * c.result.collapse_force_N, 1.15 * o.target_N),
+                       {{c.result.peak_displacement_m * 1e3, "#c33", "first peak"},
+                        {c.result.collapse_displacement_m * 1e3, "#933", "collapse"}},
+                       {{o.target_N, "#36c", "target"},
+                        {c.result.peak_force_N, "#c33", "first peak"},
+                        {c.result.collapse_force_N, "#933", "collapse"}},
                        ""},
                       x, {{&f, "#c33", "DEM, calibrated"}});
   }

@@ -5,19 +5,62 @@
 
 namespace planter::dem {
 
+namespace {
+
+// Smoothed over a few samples, so that one noisy sample is not a peak.
+std::vector<double> smoothed_force(const std::vector<CurvePoint>& curve, std::size_t half) {
+  const std::size_t n = curve.size();
+  std::vector<double> smooth(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t lo = k >= half ? k - half : 0;
+    const std::size_t hi = std::min(n - 1, k + half);
+    for (std::size_t m = lo; m <= hi; ++m) smooth[k] += curve[m].force_N;
+    smooth[k] /= static_cast<double>(hi - lo + 1);
+  }
+  return smooth;
+}
+
+std::size_t smoothing_half_width(std::size_t n) { return std::max<std::size_t>(1, n / 120); }
+
+}  // namespace
+
+void find_collapse(CompressionResult& r) {
+  // The collapse is the peak the force falls furthest from before it climbs above that peak
+  // again (densification): a drop of a few bonds before it can be the first peak, and the chart
+  // shows both.
+  const std::size_t n = r.curve.size();
+  const std::vector<double> smooth = smoothed_force(r.curve, smoothing_half_width(n));
+  r.collapse_drop_N = 0.0;
+  r.collapse_force_N = 0.0;
+  r.collapse_displacement_m = 0.0;
+  std::size_t at = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    double low = smooth[i];
+    for (std::size_t j = i + 1; j < n && smooth[j] <= smooth[i]; ++j)
+      low = std::min(low, smooth[j]);
+    if (smooth[i] - low > r.collapse_drop_N) {
+      r.collapse_drop_N = smooth[i] - low;
+      at = i;
+    }
+  }
+  if (at == n) return;
+  // The raw curve's largest value around the smoothed peak, as for the first peak.
+  const std::size_t half = smoothing_half_width(n);
+  for (std::size_t m = at >= half ? at - half : 0; m <= std::min(n - 1, at + half); ++m) {
+    if (r.curve[m].force_N > r.collapse_force_N) {
+      r.collapse_force_N = r.curve[m].force_N;
+      r.collapse_displacement_m = r.curve[m].displacement_m;
+    }
+  }
+}
+
 void find_first_peak(CompressionResult& r, double drop_fraction) {
   // Smoothed over a few samples, so that one noisy sample is not a peak; the seating of
   // the first few tenths of a millimetre is not either.
   constexpr double kSeating_m = 0.3e-3;
   const std::size_t n = r.curve.size();
-  const std::size_t half = std::max<std::size_t>(1, n / 120);
-  std::vector<double> smooth(n, 0.0);
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t lo = k >= half ? k - half : 0;
-    const std::size_t hi = std::min(n - 1, k + half);
-    for (std::size_t m = lo; m <= hi; ++m) smooth[k] += r.curve[m].force_N;
-    smooth[k] /= static_cast<double>(hi - lo + 1);
-  }
+  const std::size_t half = smoothing_half_width(n);
+  const std::vector<double> smooth = smoothed_force(r.curve, half);
   r.first_peak_found = false;
   double best = -1.0;
   std::size_t best_k = 0;
@@ -34,6 +77,7 @@ void find_first_peak(CompressionResult& r, double drop_fraction) {
   // Report the raw curve's largest value around the smoothed peak.
   r.peak_force_N = 0.0;
   r.peak_displacement_m = 0.0;
+  find_collapse(r);
   if (best < 0.0) return;
   const std::size_t lo = best_k >= half ? best_k - half : 0;
   for (std::size_t m = lo; m <= std::min(n - 1, best_k + half); ++m) {

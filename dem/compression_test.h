@@ -39,6 +39,12 @@ struct CompressionResult {
   double peak_force_N = 0.0;
   double peak_displacement_m = 0.0;
   bool first_peak_found = false;  // false: no drop after the maximum within the stroke
+  // The collapse: the peak with the largest fall after it (smoothed). The first peak can be a
+  // small drop (a few bonds) before the tube's collapse, which the chart shows higher; both
+  // are reported and marked. 0 when the force never falls.
+  double collapse_force_N = 0.0;
+  double collapse_displacement_m = 0.0;
+  double collapse_drop_N = 0.0;
   int broken_bonds = 0;
   int particles = 0;
   int bonds = 0;
@@ -62,5 +68,7 @@ CompressionResult run_compression(const CompressionSetup& setup);
 
 // The first peak of a curve (or its maximum when the force never falls by `drop_fraction`).
 void find_first_peak(CompressionResult& r, double drop_fraction);
+// Sets the collapse_* fields from the curve.
+void find_collapse(CompressionResult& r);
 
 }  // namespace planter::dem

@@ -2,7 +2,7 @@
 
 #include "firmware/canopen/cob_id.h"
 #include "firmware/canopen/sdo_client.h"
-#include "firmware/canopen/sdo_server.h"
+#include "sim/devices/sdo_server.h"
 #include "tests/frame_script.h"
 
 using namespace planter;

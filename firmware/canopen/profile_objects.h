@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <span>
 
-#include "firmware/canopen/object_dictionary.h"
+#include "firmware/canopen/access.h"
 
 namespace planter::canopen {
 

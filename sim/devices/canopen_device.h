@@ -8,10 +8,10 @@
 
 #include "firmware/canopen/cob_id.h"
 #include "firmware/canopen/lss.h"
-#include "firmware/canopen/object_dictionary.h"
 #include "firmware/canopen/pdo.h"
-#include "firmware/canopen/sdo_server.h"
 #include "planter/hal/can_bus.h"
+#include "sim/devices/object_dictionary.h"
+#include "sim/devices/sdo_server.h"
 
 namespace planter::sim {
 

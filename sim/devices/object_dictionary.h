@@ -1,6 +1,7 @@
 #pragma once
 // A device's object dictionary: typed entries created at init, read and written afterwards
-// without allocation. Used by the simulated nodes and by any device built on this code.
+// without allocation. The device side of CANopen: the simulated nodes' (the controller is the
+// client and never holds one).
 // Entries are kept sorted by (index, sub) and found by binary search: a simulated drive is
 // asked about 350 times a tick, and a linear scan of its 140 entries was most of the
 // lockstep simulator's time (issue 30).
@@ -8,9 +9,9 @@
 #include <string>
 #include <vector>
 
-namespace planter::canopen {
+#include "firmware/canopen/access.h"
 
-enum class Access : std::uint8_t { kReadOnly, kWriteOnly, kReadWrite, kConst };
+namespace planter::canopen {
 
 struct ObjectEntry {
   std::uint16_t index = 0;

@@ -1,4 +1,4 @@
-#include "firmware/canopen/sdo_server.h"
+#include "sim/devices/sdo_server.h"
 
 #include <algorithm>
 

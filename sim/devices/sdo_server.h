@@ -3,8 +3,8 @@
 #include <array>
 #include <cstdint>
 
-#include "firmware/canopen/object_dictionary.h"
 #include "planter/hal/can_bus.h"
+#include "sim/devices/object_dictionary.h"
 
 namespace planter::canopen {
 

@@ -1,4 +1,4 @@
-#include "firmware/canopen/object_dictionary.h"
+#include "sim/devices/object_dictionary.h"
 
 #include <algorithm>
 #include <utility>

@@ -104,13 +104,13 @@ std::string ConsoleServer::history_json() {
     depth_target.push_back(number(s.depth_target_mm));
   }
   return nlohmann::json{{"t_s", t},
-                        {"v_mps", v},
-                        {"sigma_seen", sigma_seen},
-                        {"sigma_true", sigma_true},
-                        {"clamp_force_N", force},
-                        {"clamp_force_target_N", force_target},
-                        {"depth_mm", depth},
-                        {"depth_target_mm", depth_target}}
+                        {std::string(signal_key("v_wheel")), v},
+                        {std::string(signal_key("sigma")), sigma_seen},
+                        {kTrueSigmaKey, sigma_true},
+                        {std::string(signal_key("clamp_force")), force},
+                        {std::string(signal_key("clamp_force_cmd")), force_target},
+                        {std::string(signal_key("depth_mm")), depth},
+                        {std::string(signal_key("depth_target_mm")), depth_target}}
       .dump();
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "firmware/controller/telemetry.h"
+#include "firmware/io/signal_table.h"
 
 namespace planter::console {
 
@@ -32,6 +33,16 @@ constexpr std::int64_t kLiveSamplePeriodNs = 100'000'000;
 constexpr std::int64_t ticks_per_live_sample(std::int64_t period_ns) {
   return period_ns >= kLiveSamplePeriodNs ? 1 : kLiveSamplePeriodNs / period_ns;
 }
+
+// The console's JSON names its values by their recording columns (docs/recording-format.md), so
+// the page, a recording and planter-can show one name for one signal. A name here that is not
+// in the signal table does not compile.
+consteval std::string_view signal_key(std::string_view column) {
+  return known_signal(column).column;
+}
+// The simulator's truth column (sim/plant/truth_columns.h, above this layer; a test holds the
+// two to each other).
+inline constexpr const char* kTrueSigmaKey = "true_sigma";
 
 // The sample a tick's telemetry gives (sigma_true left unknown).
 LiveSample live_sample(double t_s, const Telemetry& t);

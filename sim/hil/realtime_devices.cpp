@@ -13,6 +13,7 @@
 #include "sim/hil/gpio_sim_lines.h"
 #include "sim/machine/realtime_driver.h"
 #include "sim/machine/simulated_machine.h"
+#include "sim/plant/truth_columns.h"
 
 namespace planter::sim {
 namespace {
@@ -79,10 +80,8 @@ RealtimeDevicesResult run_realtime_devices(const Scenario& scenario,
     truth.reset(std::fopen(options.truth_path.c_str(), "w"));
     if (!truth) throw std::runtime_error(options.truth_path + ": cannot open for writing");
     std::fprintf(truth.get(),
-                 "# source: planter-sim devices\n# scenario: %s\n"
-                 "t,wall_time,x_m,v_ground,true_sigma,true_omega,true_clamp_force,"
-                 "true_depth_mm,moving,estop\n",
-                 scenario.name.c_str());
+                 "# source: planter-sim devices\n# scenario: %s\nt,wall_time,%s,moving,estop\n",
+                 scenario.name.c_str(), truth_header().c_str());
   }
   std::uint64_t steps = 0;
   std::size_t events_shown = 0;
@@ -95,10 +94,10 @@ RealtimeDevicesResult run_realtime_devices(const Scenario& scenario,
                    events[events_shown].what.c_str(), wall_s());
     if (!truth || ++steps % 10 != 0) return;
     const PlantTruth& p = machine.plant().truth();
-    std::fprintf(truth.get(), "%.3f,%.6f,%.5f,%.5f,%.4f,%.5f,%.2f,%.3f,%d,%d\n",
-                 static_cast<double>(sim_ns) * 1e-9, wall_s(), p.x_m, p.v_mps, p.sigma,
-                 p.disc_omega_radps, p.clamp_force_N, p.depth_mm, driver.script().moving() ? 1 : 0,
-                 a.estop ? 1 : 0);
+    std::fprintf(truth.get(), "%.3f,%.6f", static_cast<double>(sim_ns) * 1e-9, wall_s());
+    for (const TruthColumn& c : kTruthColumns)
+      std::fprintf(truth.get(), ",%.*f", c.decimals, p.*c.value);
+    std::fprintf(truth.get(), ",%d,%d\n", driver.script().moving() ? 1 : 0, a.estop ? 1 : 0);
   };
 
   hal::linux_backend::EpollTimer timer(RealtimeDriver::kStepNs);

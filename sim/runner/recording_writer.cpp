@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "config/recording_format.h"
+#include "sim/plant/truth_columns.h"
 
 namespace planter::sim {
 
@@ -24,10 +25,7 @@ RecordingWriter::RecordingWriter(const std::string& path, const std::string& sho
     throw std::runtime_error(path_ + ": cannot be written: " + std::strerror(errno));
   }
   for (const auto& [k, v] : metadata) std::fprintf(file_, "# %s: %s\n", k.c_str(), v.c_str());
-  std::fprintf(file_,
-               "%s,v_ground,true_x_m,true_sigma,true_omega,true_clamp_force,"
-               "true_depth_mm,true_slip\n",
-               config::controller_columns().c_str());
+  std::fprintf(file_, "%s,%s\n", config::controller_columns().c_str(), truth_header().c_str());
 }
 
 RecordingWriter::~RecordingWriter() {
@@ -40,15 +38,9 @@ void RecordingWriter::write(const TickRecord& r) {
   const double t_s = static_cast<double>(r.controller.time_ns) * 1e-9;
   const int n = config::format_controller_columns(row, sizeof row, t_s, r.controller);
   config::RowText line(row, sizeof row, n > 0 ? static_cast<std::size_t>(n) : 0);
-  for (const auto& [value, decimals] : {std::pair{p.v_mps, 5},
-                                        {p.x_m, 5},
-                                        {p.sigma, 4},
-                                        {p.disc_omega_radps, 5},
-                                        {p.clamp_force_N, 2},
-                                        {p.depth_mm, 3},
-                                        {p.slip, 4}}) {
+  for (const TruthColumn& c : kTruthColumns) {
     line.separator();
-    line.fixed(value, decimals);
+    line.fixed(p.*c.value, c.decimals);
   }
   line.text("\n");
   // A row cut short would be a wrong row: refuse it instead.

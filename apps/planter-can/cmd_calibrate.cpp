@@ -10,6 +10,7 @@
 #include "apps/planter-can/sdo_session.h"
 #include "firmware/canopen/cia402.h"
 #include "firmware/canopen/pdo.h"
+#include "firmware/io/signal_table.h"
 #include "firmware/sensing/quadrature_decoder.h"
 
 namespace planter::cantool {
@@ -123,7 +124,7 @@ int calibrate_force(ToolContext& ctx, const CalibrateOptions& opt, OperatorPromp
   std::vector<Change> changes{
       {"nodes.force_sensor", "zero_counts", n.zero_counts, zero, "counts"},
       {"nodes.force_sensor", "counts_per_unit", n.counts_per_unit, span, "counts/N"}};
-  const double before_N = (loaded - n.zero_counts) / n.counts_per_unit;
+  const double before_N = bus_to_si(BusScale::kTared, n, loaded);
   nlohmann::json ev{{"zero_counts_mean", zero},     {"zero_counts_sd", zero_sd},
                     {"loaded_counts_mean", loaded}, {"loaded_counts_sd", loaded_sd},
                     {"known_N", opt.known_N},       {"weight_read_before_N", before_N},
@@ -188,9 +189,8 @@ int calibrate_soil_wheel(ToolContext& ctx, const CalibrateOptions& opt, Operator
     return kExitFailed;
   }
   const double counts_per_m = std::fabs(counts) / opt.distance_m;
-  const double radius = static_cast<double>(enc.counts_per_rev) / (2.0 * M_PI * counts_per_m);
-  const double before_counts_per_m =
-      static_cast<double>(enc.counts_per_rev) / (2.0 * M_PI * enc.wheel_radius_m);
+  const double radius = wheel_radius_for_counts_per_m(enc.counts_per_rev, counts_per_m);
+  const double before_counts_per_m = 1.0 / metres_per_count(enc);
   nlohmann::json ev{{"counts", decoder.count()},
                     {"distance_m", opt.distance_m},
                     {"counts_per_m", counts_per_m},
@@ -283,12 +283,13 @@ int calibrate_depth(ToolContext& ctx, const CalibrateOptions& opt) {
   std::int64_t home = 0;
   if (!drive.read(c402::kPositionActual, home, 32)) return fail(drive.error());
   // 2. Travel: up to the board's upper limit, slowly; where it stops is the end stop.
-  const double cpu = n.counts_per_unit;
   if (!drive.write(c402::kModesOfOperation, static_cast<std::uint8_t>(c402::kModeProfilePosition),
                    1) ||
       !drive.enable() ||
-      !drive.write(c402::kTargetPosition,
-                   static_cast<std::uint32_t>(std::llround(depth.max_mm * cpu)), 4) ||
+      !drive.write(
+          c402::kTargetPosition,
+          static_cast<std::uint32_t>(std::llround(si_to_bus(BusScale::kPerCount, n, depth.max_mm))),
+          4) ||
       !drive.trigger())
     return fail(drive.error());
   std::int64_t pos = 0;
@@ -299,18 +300,26 @@ int calibrate_depth(ToolContext& ctx, const CalibrateOptions& opt) {
   for (;;) {
     drive.pause_ms(100);
     if (!drive.read(c402::kPositionActual, pos, 32)) return fail(drive.error());
-    if (std::llabs(pos - std::llround(depth.max_mm * cpu)) < 20) break;  // reached
-    still = have_last && std::llabs(pos - last) < std::llround(0.05 * cpu) ? still + 1 : 0;
+    if (std::llabs(pos - std::llround(si_to_bus(BusScale::kPerCount, n, depth.max_mm))) < 20)
+      break;  // reached
+    still =
+        have_last && std::llabs(pos - last) < std::llround(si_to_bus(BusScale::kPerCount, n, 0.05))
+            ? still + 1
+            : 0;
     if (still >= 5) break;  // 0.5 s without moving: the end stop
     last = pos;
     have_last = true;
     if (ctx.link.now_ns() - t1 > 120'000'000'000) return fail("travel did not end within 120 s");
-    progress.update("travel: " + number_text(static_cast<double>(pos) / cpu) + " mm");
+    progress.update(
+        "travel: " + number_text(bus_to_si(BusScale::kPerCount, n, static_cast<double>(pos))) +
+        " mm");
   }
-  const double top_mm = static_cast<double>(pos) / cpu;
+  const double top_mm = bus_to_si(BusScale::kPerCount, n, static_cast<double>(pos));
   // 3. Back to the raised position and disabled.
   if (!drive.write(c402::kTargetPosition,
-                   static_cast<std::uint32_t>(std::llround(depth.raised_mm * cpu)), 4) ||
+                   static_cast<std::uint32_t>(
+                       std::llround(si_to_bus(BusScale::kPerCount, n, depth.raised_mm))),
+                   4) ||
       !drive.trigger())
     return fail(drive.error());
   drive.pause_ms(100);
@@ -329,7 +338,8 @@ int calibrate_depth(ToolContext& ctx, const CalibrateOptions& opt) {
     ctx.out << line;
   }
   std::vector<Change> changes{
-      {"control", "depth_min_mm", depth.min_mm, static_cast<double>(home) / cpu, "mm"},
+      {"control", "depth_min_mm", depth.min_mm,
+       bus_to_si(BusScale::kPerCount, n, static_cast<double>(home)), "mm"},
       {"control", "depth_max_mm", depth.max_mm, reached ? depth.max_mm : top_mm, "mm"}};
   return report(ctx, opt, changes, ev);
 }

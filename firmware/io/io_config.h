@@ -47,4 +47,14 @@ struct EncoderConfig {
   std::int64_t speed_window_ns = 200'000'000;
 };
 
+// The soil wheel's scale, declared once: one count is this much ground (2 pi r / counts per
+// revolution), and the radius a measured counts-per-metre gives (planter-can calibrate).
+constexpr double kTwoPi = 6.283185307179586;
+constexpr double metres_per_count(const EncoderConfig& e) {
+  return kTwoPi * e.wheel_radius_m / static_cast<double>(e.counts_per_rev);
+}
+constexpr double wheel_radius_for_counts_per_m(std::uint32_t counts_per_rev, double counts_per_m) {
+  return static_cast<double>(counts_per_rev) / (kTwoPi * counts_per_m);
+}
+
 }  // namespace planter

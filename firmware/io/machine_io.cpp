@@ -9,14 +9,6 @@ namespace planter {
 
 using canopen::cia402::State;
 
-namespace {
-constexpr double kTwoPi = 6.283185307179586;
-
-double metres_per_count(const EncoderConfig& e) {
-  return kTwoPi * e.wheel_radius_m / static_cast<double>(e.counts_per_rev);
-}
-}  // namespace
-
 MachineIo::MachineIo(const MachineIoConfig& config, hal::ControllerHal& hal)
     : cfg_(config),
       hal_(hal),

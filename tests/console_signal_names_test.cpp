@@ -43,7 +43,7 @@ TEST(ConsoleSignalNames, ThePageReadsOnlyTheSignalTablesNames) {
     names.insert((*m)[1]);
   const std::regex rows(R"(rows\(\[([^\]]*)\]\))");
   const std::regex quoted(R"re("([a-z_]+)")re");
-      for (std::sregex_iterator m(text.begin(), text.end(), rows), end; m != end; ++m) {
+  for (std::sregex_iterator m(text.begin(), text.end(), rows), end; m != end; ++m) {
     const std::string list = (*m)[1];
     for (std::sregex_iterator q(list.begin(), list.end(), quoted); q != end; ++q)
       names.insert((*q)[1]);

@@ -102,6 +102,10 @@ class ChannelModel {
   [[nodiscard]] virtual std::string input() const = 0;  // the main recorded input
   // Columns this channel needs (output included); the channel is observable when all exist.
   [[nodiscard]] virtual std::vector<std::string> needs() const = 0;
+  // Known disturbances the channel takes as inputs when the recording carries them (the
+  // simulator's known_* columns, docs/recording-format.md): what the scenario varies on
+  // purpose is then not a mismatch. A recording without them is fitted as before.
+  [[nodiscard]] virtual std::vector<std::string> known_inputs() const { return {}; }
   [[nodiscard]] virtual std::vector<ParamSpec> nominal_params() const = 0;
   // The candidate effects that make sense on this channel, given the recording's columns (an
   // effect driven by another signal, such as sag by the draft, needs that signal).

@@ -50,6 +50,7 @@ class GroundChannel : public ChannelModel {
   std::string output() const override { return "v_wheel"; }
   std::string input() const override { return "v_ground"; }
   std::vector<std::string> needs() const override { return {"v_ground", "v_wheel"}; }
+  std::vector<std::string> known_inputs() const override { return {"known_slip"}; }
   // The encoder speed is an estimate over a window of edges: it lags the true speed by
   // about half the window. That lag is part of the measurement, not missing physics.
   std::vector<ParamSpec> nominal_params() const override {
@@ -62,7 +63,15 @@ class GroundChannel : public ChannelModel {
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
     const Effect lag{&effect_spec(EffectKind::kDelay), {p[0]}};
-    y = transform_input(r, r.at("v_ground"), {lag});
+    if (r.has("known_slip")) {
+      // The wheel rolls the ground less its slip: v_wheel = v (1 - s).
+      std::vector<double> rolled = r.at("v_ground");
+      const auto& slip = r.at("known_slip");
+      for (std::size_t k = 0; k < rolled.size(); ++k) rolled[k] *= 1.0 - slip[k];
+      y = transform_input(r, rolled, {lag});
+    } else {
+      y = transform_input(r, r.at("v_ground"), {lag});
+    }
     apply_output(r, fx, r.has("depth_force") ? &r.at("depth_force") : nullptr, nullptr, y);
   }
 };
@@ -159,6 +168,7 @@ class ClampChannel : public ChannelModel {
   std::string output() const override { return "clamp_force"; }
   std::string input() const override { return "clamp_pos_mm"; }
   std::vector<std::string> needs() const override { return {"clamp_pos_mm", "clamp_force"}; }
+  std::vector<std::string> known_inputs() const override { return {"known_nip_mm"}; }
   std::vector<ParamSpec> nominal_params() const override {
     return {{"k_c", "N/mm^n", 10.0, 1e-3, 1e5},
             {"x0", "mm", 0.0, -50.0, 50.0},
@@ -199,7 +209,12 @@ class ClampChannel : public ChannelModel {
   }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
-    const std::vector<double> x = transform_input(r, r.at("clamp_pos_mm"), fx);
+    std::vector<double> x = transform_input(r, r.at("clamp_pos_mm"), fx);
+    // A seedling in the nip closes the gap by its thickness: the lips meet it sooner.
+    if (r.has("known_nip_mm")) {
+      const auto& nip = r.at("known_nip_mm");
+      for (std::size_t k = 0; k < x.size(); ++k) x[k] += nip[k];
+    }
     y.resize(x.size());
     // k (x - x0)^n as k exp(n ln(x - x0)): the fits evaluate it millions of times, and the
     // general pow() is twice as slow for the same result here (x - x0 > 0, n in 0.9-2.5).
@@ -217,6 +232,7 @@ class DepthChannel : public ChannelModel {
   std::string output() const override { return "depth_mm"; }
   std::string input() const override { return "depth_cmd_mm"; }
   std::vector<std::string> needs() const override { return {"depth_cmd_mm", "depth_mm"}; }
+  std::vector<std::string> known_inputs() const override { return {"known_terrain_depth_mm"}; }
   std::vector<ParamSpec> nominal_params() const override {
     return {{"T_a", "s", 0.5, 0.01, 20.0}, {"r_max", "mm/s", 50.0, 0.1, 2000.0}};
   }
@@ -231,13 +247,16 @@ class DepthChannel : public ChannelModel {
     const std::vector<double> u = transform_input(r, r.at("depth_cmd_mm"), fx);
     // The nominal rate limit r_max is part of the structure; a candidate one would repeat it.
     const double tau = p[0], rate = p[1];
+    // The furrow's depth is the actuator's position plus what the terrain adds, where known.
+    const std::vector<double>* terrain =
+        r.has("known_terrain_depth_mm") ? &r.at("known_terrain_depth_mm") : nullptr;
+    double state = r.at("depth_mm")[0] - (terrain ? (*terrain)[0] : 0.0);
     y.assign(u.size(), r.at("depth_mm")[0]);
-    double state = y[0];
     for (std::size_t k = 1; k < u.size(); ++k) {
       const double dt = r.t[k] - r.t[k - 1];
       const double step = (1.0 - std::exp(-dt / tau)) * (u[k - 1] - state);
       state += std::clamp(step, -rate * dt, rate * dt);
-      y[k] = state;
+      y[k] = state + (terrain ? (*terrain)[k] : 0.0);
     }
     apply_output(r, fx, r.has("depth_force") ? &r.at("depth_force") : nullptr, nullptr, y);
   }

@@ -109,6 +109,7 @@ std::string fit_json(const FitReport& r, double wall_s) {
   j["analysed_up_to_hz"] = r.analysed_up_to_hz;
   j["wall_s"] = wall_s;
   j["unobservable"] = r.unobservable;
+  j["known_inputs"] = r.known_inputs;
   j["glitches"] = nlohmann::json::array();
   for (const auto& g : r.glitches)
     j["glitches"].push_back(
@@ -247,6 +248,11 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
   if (!r.unobservable.empty()) {
     h << "<p>Not observable (columns missing or constant):";
     for (const auto& u : r.unobservable) h << " " << u << ";";
+    h << "</p>";
+  }
+  if (!r.known_inputs.empty()) {
+    h << "<p>Known disturbances the recording carries, taken as inputs:";
+    for (const auto& k : r.known_inputs) h << " " << report::html_escape(k) << ";";
     h << "</p>";
   }
   if (!r.glitches.empty()) {

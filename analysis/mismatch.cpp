@@ -363,9 +363,12 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
 
 std::vector<std::string> channel_columns() {
   std::vector<std::string> read;
-  for (const ChannelModel* ch : all_channels())
+  for (const ChannelModel* ch : all_channels()) {
     for (const std::string& c : ch->needs())
       if (std::find(read.begin(), read.end(), c) == read.end()) read.push_back(c);
+    for (const std::string& c : ch->known_inputs())
+      if (std::find(read.begin(), read.end(), c) == read.end()) read.push_back(c);
+  }
   return read;
 }
 
@@ -438,9 +441,11 @@ FitReport analyse(const Recording& full, const FitOptions& o) {
     for (const auto& c : ch->needs()) ok = ok && r.has(c);
     // A channel whose output never moves says nothing about its physics.
     if (ok && signal_span(r.at(ch->output())) <= 0.0) ok = false;
-    if (ok)
+    if (ok) {
       todo.push_back(ch);
-    else
+      for (const auto& c : ch->known_inputs())
+        if (r.has(c)) rep.known_inputs.push_back(c + " (" + ch->output() + ")");
+    } else
       rep.unobservable.push_back(ch->subsystem() + ": " + ch->output());
   }
   if (todo.empty())

@@ -114,8 +114,10 @@ struct FitReport {
   double held_out_from_s = 0.0;
   std::vector<ChannelReport> channels;
   std::vector<std::string> unobservable;  // channels whose columns are missing
-  std::vector<Glitch> glitches;           // samples excluded as single-sample glitches
-  std::optional<DayReport> day;           // a recording longer than one window: across it
+  // Known disturbances the recording carries and the channels took as inputs: "column (channel)".
+  std::vector<std::string> known_inputs;
+  std::vector<Glitch> glitches;  // samples excluded as single-sample glitches
+  std::optional<DayReport> day;  // a recording longer than one window: across it
 };
 
 // Why a candidate does not earn its place, in words (the first criterion it fails), or "" when

@@ -29,11 +29,15 @@ spawn() {  # spawn WORKER NAME ARGS...
 judge() {  # judge NAME EXPECT: prints the case's line from its fit.json
   /usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/$1-fit/fit.json" "$1" "$2"
 }
-sim_case() {  # sim_case NAME NOISE EXPECT [--base-sed SED_EXPR] [effects lines...]
-  local name=$1 noise=$2 expect=$3 base_sed=""
+sim_case() {  # sim_case NAME NOISE EXPECT [--base-sed SED_EXPR] [--drop COLUMN] [effects lines...]
+  local name=$1 noise=$2 expect=$3 base_sed="" drop=""
   shift 3
   if [ "${1:-}" = --base-sed ]; then
     base_sed=$2
+    shift 2
+  fi
+  if [ "${1:-}" = --drop ]; then
+    drop=$2
     shift 2
   fi
   # The effect keys go at the end, under [effects] (the base's last table). The fit's outputs go
@@ -43,7 +47,27 @@ sim_case() {  # sim_case NAME NOISE EXPECT [--base-sed SED_EXPR] [effects lines.
     echo "FAIL $name: planter-sim failed: $(head -1 "$out/$name.sim.err")"
     return
   }
-  "$fit" "$out/$name/recording.csv" --out "$out/$name-fit" --json --jobs 1 \
+  local recording=$out/$name/recording.csv
+  if [ -n "$drop" ]; then
+    # As a field log without that sensor: the column left out, beside the run's folder.
+    recording=$out/$name-without-$drop.csv
+    /usr/bin/python3 - "$out/$name/recording.csv" "$recording" "$drop" <<'PY'
+import sys
+src, dst, drop = sys.argv[1:]
+with open(src) as f, open(dst, "w") as g:
+    at = None
+    for line in f:
+        if line.startswith("#"):
+            g.write(line)
+            continue
+        cells = line.rstrip("\n").split(",")
+        if at is None:
+            at = cells.index(drop)
+        del cells[at]
+        g.write(",".join(cells) + "\n")
+PY
+  fi
+  "$fit" "$recording" --out "$out/$name-fit" --json --jobs 1 \
     >"$out/$name-fit.stdout" 2>&1
   judge "$name" "$expect"
 }
@@ -97,9 +121,16 @@ for noise in 0.5 2.0; do
 done
 run_case soil-heavier 1.0 "depth_force:change:draft_100mm=1.5@143" \
   "change_at_s = 143.0" "soil_draft_change_pct = 50.0"
-# Terrain the depth wheel follows is no effect of the library: it must be reported as an
-# unexplained residual on depth_mm, not forced onto a wrong name.
-run_case terrain 1.0 "unexplained:depth_mm" --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|"
+# Terrain the depth wheel follows is no effect of the library: in a field log without a
+# terrain measurement (known_terrain_depth_mm left out) it must be reported as an unexplained
+# residual on depth_mm, not forced onto a wrong name.
+run_case terrain 1.0 "unexplained:depth_mm" --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|" \
+  --drop known_terrain_depth_mm
+# Nothing hidden, and everything the field scenario varies on purpose put back (terrain, the
+# slip's variation along the row, seedlings of every diameter in the nip), carried in the
+# recording as known disturbances: clean on every channel (issue 32, item 2).
+run_case clean-with-known-disturbances 1.0 clean \
+  --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|; s|^slip_variation_pct = .*|slip_variation_pct = 1.0|; s|^diameter_min_mm = .*|diameter_min_mm = 8.3|; s|^diameter_max_mm = .*|diameter_max_mm = 11.4|"
 # A second generator, written apart from planter-sim (scripts/outside_machine.py): no firmware,
 # an open-loop operator, Runge-Kutta at 1 ms, jittered 100 Hz sampling, its own machine values.
 outside_case() {  # outside_case NAME EXPECT [outside_machine.py options...]

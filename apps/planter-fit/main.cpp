@@ -42,6 +42,12 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
       r.day ? "first window" : "recording", r.file.c_str(), r.rows, r.rate_hz, r.analysed_rows,
       r.analysed_up_to_hz, r.duration_s, r.held_out_from_s);
   for (const auto& u : r.unobservable) std::printf("not observable: %s\n", u.c_str());
+  if (!r.known_inputs.empty()) {
+    std::printf("known disturbances the recording carries, taken as inputs:");
+    for (const auto& k : r.known_inputs)
+      std::printf("%s %s", &k == &r.known_inputs.front() ? "" : ",", k.c_str());
+    std::printf("\n");
+  }
   if (!r.glitches.empty()) {
     std::printf("excluded %zu single-sample glitch(es), replaced by their neighbours' mean:",
                 r.glitches.size());

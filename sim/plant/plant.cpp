@@ -53,12 +53,21 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   const double x_before = ground_.x_m();
   ground_.step(t, dt);
   draft_share_ = soil::mobilised_share(cfg_.soil.draft, draft_share_, ground_.x_m() - x_before, dt);
+  // The draft acts at the opener's working depth in the soil (ASABE D497 takes the tool's
+  // depth), which the terrain under the depth wheel and the opener's sag change, as the depth
+  // sensor sees it below; the sag from the last substep's draft (1 ms), so no iteration.
+  const double terrain_depth_mm = cfg_.terrain.depth_share * ground_.terrain_mm();
+  const double working_depth_mm =
+      depth_.position_mm() - fx.depth_sag_mm_per_kN * draft_N_ * 1e-3 + terrain_depth_mm;
   const double draft =
-      soil::opener_draft_N(cfg_.soil.draft, ground_.v_mps(), depth_.position_mm(), draft_share_) *
+      soil::opener_draft_N(cfg_.soil.draft, ground_.v_mps(), working_depth_mm, draft_share_) *
       fx.changed(fx.soil_draft_change_pct, t);
-  const double slip_pct = cfg_.soil.slip_mean_pct +
-                          cfg_.soil.slip_variation_pct * std::sin(kTwoPi * ground_.x_m() / 3.7) +
-                          fx.slip_per_kN * draft * 1e-3;
+  draft_N_ = draft;
+  const double soil_slip_pct =
+      cfg_.soil.slip_mean_pct +
+      cfg_.soil.slip_variation_pct *
+          std::sin(kTwoPi * ground_.x_m() / cfg_.soil.slip_variation_wavelength_m);
+  const double slip_pct = soil_slip_pct + fx.slip_per_kN * draft * 1e-3;
   wheel_.roll(ground_.x_m() - x_before, slip_pct * 0.01, t_ns, dt_ns, edges);
 
   // Disc drive (profile velocity).
@@ -77,8 +86,8 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
                dev.roller.enabled(), dt);
   dev.roller.set_actual(
       std::llround(raw_of(board_, known_signal("clamp_pos_mm"), roller_.position_mm())), 0, 0);
-  const double compression =
-      roller_.position_mm() + seedlings_.nip_thickness_mm(t) - cfg_.drive.clamp_x0_mm;
+  const double nip_mm = seedlings_.nip_thickness_mm(t);
+  const double compression = roller_.position_mm() + nip_mm - cfg_.drive.clamp_x0_mm;
   const double elastic = cfg_.drive.clamp_k_N * fx.changed(fx.clamp_stiffness_change_pct, t) *
                          std::pow(std::max(0.0, compression), cfg_.drive.clamp_n);
   // Viscoelastic relaxation: a Maxwell branch takes a share of the load over tau.
@@ -108,7 +117,7 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
               dev.depth.enabled(), dt);
   // The depth-limiting wheel follows the surface, but only partly over micro-terrain.
   const double depth_true =
-      depth_.position_mm() - fx.depth_sag_mm_per_kN * draft * 1e-3 + 0.3 * ground_.terrain_mm();
+      depth_.position_mm() - fx.depth_sag_mm_per_kN * draft * 1e-3 + terrain_depth_mm;
   dev.depth.set_actual(std::llround(raw_of(board_, known_signal("depth_mm"), depth_true)), 0,
                        per_mille(raw_of(board_, known_signal("depth_force"), draft)));
 
@@ -129,6 +138,11 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   truth_.depth_mm = depth_true;
   truth_.draft_N = draft;
   truth_.terrain_mm = ground_.terrain_mm();
+  // About the mean: the soil wheel's calibration (an effective radius measured by pushing
+  // the machine over a known distance on this soil) already holds the mean slip.
+  truth_.known_slip = (soil_slip_pct - cfg_.soil.slip_mean_pct) * 0.01;
+  truth_.known_terrain_depth_mm = terrain_depth_mm;
+  truth_.known_nip_mm = nip_mm;
 }
 
 void Plant::photo_eye(std::int64_t end_ns, hal::sim::SimEdgeSource& edges) {

@@ -29,6 +29,10 @@ struct PlantTruth {
   double disc_omega_radps = 0, sigma = 0;
   double clamp_force_N = 0, roller_mm = 0;
   double depth_mm = 0, draft_N = 0, terrain_mm = 0;
+  // What the scenario varies on purpose, without any hidden effect (truth_columns.h): the
+  // soil's slip (mean and variation along the row), the depth the terrain adds, the seedling's
+  // thickness in the clamp's nip.
+  double known_slip = 0, known_terrain_depth_mm = 0, known_nip_mm = 0;
 };
 
 class Plant {
@@ -61,6 +65,7 @@ class Plant {
   double relaxation_N_ = 0.0;
   double relaxation2_N_ = 0.0;
   double fixture_load_N_ = 0.0;
+  double draft_N_ = 0.0;  // the last substep's, for the sag in the working depth
   PlantTruth truth_;
   // The seedling photo-eye where seedlings leave the disc (hal::edge_line::kSeedlingSensor).
   void photo_eye(std::int64_t end_ns, hal::sim::SimEdgeSource& edges);

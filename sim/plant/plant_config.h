@@ -34,13 +34,17 @@ struct RouteConfig {
 struct TerrainConfig {
   double roughness_mm = 0.0;  // amplitude of micro-terrain
   double wavelength_m = 0.5;
+  // The share of the terrain's height the furrow's depth takes: the depth-limiting wheel rides
+  // the surface but bridges part of it. Assumed (no source), plausible 0.1-0.6.
+  double depth_share = 0.3;
 };
 
 struct SoilConfig {
-  double wheel_radius_m = 0.150;    // true soil-wheel radius
-  double slip_mean_pct = 0.0;       // travel reduction of the towed soil wheel
-  double slip_variation_pct = 0.0;  // slow variation along the row
-  soil::OpenerDraftLaw draft;       // draft on the opener (ASABE D497 form, sim/soil/)
+  double wheel_radius_m = 0.150;             // true soil-wheel radius
+  double slip_mean_pct = 0.0;                // travel reduction of the towed soil wheel
+  double slip_variation_pct = 0.0;           // slow variation along the row, sinusoidal over:
+  double slip_variation_wavelength_m = 3.7;  // assumed (no source), plausible 1-20 m
+  soil::OpenerDraftLaw draft;                // draft on the opener (ASABE D497 form, sim/soil/)
   // The soil that holds the planted root (sim/soil/root_anchorage.h): the loose soil that flows
   // back into the furrow behind the opener, then the same soil once the covering wheel has
   // pressed it. Values and sources: sim/plant/model_values.cpp.

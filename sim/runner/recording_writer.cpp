@@ -38,9 +38,14 @@ void RecordingWriter::write(const TickRecord& r) {
   const double t_s = static_cast<double>(r.controller.time_ns) * 1e-9;
   const int n = config::format_controller_columns(row, sizeof row, t_s, r.controller);
   config::RowText line(row, sizeof row, n > 0 ? static_cast<std::size_t>(n) : 0);
+  // The sensor path's rows ago (the first row's before there were that many).
+  recent_[rows_ % recent_.size()] = p;
+  const PlantTruth& sensed =
+      recent_[(rows_ >= kSensorPathTicks ? rows_ - kSensorPathTicks : 0) % recent_.size()];
+  ++rows_;
   for (const TruthColumn& c : kTruthColumns) {
     line.separator();
-    line.fixed(p.*c.value, c.decimals);
+    line.fixed((c.through_sensor_path ? sensed : p).*c.value, c.decimals);
   }
   line.text("\n");
   // A row cut short would be a wrong row: refuse it instead.

@@ -1,11 +1,13 @@
 #pragma once
 // Writes the recording format (docs/recording-format.md): `#` metadata lines, a header, one row per
 // tick. Columns prefixed `true_` are the simulator's ground truth (absent from field logs).
+#include <array>
 #include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "sim/plant/truth_columns.h"
 #include "sim/runner/lockstep_runner.h"
 
 namespace planter::sim {
@@ -28,6 +30,9 @@ class RecordingWriter {
  private:
   std::FILE* file_;
   std::string path_;
+  // The last rows' truth, for the columns written through the sensor path (truth_columns.h).
+  std::array<PlantTruth, kSensorPathTicks + 1> recent_{};
+  std::size_t rows_ = 0;
 };
 
 // Decimated series for the report's plots.

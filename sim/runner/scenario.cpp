@@ -83,12 +83,15 @@ Scenario load_scenario(const std::string& path) {
   if (auto t = root.table("terrain")) {
     p.terrain.roughness_mm = t->number("roughness_mm", 0.0, 0.0, 100.0, "mm");
     p.terrain.wavelength_m = t->number("wavelength_m", 0.5, 0.01, 100.0, "m");
+    p.terrain.depth_share = t->number("depth_share", 0.3, 0.0, 1.0);
     t->reject_unknown_keys();
   }
   if (auto t = root.table("soil")) {
     p.soil.wheel_radius_m = t->number("wheel_radius_m", 0.15, 0.02, 1.0, "m");
     p.soil.slip_mean_pct = t->number("slip_mean_pct", 0.0, -20.0, 50.0, "%");
     p.soil.slip_variation_pct = t->number("slip_variation_pct", 0.0, 0.0, 20.0, "%");
+    p.soil.slip_variation_wavelength_m =
+        t->number("slip_variation_wavelength_m", 3.7, 0.1, 1000.0, "m");
     if (t->has("draft_coeff"))
       t->fail(
           "draft_coeff",

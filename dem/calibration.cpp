@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "config/content_hash.h"
 #include "config/durable_file.h"
 #include "dem/dem_params.h"
 #include "dem/parallel_for.h"
@@ -34,15 +35,9 @@ constexpr int kAscentSteps = 8;
 constexpr int kPhysicsRevision = 2;
 
 std::string run_key(const CompressionSetup& s) {
-  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the parameters as written
-  for (unsigned char c :
-       "physics " + std::to_string(kPhysicsRevision) + "\n" + compression_setup_toml(s)) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  char buf[20];
-  std::snprintf(buf, sizeof buf, "%016" PRIx64, h);
-  return buf;
+  // Over the parameters as written: the same text is the same run.
+  return config::content_hash("physics " + std::to_string(kPhysicsRevision) + "\n" +
+                              compression_setup_toml(s));
 }
 
 nlohmann::json result_to_json(const CompressionResult& r) {

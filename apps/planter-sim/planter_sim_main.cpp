@@ -31,6 +31,7 @@
 #include "sim/runner/lockstep_runner.h"
 #include "sim/runner/model_assumptions.h"
 #include "sim/runner/recording_writer.h"
+#include "sim/runner/run_plan.h"
 #include "sim/seedling/measured_strength.h"
 
 namespace fs = std::filesystem;
@@ -228,6 +229,22 @@ int main(int argc, char** argv) {
   sweep->add_option("--jobs", sweep_options.jobs, "runs at a time (0: one per core)")
       ->capture_default_str()
       ->check(planter::config::finite_range(0, 256));
+  ExecutorOptions& ex = sweep_options.executor;
+  sweep->add_option("--executor", ex.kind, "where the runs execute: local or slurm")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"local", "slurm"}));
+  sweep->add_flag("--plan-only", ex.plan_only,
+                  "write the plan (and with slurm its sbatch script) and run nothing");
+  sweep->add_option("--partition", ex.partition, "slurm: the partition");
+  sweep->add_option("--account", ex.account, "slurm: the account");
+  sweep->add_option("--time-limit", ex.time_limit,
+                    "slurm: each task's limit (sbatch --time; default ten times a run timed here)");
+  sweep->add_option("--throttle", ex.throttle, "slurm: most tasks at once (0: no limit)")
+      ->check(planter::config::finite_range(0, 100000));
+  sweep->add_option("--sbatch-args", ex.sbatch_args, "slurm: more arguments for sbatch");
+  sweep->add_option("--poll", ex.poll_s, "slurm: seconds between looks at the queue")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0.1, 600.0));
   SensitivityOptions sensitivity_options;
   auto* sensitivity = app.add_subcommand(
       "sensitivity",
@@ -249,6 +266,12 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(planter::config::finite_range(0, 256));
 #endif
+  std::string plan_path;
+  std::size_t plan_index = 0;
+  auto* plan_run = app.add_subcommand(
+      "plan-run", "run one run of a plan (what each local process or Slurm task executes)");
+  plan_run->add_option("plan", plan_path, "plan.json")->required();
+  plan_run->add_option("index", plan_index, "the run's index in the plan")->required();
   auto* values = app.add_subcommand(
       "values", "every model value the conclusions rest on: value, unit, range, origin, source");
   std::string values_scenario;
@@ -319,6 +342,10 @@ int main(int argc, char** argv) {
     }
     if (*sensitivity) return run_sensitivity(scenario, out, sensitivity_options);
 #endif
+    if (*plan_run) {
+      execute_planned_run(plan_path, plan_index);
+      return 0;
+    }
     if (*values) {
       const PlantConfig plant =
           values_scenario.empty() ? PlantConfig{} : load_scenario(values_scenario).plant;
@@ -341,6 +368,13 @@ int main(int argc, char** argv) {
   } catch (const config::ConfigError& e) {
     std::fprintf(stderr, "planter-sim: %s\n", e.what());
     return 2;
+  } catch (const PlanWritten& w) {
+    // --plan-only: the first plan is written; the rest of the work follows from its results.
+    std::printf(
+        "plan written: %s/plan.json\nrun it: %s\nthen run this command again (without "
+        "--plan-only) to gather the runs and plan what follows from them\n",
+        w.dir.c_str(), w.how_to_run.c_str());
+    return 0;
   } catch (const hal::linux_backend::HalError& e) {
     std::fprintf(stderr, "planter-sim: %s\n", e.what());
     return 2;

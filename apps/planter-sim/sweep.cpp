@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 #include <vector>
 
+#include "config/content_hash.h"
 #include "config/output_set.h"
 #include "doe/doe.h"
 #include "doe/doe_report.h"
@@ -16,6 +19,7 @@
 #include "sim/plant/model_values.h"
 #include "sim/runner/model_assumptions.h"
 #include "sim/runner/run_many.h"
+#include "sim/runner/run_plan.h"
 #include "sim/runner/scenario.h"
 
 namespace planter::sim {
@@ -59,17 +63,38 @@ double damage_standard_error_pts(const std::vector<Run>& runs, int point) {
   return 100.0 * std::sqrt(p * (1.0 - p) / (n + 4.0));
 }
 
+// The operating point at one coded point of the design.
+OperatingPoint operating_point_at(const Scenario& base, const Eigen::RowVector3d& coded) {
+  const double omega = kFactors[1].value(coded(1));
+  return {omega * base.board.controller.sigma.disc_radius_m / base.plant.route.speed_mps,
+          kFactors[2].value(coded(2)), kFactors[0].value(coded(0))};
+}
+
 // The base scenario at one coded point of the design, on `distance_m` without stops.
 Scenario design_point(const Scenario& base, const Eigen::RowVector3d& coded, double distance_m,
                       std::uint64_t seed) {
-  Scenario s = base;
-  s.plant.route.distance_m = distance_m;
-  s.plant.route.stops.clear();
-  s.seed = seed;
-  const double omega = kFactors[1].value(coded(1));
-  const double sigma = omega * s.board.controller.sigma.disc_radius_m / s.plant.route.speed_mps;
-  set_operating_point(s, sigma, kFactors[2].value(coded(2)), kFactors[0].value(coded(0)));
-  return s;
+  PlannedRun r;
+  r.seed = seed;
+  r.distance_m = distance_m;
+  r.operating_point = operating_point_at(base, coded);
+  return planned_scenario(base, r);
+}
+
+// A plan on the scenario file as it is now (its absolute path and its text's hash).
+RunPlan base_plan(const std::string& scenario_path) {
+  RunPlan plan;
+  plan.scenario = std::filesystem::absolute(scenario_path).lexically_normal().string();
+  std::ifstream in(plan.scenario, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  plan.scenario_hash = config::content_hash(text.str());
+  return plan;
+}
+
+ExecutorOptions executor_of(const SweepOptions& o) {
+  ExecutorOptions e = o.executor;
+  e.jobs = o.jobs;
+  return e;
 }
 
 // Desirability as Design-Expert sets it by default: each goal over the observed range of its
@@ -80,16 +105,24 @@ doe::Optimum optimum_of(const doe::Anova& upright_fit, const Eigen::VectorXd& up
                                       {&force_fit, force.maxCoeff(), force.minCoeff()}});
 }
 
-// Runs the (point, replicate) pairs `todo`, `jobs` at a time; each its own runner and seed.
-std::vector<Run> run_all(const Scenario& base, const Eigen::MatrixXd& design,
-                         const std::vector<std::pair<int, int>>& todo, double distance_m,
-                         int jobs) {
-  std::vector<Scenario> scenarios;
-  for (const auto& [point, replicate] : todo)
-    scenarios.push_back(design_point(base, design.row(point), distance_m,
-                                     base.seed + 1000u * static_cast<std::uint64_t>(replicate) +
-                                         static_cast<std::uint64_t>(point)));
-  const std::vector<Summary> results = run_many(scenarios, jobs, "sweep");
+// Runs the (point, replicate) pairs `todo` as one plan (stage `stage` of the sweep) on the
+// executor; each run its own process, seed and output set.
+std::vector<Run> run_all(const Scenario& base, const std::string& scenario_path,
+                         const Eigen::MatrixXd& design,
+                         const std::vector<std::pair<int, int>>& todo, const SweepOptions& o,
+                         const std::string& runs, int stage) {
+  RunPlan plan = base_plan(scenario_path);
+  for (const auto& [point, replicate] : todo) {
+    const Eigen::RowVector3d coded = design.row(point);
+    PlannedRun r;
+    r.distance_m = o.distance_m;
+    r.seed = base.seed + 1000u * static_cast<std::uint64_t>(replicate) +
+             static_cast<std::uint64_t>(point);
+    r.operating_point = operating_point_at(base, coded);
+    plan.runs.push_back(r);
+  }
+  const std::vector<Summary> results =
+      execute_plan(runs + "/stage-" + std::to_string(stage), plan, executor_of(o), "sweep");
   std::vector<Run> out;
   for (std::size_t i = 0; i < todo.size(); ++i) {
     const Summary& r = results[i];
@@ -246,15 +279,25 @@ std::string optimum_text(double area_mm2, double disc_speed_radps, double depth_
 
 double design_span(int factor) { return 2.0 * kFactors[factor].half_range; }
 
+std::string runs_folder(const std::string& out_dir) {
+  std::string d = out_dir;
+  while (d.size() > 1 && d.back() == '/') d.pop_back();
+  return d + ".runs";
+}
+
 int run_sweep(const std::string& scenario_path, const std::string& out_dir, const SweepOptions& o) {
   Scenario base = load_scenario(scenario_path);
   for (const auto& w : base.board.warnings)
     std::fprintf(stderr, "planter-sim: warning: %s\n", w.c_str());
+  if (const std::string why = executor_refusal(o.executor); !why.empty())
+    throw std::runtime_error(why);
   config::OutputSet out(out_dir, "planter-sim sweep", o.force);
   const Eigen::MatrixXd design = doe::box_behnken_3(kCentrePoints);
   const int points = static_cast<int>(design.rows());
   const int jobs =
       o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const std::string runs_dir = runs_folder(out_dir);
+  int stage = 0;
 
   // Every point with the first replicates; then one more where damage is not yet resolved.
   std::vector<Run> runs;
@@ -263,7 +306,8 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
   for (int rep = 0; rep < o.replicates; ++rep)
     for (int p = 0; p < points; ++p) todo.emplace_back(p, rep);
   while (!todo.empty()) {
-    for (const Run& r : run_all(base, design, todo, o.distance_m, jobs)) runs.push_back(r);
+    for (const Run& r : run_all(base, scenario_path, design, todo, o, runs_dir, ++stage))
+      runs.push_back(r);
     for (const auto& [p, rep] : todo) replicates[static_cast<std::size_t>(p)] = rep + 1;
     todo.clear();
     for (int p = 0; p < points; ++p) {
@@ -318,19 +362,17 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
 
   // The grip's trade-off at the design's centre: the clamp force set-point from 40 to 120 N
   // (issue 27: both sides, slipping and crushing, before anyone optimises the force).
-  std::vector<Scenario> force_runs;
+  RunPlan force_plan = base_plan(scenario_path);
   for (double f : kForceCurve_N) {
-    Scenario s = base;
-    s.plant.route.distance_m = o.distance_m;
-    s.plant.route.stops.clear();
-    const double sigma =
-        kFactors[1].centre * s.board.controller.sigma.disc_radius_m / s.plant.route.speed_mps;
-    set_operating_point(s, sigma, kFactors[2].centre, kFactors[0].centre);
-    s.board.controller.clamp.setpoint_N = f;
-    s.board.controller.clamp.ceiling_N = std::max(s.board.controller.clamp.ceiling_N, f + 20.0);
-    force_runs.push_back(std::move(s));
+    PlannedRun r;
+    r.seed = base.seed;
+    r.distance_m = o.distance_m;
+    r.operating_point = operating_point_at(base, Eigen::RowVector3d::Zero());
+    r.clamp_setpoint_N = f;
+    force_plan.runs.push_back(r);
   }
-  const std::vector<Summary> force_curve = run_many(force_runs, jobs, "sweep: clamp force");
+  const std::vector<Summary> force_curve =
+      execute_plan(runs_dir + "/force-curve", force_plan, executor_of(o), "sweep: clamp force");
 
   // Interior maxima of uprightness along disc speed and depth, through the optimum: where the
   // surface's slope along the factor is zero, if it curves down.

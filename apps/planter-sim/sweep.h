@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/runner/executor.h"
 #include "sim/runner/scenario.h"
 #include "sim/runner/summary.h"
 
@@ -17,7 +18,14 @@ struct SweepOptions {
   double damage_precision_pts = 0.5;  // the standard error of a point's damage rate, goal
   int jobs = 0;                       // runs at a time (0: one per core)
   bool force = false;
+  // Where the runs execute (executor.h): local processes or a Slurm job array. The plans and
+  // each run's result are kept in OUT.runs/ beside OUT, so a second call runs only what is
+  // missing.
+  ExecutorOptions executor;
 };
+
+// The folder of a multi-run command's plans and runs: OUT.runs beside OUT.
+std::string runs_folder(const std::string& out_dir);
 
 // Writes OUT/{sweep.csv,sweep.json,report.html}; prints the figures, the optimum last.
 int run_sweep(const std::string& scenario_path, const std::string& out_dir, const SweepOptions& o);

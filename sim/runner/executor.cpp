@@ -1,0 +1,322 @@
+#include "sim/runner/executor.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "config/durable_file.h"
+
+extern char** environ;
+
+namespace planter::sim {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+std::string program_of(const ExecutorOptions& o) {
+  if (!o.program.empty()) return o.program;
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("cannot find this program (/proc/self/exe): " + ec.message());
+  return self.string();
+}
+
+std::string log_path(const std::string& dir, std::size_t index, const char* kind) {
+  char name[48];
+  std::snprintf(name, sizeof name, "/logs/%05zu.%s.log", index, kind);
+  return dir + name;
+}
+
+// The last line of a log, for the failure's message.
+std::string last_line(const std::string& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last.empty() ? "(empty log)" : last;
+}
+
+// A line on a terminal, rewritten as the runs finish; nothing on a log or a pipe.
+class Progress {
+ public:
+  Progress(std::string label, std::size_t total)
+      : label_(std::move(label)), total_(total), show_(!label_.empty() && ::isatty(2) == 1) {}
+  void update(std::size_t done, std::size_t running, std::size_t failed) {
+    if (!show_) return;
+    const double s = std::chrono::duration<double>(Clock::now() - start_).count();
+    std::fprintf(stderr, "\r%s: %zu of %zu runs done, %zu running, %zu failed", label_.c_str(),
+                 done, total_, running, failed);
+    if (done > done_at_start_ && done < total_)
+      std::fprintf(
+          stderr, ", about %.0f s left",
+          s / static_cast<double>(done - done_at_start_) * static_cast<double>(total_ - done));
+    std::fprintf(stderr, "\x1b[K");
+  }
+  void start(std::size_t done) { done_at_start_ = done; }
+  ~Progress() {
+    if (show_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  std::string label_;
+  std::size_t total_;
+  bool show_;
+  std::size_t done_at_start_ = 0;
+  Clock::time_point start_ = Clock::now();
+};
+
+std::vector<std::size_t> missing_runs(const std::string& dir, const RunPlan& plan) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < plan.runs.size(); ++i)
+    if (!run_complete(dir, i)) out.push_back(i);
+  return out;
+}
+
+// Spawns `program plan-run PLAN INDEX` with its output appended to its log.
+pid_t spawn_run(const std::string& program, const std::string& dir, std::size_t index) {
+  const std::string plan = dir + "/plan.json", idx = std::to_string(index);
+  const std::string log = log_path(dir, index, "local");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  std::array<char*, 5> argv{const_cast<char*>(program.c_str()), const_cast<char*>("plan-run"),
+                            const_cast<char*>(plan.c_str()), const_cast<char*>(idx.c_str()),
+                            nullptr};
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw std::runtime_error("cannot start " + program + ": " + std::strerror(rc));
+  return pid;
+}
+
+struct Failure {
+  std::size_t index;
+  std::string what, log;
+};
+
+[[noreturn]] void throw_failures(const std::vector<Failure>& failures, std::size_t total,
+                                 const std::string& dir) {
+  std::ostringstream m;
+  m << failures.size() << " of " << total << " runs failed; the " << total - failures.size()
+    << " complete are kept in " << dir << "/runs, and running the same command again runs only "
+    << "the missing ones:";
+  for (std::size_t k = 0; k < failures.size() && k < 10; ++k)
+    m << "\n  run " << failures[k].index << ": " << failures[k].what << " (" << failures[k].log
+      << ": " << last_line(failures[k].log) << ")";
+  if (failures.size() > 10) m << "\n  ...";
+  throw std::runtime_error(m.str());
+}
+
+void run_local(const std::string& dir, const std::vector<std::size_t>& todo,
+               const ExecutorOptions& o, Progress& progress, std::size_t done_before) {
+  const std::string program = program_of(o);
+  const int jobs =
+      o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  std::map<pid_t, std::size_t> running;
+  std::vector<Failure> failures;
+  std::size_t next = 0, done = done_before;
+  while (next < todo.size() || !running.empty()) {
+    while (next < todo.size() && running.size() < static_cast<std::size_t>(jobs)) {
+      running[spawn_run(program, dir, todo[next])] = todo[next];
+      ++next;
+    }
+    progress.update(done, running.size(), failures.size());
+    int status = 0;
+    const pid_t pid = ::waitpid(-1, &status, 0);
+    if (pid < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error(std::string("waiting for the runs: ") + std::strerror(errno));
+    }
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;  // not one of ours
+    const std::size_t index = it->second;
+    running.erase(it);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && run_complete(dir, index)) {
+      ++done;
+    } else {
+      failures.push_back({index,
+                          WIFSIGNALED(status)
+                              ? "killed by signal " + std::to_string(WTERMSIG(status))
+                              : "exit " + std::to_string(WEXITSTATUS(status)),
+                          log_path(dir, index, "local")});
+    }
+  }
+  progress.update(done, 0, failures.size());
+  if (!failures.empty()) throw_failures(failures, todo.size() + done_before, dir);
+}
+
+// The output of a command run through the shell, and its exit status.
+std::pair<std::string, int> capture(const std::string& command) {
+  std::FILE* p = ::popen(command.c_str(), "r");
+  if (p == nullptr) throw std::runtime_error("cannot run: " + command);
+  std::string out;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
+  const int rc = ::pclose(p);
+  return {out, WIFEXITED(rc) ? WEXITSTATUS(rc) : 128};
+}
+
+std::string quoted(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// "sweep: clamp force" -> "sweep-clamp-force": a job name is one word of plain characters.
+std::string job_name(const std::string& label) {
+  std::string name;
+  for (char c : label.empty() ? std::string("plan") : label) {
+    const bool plain = std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-';
+    if (plain)
+      name += c;
+    else if (!name.empty() && name.back() != '-')
+      name += '-';
+  }
+  return name;
+}
+
+std::string sbatch_script(const std::string& dir, const std::vector<std::size_t>& todo,
+                          const ExecutorOptions& o, const std::string& label,
+                          const std::string& time_limit) {
+  std::ostringstream s;
+  s << "#!/bin/bash\n"
+    << "# planter-sim's run plan as a Slurm job array: one task per run not yet complete.\n"
+    << "# Submit with: sbatch " << dir << "/plan.sbatch; run the command that wrote it again to\n"
+    << "# follow it and gather. Each task writes " << dir << "/runs/NNNNN whole or not at all.\n"
+    << "#SBATCH --job-name=planter-" << job_name(label) << "\n"
+    << "#SBATCH --array=" << index_ranges(todo) << (o.throttle > 0 ? "%" : "")
+    << (o.throttle > 0 ? std::to_string(o.throttle) : "") << "\n"
+    << "#SBATCH --output=" << dir << "/logs/%5a.slurm.log\n"
+    << "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n";
+  if (!o.partition.empty()) s << "#SBATCH --partition=" << o.partition << "\n";
+  if (!o.account.empty()) s << "#SBATCH --account=" << o.account << "\n";
+  if (!time_limit.empty()) s << "#SBATCH --time=" << time_limit << "\n";
+  s << "exec " << quoted(program_of(o)) << " plan-run " << quoted(dir + "/plan.json")
+    << " \"$SLURM_ARRAY_TASK_ID\"\n";
+  return s.str();
+}
+
+// Tasks of the job not yet ended (PENDING, RUNNING, ...), from squeue.
+std::size_t tasks_alive(const std::string& job) {
+  const auto [out, rc] = capture("squeue -h -r -j " + job + " -o %T 2>/dev/null");
+  if (rc != 0) return 0;  // the job is gone from the controller
+  std::istringstream lines(out);
+  std::string state;
+  std::size_t alive = 0;
+  while (lines >> state)
+    alive += state == "PENDING" || state == "RUNNING" || state == "CONFIGURING" ||
+             state == "COMPLETING" || state == "SUSPENDED" || state == "REQUEUED" ||
+             state == "RESIZING" || state == "SIGNALING" || state == "STAGE_OUT";
+  return alive;
+}
+
+void run_slurm(const std::string& dir, std::vector<std::size_t> todo, const ExecutorOptions& o,
+               const std::string& label, Progress& progress, std::size_t done_before) {
+  std::string time_limit = o.time_limit;
+  if (time_limit.empty() && !o.plan_only && !todo.empty()) {
+    // A dry run: the first missing run here, timed, sets each task's limit (ten times it, at
+    // least a minute): a task that takes ten times longer than its like is stuck.
+    const auto t0 = Clock::now();
+    ExecutorOptions here = o;
+    here.jobs = 1;
+    run_local(dir, {todo.front()}, here, progress, done_before);
+    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+    const long minutes = std::max(1L, static_cast<long>(std::ceil(10.0 * s / 60.0)));
+    time_limit = std::to_string(minutes);
+    todo.erase(todo.begin());
+    ++done_before;
+    if (todo.empty()) return;
+  }
+  const std::string script = dir + "/plan.sbatch";
+  config::write_output_file(script, sbatch_script(dir, todo, o, label, time_limit));
+  if (o.plan_only) throw PlanWritten{dir, "sbatch " + script};
+  const auto [out, rc] =
+      capture("sbatch --parsable " + o.sbatch_args + " " + quoted(script) + " 2>&1");
+  if (rc != 0) throw std::runtime_error("sbatch refused " + script + ": " + out);
+  const std::string job = out.substr(0, out.find_first_of(";\n"));
+  if (job.empty() || job.find_first_not_of("0123456789") != std::string::npos)
+    throw std::runtime_error("sbatch answered '" + out + "', not a job id");
+  std::fprintf(stderr, "%s: submitted %zu runs as Slurm job %s (logs in %s/logs)\n",
+               label.empty() ? "plan" : label.c_str(), todo.size(), job.c_str(), dir.c_str());
+  for (;;) {
+    std::size_t done = done_before;
+    for (std::size_t i : todo) done += run_complete(dir, i);
+    const std::size_t alive = tasks_alive(job);
+    progress.update(done, alive, 0);
+    if (alive == 0) break;
+    std::this_thread::sleep_for(std::chrono::duration<double>(o.poll_s));
+  }
+  std::vector<Failure> failures;
+  for (std::size_t i : todo)
+    if (!run_complete(dir, i))
+      failures.push_back({i, "task " + job + "_" + std::to_string(i) + " ended without its result",
+                          log_path(dir, i, "slurm")});
+  if (!failures.empty()) throw_failures(failures, todo.size() + done_before, dir);
+}
+
+}  // namespace
+
+std::string index_ranges(const std::vector<std::size_t>& sorted) {
+  std::string out;
+  for (std::size_t k = 0; k < sorted.size();) {
+    std::size_t end = k;
+    while (end + 1 < sorted.size() && sorted[end + 1] == sorted[end] + 1) ++end;
+    if (!out.empty()) out += ',';
+    out += std::to_string(sorted[k]);
+    if (end > k) out += '-' + std::to_string(sorted[end]);
+    k = end + 1;
+  }
+  return out;
+}
+
+std::string executor_refusal(const ExecutorOptions& o) {
+  if (o.kind != "local" && o.kind != "slurm") return "--executor '" + o.kind + "': local or slurm";
+  if (o.kind == "slurm" && !o.plan_only && capture("command -v sbatch squeue").second != 0)
+    return "--executor slurm: sbatch and squeue are not on PATH (Debian: slurm-client; "
+           "--plan-only writes the plan and its sbatch script without them)";
+  return "";
+}
+
+std::vector<Summary> execute_plan(const std::string& plan_dir, const RunPlan& plan,
+                                  const ExecutorOptions& o, const std::string& label) {
+  place_plan(plan_dir, plan);
+  fs::create_directories(plan_dir + "/logs");
+  const std::vector<std::size_t> todo = missing_runs(plan_dir, plan);
+  const std::size_t done = plan.runs.size() - todo.size();
+  Progress progress(label, plan.runs.size());
+  progress.start(done);
+  if (o.kind == "slurm")
+    run_slurm(plan_dir, todo, o, label, progress, done);
+  else if (o.plan_only)
+    throw PlanWritten{plan_dir, "planter-sim plan-run " + plan_dir +
+                                    "/plan.json INDEX, for each "
+                                    "INDEX of the plan's runs"};
+  else if (!todo.empty())
+    run_local(plan_dir, todo, o, progress, done);
+  std::vector<Summary> out;
+  out.reserve(plan.runs.size());
+  for (std::size_t i = 0; i < plan.runs.size(); ++i) out.push_back(read_run_summary(plan_dir, i));
+  return out;
+}
+
+}  // namespace planter::sim

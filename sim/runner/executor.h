@@ -1,0 +1,48 @@
+#pragma once
+// Executors of a run plan (run_plan.h, issue 31): every run not yet complete becomes one
+// `planter-sim plan-run PLAN INDEX` process, here (`local`, `jobs` at a time) or as one task of
+// a Slurm job array (`slurm`: sbatch --array with a throttle, followed with squeue, each task's
+// log beside the plan). The runs' summaries come back in the plan's order; a run that failed is
+// reported by its index and its log, and nothing is gathered until every run is complete. A
+// second call with the same plan runs only what is missing.
+#include <string>
+#include <vector>
+
+#include "sim/runner/run_plan.h"
+#include "sim/runner/summary.h"
+
+namespace planter::sim {
+
+struct ExecutorOptions {
+  std::string kind = "local";  // "local" or "slurm"
+  int jobs = 0;                // local: processes at a time (0: one per core)
+  std::string program;         // the planter-sim each run executes ("": this one)
+  // Slurm: sbatch's --partition, --account, --time (per task; "": ten times the first run's
+  // wall time measured here, at least a minute), the array's throttle (0: none), and more
+  // arguments for sbatch as they would be typed.
+  std::string partition, account, time_limit, sbatch_args;
+  int throttle = 0;
+  double poll_s = 2.0;
+  // Write DIR/plan.json and (slurm) DIR/plan.sbatch, and run nothing.
+  bool plan_only = false;
+};
+
+// Why the options cannot be used ("" when they can): an unknown executor, sbatch missing.
+std::string executor_refusal(const ExecutorOptions& o);
+
+// Thrown by execute_plan with --plan-only: the plan is written, nothing ran.
+struct PlanWritten {
+  std::string dir;
+  std::string how_to_run;  // the command that runs it
+};
+
+// Places the plan in `plan_dir` (place_plan), runs what is missing and returns every run's
+// summary in plan order. `label` names the work in progress lines on a terminal. Throws
+// std::runtime_error listing failed runs (index, exit, log), or PlanWritten.
+std::vector<Summary> execute_plan(const std::string& plan_dir, const RunPlan& plan,
+                                  const ExecutorOptions& o, const std::string& label);
+
+// The array's index list for sbatch: "0-3,7,9-10".
+std::string index_ranges(const std::vector<std::size_t>& sorted);
+
+}  // namespace planter::sim

@@ -1,0 +1,54 @@
+#pragma once
+// A plan of self-contained runs (issue 31): each run is the base scenario with its own seed,
+// distance and settings, executed as `planter-sim plan-run PLAN INDEX` into its own output set
+// (DIR/runs/NNNNN, whole or nothing), so a run's result does not depend on where, when or in
+// what order it ran. The multi-run commands write a plan, hand it to an executor (local
+// processes or a Slurm job array: executor.h) and gather the runs' summaries.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sim/runner/scenario.h"
+#include "sim/runner/summary.h"
+
+namespace planter::sim {
+
+struct OperatingPoint {
+  double sigma = 1.5, depth_mm = 100.0, contact_area_mm2 = 255.0;
+};
+
+struct PlannedRun {
+  std::uint64_t seed = 1;
+  double distance_m = 10.0;  // without stops
+  std::optional<OperatingPoint> operating_point;
+  std::optional<double> clamp_setpoint_N;  // the ceiling raised to 20 N above it if needed
+};
+
+struct RunPlan {
+  std::string scenario;       // absolute path of the base scenario
+  std::string scenario_hash;  // of its text (config/content_hash.h): changed, another plan
+  std::vector<PlannedRun> runs;
+};
+
+// The plan as JSON (plan.json), and back; read_plan throws std::runtime_error naming the file.
+std::string plan_json(const RunPlan& plan);
+RunPlan read_plan(const std::string& path);
+// The base scenario with the run's settings.
+Scenario planned_scenario(const Scenario& base, const PlannedRun& run);
+
+// DIR/runs/00012: run 12's output set; complete when its manifest is there.
+std::string run_dir(const std::string& plan_dir, std::size_t index);
+bool run_complete(const std::string& plan_dir, std::size_t index);
+// Runs one run of the plan in DIR (the plan file's folder) and writes its summary.json whole
+// or not at all; a complete run is left as it is. Throws on a bad plan or index.
+void execute_planned_run(const std::string& plan_path, std::size_t index);
+// The summary a complete run wrote. Throws std::runtime_error naming the file.
+Summary read_run_summary(const std::string& plan_dir, std::size_t index);
+
+// Writes DIR/plan.json, or keeps the one there if it is the same plan; throws naming DIR when
+// DIR holds another plan (another scenario or other settings): its runs would not be these.
+void place_plan(const std::string& plan_dir, const RunPlan& plan);
+
+}  // namespace planter::sim

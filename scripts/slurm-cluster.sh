@@ -13,17 +13,19 @@ cmd=${1:?usage: slurm-cluster.sh start|stop DIR}
 dir=$(mkdir -p "${2:?usage: slurm-cluster.sh start|stop DIR}" && cd "$2" && pwd)
 
 stop() {
+  # The PIDs first: a daemon removes its own PID file as it begins to shut down.
+  local pids=() p pid
   for p in slurmd slurmctld munged; do
-    if [ -s "$dir/$p.pid" ]; then
-      kill "$(cat "$dir/$p.pid")" 2>/dev/null || true
-    fi
+    pid=$(cat "$dir/$p.pid" 2>/dev/null || true)
+    [ -n "$pid" ] && kill "$pid" 2>/dev/null && pids+=("$pid")
+    rm -f "$dir/$p.pid"
   done
-  for p in slurmd slurmctld munged; do
-    for _ in $(seq 50); do
-      [ -s "$dir/$p.pid" ] && kill -0 "$(cat "$dir/$p.pid")" 2>/dev/null || break
+  for pid in "${pids[@]}"; do
+    for _ in $(seq 100); do
+      kill -0 "$pid" 2>/dev/null || break
       sleep 0.1
     done
-    rm -f "$dir/$p.pid"
+    kill -9 "$pid" 2>/dev/null || true
   done
 }
 

@@ -466,3 +466,14 @@ TEST(RecordingWriter, KnownDisturbancesAreAlignedWithTheMeasurements) {
         << "depth, lag " << lag;
   }
 }
+
+// A plan's run writes summary.json and the gather reads it back (sim/runner/run_plan.h): what
+// comes back is what was written, field for field (the sweep's force curve read its skips from
+// the planting monitor's block, which a partial reader lost).
+TEST(Summary, ReadsBackWhatItWrote) {
+  LockstepRunner r(short_run(0.6));
+  const Summary s = r.run();
+  ASSERT_TRUE(s.monitor_fitted);
+  const std::string text = s.to_json();
+  EXPECT_EQ(Summary::from_json(text).to_json(), text);
+}

@@ -343,7 +343,7 @@ int main(int argc, char** argv) {
     if (*sensitivity) return run_sensitivity(scenario, out, sensitivity_options);
 #endif
     if (*plan_run) {
-      execute_planned_run(plan_path, plan_index);
+      execute_planned_run(plan_path, plan_index, planter::apps::version());
       return 0;
     }
     if (*values) {

@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "config/content_hash.h"
+#include "apps/version/version.h"
 #include "config/output_set.h"
 #include "doe/doe.h"
 #include "doe/doe_report.h"
@@ -80,20 +80,10 @@ Scenario design_point(const Scenario& base, const Eigen::RowVector3d& coded, dou
   return planned_scenario(base, r);
 }
 
-// A plan on the scenario file as it is now (its absolute path and its text's hash).
-RunPlan base_plan(const std::string& scenario_path) {
-  RunPlan plan;
-  plan.scenario = std::filesystem::absolute(scenario_path).lexically_normal().string();
-  std::ifstream in(plan.scenario, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  plan.scenario_hash = config::content_hash(text.str());
-  return plan;
-}
-
 ExecutorOptions executor_of(const SweepOptions& o) {
   ExecutorOptions e = o.executor;
   e.jobs = o.jobs;
+  e.replace_other_plan = o.force;
   return e;
 }
 
@@ -111,7 +101,7 @@ std::vector<Run> run_all(const Scenario& base, const std::string& scenario_path,
                          const Eigen::MatrixXd& design,
                          const std::vector<std::pair<int, int>>& todo, const SweepOptions& o,
                          const std::string& runs, int stage) {
-  RunPlan plan = base_plan(scenario_path);
+  RunPlan plan = new_plan(scenario_path, apps::version());
   for (const auto& [point, replicate] : todo) {
     const Eigen::RowVector3d coded = design.row(point);
     PlannedRun r;
@@ -362,7 +352,7 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
 
   // The grip's trade-off at the design's centre: the clamp force set-point from 40 to 120 N
   // (issue 27: both sides, slipping and crushing, before anyone optimises the force).
-  RunPlan force_plan = base_plan(scenario_path);
+  RunPlan force_plan = new_plan(scenario_path, apps::version());
   for (double f : kForceCurve_N) {
     PlannedRun r;
     r.seed = base.seed;

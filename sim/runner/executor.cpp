@@ -299,7 +299,7 @@ std::string executor_refusal(const ExecutorOptions& o) {
 
 std::vector<Summary> execute_plan(const std::string& plan_dir, const RunPlan& plan,
                                   const ExecutorOptions& o, const std::string& label) {
-  place_plan(plan_dir, plan);
+  place_plan(plan_dir, plan, o.replace_other_plan);
   fs::create_directories(plan_dir + "/logs");
   const std::vector<std::size_t> todo = missing_runs(plan_dir, plan);
   const std::size_t done = plan.runs.size() - todo.size();

@@ -25,6 +25,8 @@ struct ExecutorOptions {
   double poll_s = 2.0;
   // Write DIR/plan.json and (slurm) DIR/plan.sbatch, and run nothing.
   bool plan_only = false;
+  // A folder holding another plan (other inputs, another build) is replaced, not refused.
+  bool replace_other_plan = false;
 };
 
 // Why the options cannot be used ("" when they can): an unknown executor, sbatch missing.

@@ -25,6 +25,17 @@ std::string read_text(const std::string& path) {
 
 constexpr const char* kPlanTool = "planter-sim plan-run";
 
+std::string inputs_hash(const std::string& scenario_path, const Scenario& s,
+                        const std::string& made_by) {
+  std::string all = "made by " + made_by + "\n";
+  for (const std::string& f :
+       {scenario_path, s.board.file, s.board.machine_file, s.board.calibration_file}) {
+    if (f.empty()) continue;
+    all += "file " + f + "\n" + read_text(f) + "\n";
+  }
+  return config::content_hash(all);
+}
+
 }  // namespace
 
 std::string plan_json(const RunPlan& plan) {
@@ -32,7 +43,7 @@ std::string plan_json(const RunPlan& plan) {
   j["kind"] = "planter-sim run plan";
   j["version"] = 1;
   j["scenario"] = plan.scenario;
-  j["scenario_hash"] = plan.scenario_hash;
+  j["inputs_hash"] = plan.inputs_hash;
   nlohmann::ordered_json runs = nlohmann::ordered_json::array();
   for (const PlannedRun& r : plan.runs) {
     nlohmann::ordered_json one;
@@ -56,7 +67,7 @@ RunPlan read_plan(const std::string& path) {
     if (j.at("kind") != "planter-sim run plan" || j.at("version") != 1)
       throw std::runtime_error("not a planter-sim run plan of version 1");
     plan.scenario = j.at("scenario").get<std::string>();
-    plan.scenario_hash = j.at("scenario_hash").get<std::string>();
+    plan.inputs_hash = j.at("inputs_hash").get<std::string>();
     for (const auto& one : j.at("runs")) {
       PlannedRun r;
       r.seed = one.at("seed").get<std::uint64_t>();
@@ -76,6 +87,13 @@ RunPlan read_plan(const std::string& path) {
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(path + ": " + e.what());
   }
+  return plan;
+}
+
+RunPlan new_plan(const std::string& scenario_path, const std::string& made_by) {
+  RunPlan plan;
+  plan.scenario = std::filesystem::absolute(scenario_path).lexically_normal().string();
+  plan.inputs_hash = inputs_hash(plan.scenario, load_scenario(plan.scenario), made_by);
   return plan;
 }
 
@@ -108,7 +126,8 @@ bool run_complete(const std::string& plan_dir, std::size_t index) {
          std::filesystem::is_regular_file(run_dir(plan_dir, index) + "/summary.json", ec);
 }
 
-void execute_planned_run(const std::string& plan_path, std::size_t index) {
+void execute_planned_run(const std::string& plan_path, std::size_t index,
+                         const std::string& made_by) {
   const RunPlan plan = read_plan(plan_path);
   if (index >= plan.runs.size())
     throw std::runtime_error(plan_path + ": run " + std::to_string(index) +
@@ -116,10 +135,15 @@ void execute_planned_run(const std::string& plan_path, std::size_t index) {
                              " runs, 0-" + std::to_string(plan.runs.size() - 1) + ")");
   const std::string dir = std::filesystem::path(plan_path).parent_path().string();
   if (run_complete(dir, index)) return;
-  if (config::content_hash(read_text(plan.scenario)) != plan.scenario_hash)
-    throw std::runtime_error(plan.scenario + ": changed since the plan " + plan_path +
-                             " was made; make the plan again");
-  const Scenario s = planned_scenario(load_scenario(plan.scenario), plan.runs[index]);
+  const Scenario base = load_scenario(plan.scenario);
+  if (inputs_hash(plan.scenario, base, made_by) != plan.inputs_hash)
+    throw std::runtime_error(plan_path +
+                             ": its scenario, board, machine or calibration file, or "
+                             "the program (" +
+                             made_by +
+                             "), changed since the plan was made; "
+                             "make the plan again");
+  const Scenario s = planned_scenario(base, plan.runs[index]);
   LockstepRunner runner(s);
   const Summary summary = runner.run();
   std::filesystem::create_directories(dir + "/runs");
@@ -130,44 +154,30 @@ void execute_planned_run(const std::string& plan_path, std::size_t index) {
 
 Summary read_run_summary(const std::string& plan_dir, std::size_t index) {
   const std::string path = run_dir(plan_dir, index) + "/summary.json";
-  Summary s;
   try {
-    const nlohmann::json j = nlohmann::json::parse(read_text(path));
-    s.scenario = j.at("scenario").get<std::string>();
-    s.uprightness_pct = j.at("uprightness_pct").get<double>();
-    s.damage_pct = j.at("damage_pct").get<double>();
-    s.seedlings_lodged = j.at("seedlings_lodged").get<int>();
-    s.seedlings_fell_in_carry = j.at("seedlings_fell_in_carry").get<int>();
-    s.seedlings_slid_in_clamp = j.at("seedlings_slid_in_clamp").get<int>();
-    s.seedlings_turned_in_clamp = j.at("seedlings_turned_in_clamp").get<int>();
-    s.clamp_force_mean_N = j.at("clamp_force_mean_N").get<double>();
-    s.clamp_force_max_N = j.at("clamp_force_max_N").get<double>();
-    s.clamp_ceiling_N = j.at("clamp_ceiling_N").get<double>();
-    s.seedling_peak_force_mean_N = j.at("seedling_peak_force_mean_N").get<double>();
-    s.seedlings_planted = j.at("seedlings_planted").get<int>();
-    s.seedlings_damaged = j.at("seedlings_damaged").get<int>();
-    s.spacing_mean_mm = j.at("spacing_mean_mm").get<double>();
-    s.spacing_cv_pct = j.at("spacing_cv_pct").get<double>();
-    s.distance_m = j.at("distance_m").get<double>();
-    s.route_complete = j.at("route_complete").get<bool>();
-    s.sim_seconds = j.at("sim_seconds").get<double>();
-    s.wall_seconds = j.at("wall_seconds").get<double>();
+    return Summary::from_json(read_text(path));
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(path + ": not a run's summary: " + e.what());
   }
-  return s;
 }
 
-void place_plan(const std::string& plan_dir, const RunPlan& plan) {
-  std::filesystem::create_directories(plan_dir);
+void place_plan(const std::string& plan_dir, const RunPlan& plan, bool replace) {
+  namespace fs = std::filesystem;
+  fs::create_directories(plan_dir);
   const std::string path = plan_dir + "/plan.json";
   const std::string text = plan_json(plan);
   std::error_code ec;
-  if (std::filesystem::exists(path, ec)) {
+  if (fs::exists(path, ec)) {
     if (read_text(path) == text) return;
-    throw std::runtime_error(
-        plan_dir + " holds another plan (another scenario or other " +
-        "settings): its runs are not these; remove it or choose another --out");
+    if (!replace)
+      throw std::runtime_error(plan_dir +
+                               " holds another plan (other inputs, another build of "
+                               "planter-sim or other settings): its runs are not these; --force "
+                               "replaces it");
+    // Only what a plan holds: its file, its runs and its logs.
+    for (const char* part : {"runs", "logs"}) fs::remove_all(plan_dir + "/" + part);
+    fs::remove(plan_dir + "/plan.sbatch", ec);
+    fs::remove(path);
   }
   config::write_output_file(path, text);
 }

@@ -27,10 +27,17 @@ struct PlannedRun {
 };
 
 struct RunPlan {
-  std::string scenario;       // absolute path of the base scenario
-  std::string scenario_hash;  // of its text (config/content_hash.h): changed, another plan
+  std::string scenario;  // absolute path of the base scenario
+  // Of the program's version and the texts of the scenario, its board, machine and calibration
+  // files (config/content_hash.h): a changed input or another build is another plan, whose
+  // runs are not these. (The seedling force model's file is not in it.)
+  std::string inputs_hash;
   std::vector<PlannedRun> runs;
 };
+
+// An empty plan on the scenario file as it is now, for the program of version `made_by`.
+// Throws config::ConfigError for a bad scenario.
+RunPlan new_plan(const std::string& scenario_path, const std::string& made_by);
 
 // The plan as JSON (plan.json), and back; read_plan throws std::runtime_error naming the file.
 std::string plan_json(const RunPlan& plan);
@@ -42,13 +49,16 @@ Scenario planned_scenario(const Scenario& base, const PlannedRun& run);
 std::string run_dir(const std::string& plan_dir, std::size_t index);
 bool run_complete(const std::string& plan_dir, std::size_t index);
 // Runs one run of the plan in DIR (the plan file's folder) and writes its summary.json whole
-// or not at all; a complete run is left as it is. Throws on a bad plan or index.
-void execute_planned_run(const std::string& plan_path, std::size_t index);
+// or not at all; a complete run is left as it is. Throws on a bad plan or index, or when the
+// inputs or the program (`made_by`) are no longer the plan's.
+void execute_planned_run(const std::string& plan_path, std::size_t index,
+                         const std::string& made_by);
 // The summary a complete run wrote. Throws std::runtime_error naming the file.
 Summary read_run_summary(const std::string& plan_dir, std::size_t index);
 
-// Writes DIR/plan.json, or keeps the one there if it is the same plan; throws naming DIR when
-// DIR holds another plan (another scenario or other settings): its runs would not be these.
-void place_plan(const std::string& plan_dir, const RunPlan& plan);
+// Writes DIR/plan.json, or keeps the one there if it is the same plan. When DIR holds another
+// plan (other inputs, another build, other settings) its runs are not these: with `replace`
+// DIR's plan, runs and logs are removed first, else it throws naming DIR.
+void place_plan(const std::string& plan_dir, const RunPlan& plan, bool replace);
 
 }  // namespace planter::sim

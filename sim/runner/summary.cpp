@@ -156,4 +156,60 @@ std::string Summary::to_json() const {
   return j.dump(2);
 }
 
+Summary Summary::from_json(const std::string& text) {
+  const nlohmann::json j = nlohmann::json::parse(text);
+  Summary s;
+  s.scenario = j.at("scenario").get<std::string>();
+  s.sigma_target = j.at("sigma_target").get<double>();
+  s.sigma_true_mean = j.at("sigma_true_mean").get<double>();
+  s.sigma_true_rms_error_pct = j.at("sigma_true_rms_error_pct").get<double>();
+  s.sigma_ctrl_rms_error_pct = j.at("sigma_ctrl_rms_error_pct").get<double>();
+  s.uprightness_pct = j.at("uprightness_pct").get<double>();
+  s.seedlings_lodged = j.at("seedlings_lodged").get<int>();
+  s.seedlings_fell_in_carry = j.at("seedlings_fell_in_carry").get<int>();
+  s.seedlings_slid_in_clamp = j.at("seedlings_slid_in_clamp").get<int>();
+  s.seedlings_turned_in_clamp = j.at("seedlings_turned_in_clamp").get<int>();
+  s.damaged_strength_mean_N = j.at("damaged_strength_mean_N").get<double>();
+  s.damaged_below_measured = j.at("damaged_below_weakest_measured").get<int>();
+  s.damage_pct = j.at("damage_pct").get<double>();
+  s.spacing_mean_mm = j.at("spacing_mean_mm").get<double>();
+  s.spacing_cv_pct = j.at("spacing_cv_pct").get<double>();
+  if (j.contains("monitor")) {
+    const auto& m = j.at("monitor");
+    s.monitor_fitted = true;
+    s.monitor.seedlings = m.at("seedlings").get<double>();
+    s.monitor.spacings = m.at("spacings").get<double>();
+    s.monitor.spacing_mean_mm = m.at("spacing_mean_mm").get<double>();
+    s.monitor.spacing_cv = m.at("spacing_cv").get<double>();
+    s.monitor.skips = m.at("skips").get<double>();
+    s.monitor.multiples = m.at("multiples").get<double>();
+    s.monitor.singulation_pct = m.at("singulation_pct").get<double>();
+    if (m.at("empty_belt_warned").get<bool>()) s.warnings_seen |= warning::kEmptyBelt;
+    s.truth_skips = m.at("truth_skips").get<int>();
+    s.truth_multiples = m.at("truth_multiples").get<int>();
+  }
+  s.clamp_force_mean_N = j.at("clamp_force_mean_N").get<double>();
+  s.clamp_force_max_N = j.at("clamp_force_max_N").get<double>();
+  s.clamp_ceiling_N = j.at("clamp_ceiling_N").get<double>();
+  s.seedling_peak_force_mean_N = j.at("seedling_peak_force_mean_N").get<double>();
+  s.depth_mean_mm = j.at("depth_mean_mm").get<double>();
+  s.depth_rms_error_mm = j.at("depth_rms_error_mm").get<double>();
+  s.depth_target_mm = j.at("depth_target_mm").get<double>();
+  s.seedlings_planted = j.at("seedlings_planted").get<int>();
+  s.seedlings_damaged = j.at("seedlings_damaged").get<int>();
+  s.plot_counts = j.at("plot_counts").get<std::vector<int>>();
+  s.distance_m = j.at("distance_m").get<double>();
+  s.route_complete = j.at("route_complete").get<bool>();
+  s.notes = j.at("notes").get<std::vector<std::string>>();
+  s.assumptions = j.at("assumptions").get<std::vector<std::string>>();
+  s.sim_seconds = j.at("sim_seconds").get<double>();
+  s.wall_seconds = j.at("wall_seconds").get<double>();
+  s.realtime_factor = j.at("realtime_factor").get<double>();
+  s.can_bus_load_pct = j.at("can_bus_load_pct").get<double>();
+  s.can_frames = j.at("can_frames").get<std::uint64_t>();
+  s.faults = j.at("faults").get<std::uint32_t>();
+  s.final_state = j.at("final_state").get<std::string>();
+  return s;
+}
+
 }  // namespace planter::sim

@@ -50,6 +50,9 @@ struct Summary {
   std::vector<std::string> assumptions;
 
   [[nodiscard]] std::string to_json() const;
+  // summary.json read back (what a plan's run wrote): every field to_json writes; the
+  // warnings but the empty belt's are not in it. Throws nlohmann::json::exception.
+  static Summary from_json(const std::string& text);
 };
 
 class SummaryBuilder {

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# The sweep through a real one-node Slurm cluster (scripts/slurm-cluster.sh; issue 31):
+# 1. --executor slurm gives the same sweep.json as --executor local;
+# 2. a task cancelled with scancel leaves no result, and running the command again submits
+#    only the missing runs (the complete ones untouched) and completes the same sweep.
+# Usage: slurm_executor_test.sh PLANTER_SIM SOURCE_DIR
+set -euo pipefail
+sim=$1 src=$2
+work=$(mktemp -d)
+cleanup() {
+  "$src/scripts/slurm-cluster.sh" stop "$work/cluster" >/dev/null 2>&1 || true
+  rm -rf "$work"
+}
+trap cleanup EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+eval "$("$src/scripts/slurm-cluster.sh" start "$work/cluster")"
+same_sweep() {  # same_sweep A B: the two sweep.json hold the same results
+  python3 - "$1/sweep.json" "$2/sweep.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:])
+sys.exit(0 if a == b else 1)
+PY
+}
+args=(sweep "$src/scenarios/zhangqiu-field.toml" --distance 3 --replicates 1 --max-replicates 1)
+
+"$sim" "${args[@]}" --out "$work/local" --jobs 2 >"$work/local.out"
+"$sim" "${args[@]}" --out "$work/slurm" --executor slurm --poll 0.3 >"$work/slurm.out" \
+  2>"$work/slurm.err" || { cat "$work/slurm.err"; fail "the sweep through Slurm failed"; }
+grep -q "submitted 14 runs as Slurm job" "$work/slurm.err" ||
+  fail "the design's 15 runs were not submitted as one array after the timed run: $(cat "$work/slurm.err")"
+same_sweep "$work/local" "$work/slurm" || fail "sweep.json through Slurm differs from the local one"
+echo "slurm: the 3 m sweep through the cluster equals the local one (sweep.json)"
+
+# A killed task: the plan submitted by hand (one task at a time), its last task cancelled.
+"$sim" "${args[@]}" --out "$work/killed" --executor slurm --plan-only --throttle 1 \
+  >"$work/plan-only.out" || fail "--plan-only failed"
+plan=$work/killed.runs/stage-1
+[ -s "$plan/plan.json" ] && [ -s "$plan/plan.sbatch" ] || fail "--plan-only wrote no plan or script"
+[ ! -e "$plan/runs" ] || [ -z "$(ls "$plan/runs")" ] || fail "--plan-only ran something"
+job=$(sbatch --parsable "$plan/plan.sbatch")
+scancel "${job}_14"
+for _ in $(seq 600); do
+  [ -z "$(squeue -h -j "$job" -t PENDING,RUNNING,CONFIGURING,COMPLETING -o %i)" ] && break
+  sleep 0.2
+done
+missing=0
+declare -A before
+for i in $(seq 0 14); do
+  d=$(printf '%s/runs/%05d' "$plan" "$i")
+  if [ -s "$d/run.json" ]; then before[$i]=$(stat -c %Y.%y "$d/run.json"); else missing=$((missing + 1)); fi
+done
+[ "$missing" -ge 1 ] || fail "the cancelled task left a result"
+"$sim" "${args[@]}" --out "$work/killed" --executor slurm --time-limit 5 --poll 0.3 \
+  >"$work/resumed.out" 2>"$work/resumed.err" || { cat "$work/resumed.err"; fail "the re-run failed"; }
+grep -q "sweep: submitted $missing runs as Slurm job" "$work/resumed.err" ||
+  fail "the re-run did not submit exactly the $missing missing runs: $(grep submitted "$work/resumed.err")"
+for i in "${!before[@]}"; do
+  d=$(printf '%s/runs/%05d' "$plan" "$i")
+  [ "$(stat -c %Y.%y "$d/run.json")" = "${before[$i]}" ] || fail "complete run $i was run again"
+done
+same_sweep "$work/local" "$work/killed" || fail "the resumed sweep differs from the local one"
+echo "slurm: a cancelled task, then the command again: $missing missing run(s) submitted," \
+  "$((15 - missing)) kept, and the same sweep.json"

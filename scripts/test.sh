@@ -29,6 +29,7 @@ stage "benchmarks"
 "$root/build/bench/planter_bench_alloc" "$root/scenarios/zhangqiu-field.toml"
 "$root/build/bench/planter_bench_latency" "$root/scenarios/zhangqiu-field.toml" 60
 "$root/build/bench/planter_bench_can"
+bench/executor_overhead.sh "$root/build"
 stage "seedling DEM: compression with the calibrated parameters, calibration, reduced-order model, speed against Yade"
 scripts/dem-test.sh "$root/build"
 stage "planter-fit: the blind proof on planter-sim recordings (its count is the figure), then its speed"

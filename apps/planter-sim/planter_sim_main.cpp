@@ -242,6 +242,11 @@ int main(int argc, char** argv) {
   sweep->add_option("--throttle", ex.throttle, "slurm: most tasks at once (0: no limit)")
       ->check(planter::config::finite_range(0, 100000));
   sweep->add_option("--sbatch-args", ex.sbatch_args, "slurm: more arguments for sbatch");
+  sweep
+      ->add_option("--runs-per-task", ex.runs_per_task,
+                   "slurm: runs each array task executes in turn (short runs: several)")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(1, 100000));
   sweep->add_option("--poll", ex.poll_s, "slurm: seconds between looks at the queue")
       ->capture_default_str()
       ->check(planter::config::finite_range(0.1, 600.0));

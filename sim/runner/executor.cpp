@@ -195,24 +195,47 @@ std::string job_name(const std::string& label) {
   return name;
 }
 
-std::string sbatch_script(const std::string& dir, const std::vector<std::size_t>& todo,
-                          const ExecutorOptions& o, const std::string& label,
-                          const std::string& time_limit) {
+// The runs each task of the array executes, `per_task` at a time, in the plan's order.
+std::vector<std::vector<std::size_t>> tasks_of(const std::vector<std::size_t>& todo,
+                                               std::size_t per_task) {
+  std::vector<std::vector<std::size_t>> tasks;
+  for (std::size_t k = 0; k < todo.size(); k += per_task)
+    tasks.emplace_back(
+        todo.begin() + static_cast<std::ptrdiff_t>(k),
+        todo.begin() + static_cast<std::ptrdiff_t>(std::min(todo.size(), k + per_task)));
+  return tasks;
+}
+
+std::string task_log(const std::string& dir, std::size_t task) {
+  char name[48];
+  std::snprintf(name, sizeof name, "/logs/task-%05zu.slurm.log", task);
+  return dir + name;
+}
+
+// The array's script: task T runs the runs on line T + 1 of DIR/tasks.txt, one after another.
+std::string sbatch_script(const std::string& dir, std::size_t tasks, const ExecutorOptions& o,
+                          const std::string& label, const std::string& time_limit) {
   std::ostringstream s;
   s << "#!/bin/bash\n"
-    << "# planter-sim's run plan as a Slurm job array: one task per run not yet complete.\n"
-    << "# Submit with: sbatch " << dir << "/plan.sbatch; run the command that wrote it again to\n"
-    << "# follow it and gather. Each task writes " << dir << "/runs/NNNNN whole or not at all.\n"
+    << "# planter-sim's run plan as a Slurm job array: each task runs the runs on its line of\n"
+    << "# tasks.txt (the runs not yet complete when this was written). Submit with:\n"
+    << "# sbatch " << dir << "/plan.sbatch; run the command that wrote it again to follow it\n"
+    << "# and gather. Each run writes " << dir << "/runs/NNNNN whole or not at all.\n"
     << "#SBATCH --job-name=planter-" << job_name(label) << "\n"
-    << "#SBATCH --array=" << index_ranges(todo) << (o.throttle > 0 ? "%" : "")
+    << "#SBATCH --array=0-" << tasks - 1 << (o.throttle > 0 ? "%" : "")
     << (o.throttle > 0 ? std::to_string(o.throttle) : "") << "\n"
-    << "#SBATCH --output=" << dir << "/logs/%5a.slurm.log\n"
+    << "#SBATCH --output=" << dir << "/logs/task-%5a.slurm.log\n"
     << "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n";
   if (!o.partition.empty()) s << "#SBATCH --partition=" << o.partition << "\n";
   if (!o.account.empty()) s << "#SBATCH --account=" << o.account << "\n";
   if (!time_limit.empty()) s << "#SBATCH --time=" << time_limit << "\n";
-  s << "exec " << quoted(program_of(o)) << " plan-run " << quoted(dir + "/plan.json")
-    << " \"$SLURM_ARRAY_TASK_ID\"\n";
+  s << "status=0\n"
+    << "for index in $(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" " << quoted(dir + "/tasks.txt")
+    << "); do\n"
+    << "  " << quoted(program_of(o)) << " plan-run " << quoted(dir + "/plan.json")
+    << " \"$index\" || status=1\n"
+    << "done\n"
+    << "exit $status\n";
   return s.str();
 }
 
@@ -241,14 +264,21 @@ void run_slurm(const std::string& dir, std::vector<std::size_t> todo, const Exec
     here.jobs = 1;
     run_local(dir, {todo.front()}, here, progress, done_before);
     const double s = std::chrono::duration<double>(Clock::now() - t0).count();
-    const long minutes = std::max(1L, static_cast<long>(std::ceil(10.0 * s / 60.0)));
+    const double per_task = static_cast<double>(std::max(1, o.runs_per_task));
+    const long minutes = std::max(1L, static_cast<long>(std::ceil(10.0 * s * per_task / 60.0)));
     time_limit = std::to_string(minutes);
     todo.erase(todo.begin());
     ++done_before;
     if (todo.empty()) return;
   }
   const std::string script = dir + "/plan.sbatch";
-  config::write_output_file(script, sbatch_script(dir, todo, o, label, time_limit));
+  const auto tasks = tasks_of(todo, static_cast<std::size_t>(std::max(1, o.runs_per_task)));
+  std::string lines;
+  for (const auto& runs : tasks) {
+    for (std::size_t i : runs) lines += std::to_string(i) + (i == runs.back() ? "\n" : " ");
+  }
+  config::write_output_file(dir + "/tasks.txt", lines);
+  config::write_output_file(script, sbatch_script(dir, tasks.size(), o, label, time_limit));
   if (o.plan_only) throw PlanWritten{dir, "sbatch " + script};
   const auto [out, rc] =
       capture("sbatch --parsable " + o.sbatch_args + " " + quoted(script) + " 2>&1");
@@ -256,8 +286,9 @@ void run_slurm(const std::string& dir, std::vector<std::size_t> todo, const Exec
   const std::string job = out.substr(0, out.find_first_of(";\n"));
   if (job.empty() || job.find_first_not_of("0123456789") != std::string::npos)
     throw std::runtime_error("sbatch answered '" + out + "', not a job id");
-  std::fprintf(stderr, "%s: submitted %zu runs as Slurm job %s (logs in %s/logs)\n",
-               label.empty() ? "plan" : label.c_str(), todo.size(), job.c_str(), dir.c_str());
+  std::fprintf(stderr, "%s: submitted %zu runs as Slurm job %s, %zu tasks (logs in %s/logs)\n",
+               label.empty() ? "plan" : label.c_str(), todo.size(), job.c_str(), tasks.size(),
+               dir.c_str());
   for (;;) {
     std::size_t done = done_before;
     for (std::size_t i : todo) done += run_complete(dir, i);
@@ -267,10 +298,12 @@ void run_slurm(const std::string& dir, std::vector<std::size_t> todo, const Exec
     std::this_thread::sleep_for(std::chrono::duration<double>(o.poll_s));
   }
   std::vector<Failure> failures;
-  for (std::size_t i : todo)
-    if (!run_complete(dir, i))
-      failures.push_back({i, "task " + job + "_" + std::to_string(i) + " ended without its result",
-                          log_path(dir, i, "slurm")});
+  for (std::size_t t = 0; t < tasks.size(); ++t)
+    for (std::size_t i : tasks[t])
+      if (!run_complete(dir, i))
+        failures.push_back({i,
+                            "task " + job + "_" + std::to_string(t) + " ended without its result",
+                            task_log(dir, t)});
   if (!failures.empty()) throw_failures(failures, todo.size() + done_before, dir);
 }
 

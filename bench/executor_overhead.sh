@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # What the executors cost per run, beside what a run costs (issue 31): a sweep of 21 short runs
-# (the 15 design points and the 6 clamp forces, 0.5 m each) through --executor local (one
-# process at a time) and through --executor slurm on a one-node cluster started here (one run
-# a task, then eight)
-# (scripts/slurm-cluster.sh), each timed whole; the runs' own simulation time (their
-# summary.json's wall_seconds) taken off leaves the executor's part: planning, starting each
-# process or submitting and scheduling each task, following the queue, and gathering. Printed
-# last as a ratio to one 30 m field run (scripts/field-trial.sh's scenario), timed here too.
+# (the 15 design points and the 6 clamp forces, 0.5 m each), timed whole, through
+# --executor local (one run at a time, in this process) and through --executor slurm on a
+# one-node cluster started here (scripts/slurm-cluster.sh; one run a task, then eight). The
+# runs' own simulation time (their summary.json's wall_seconds) taken off leaves the
+# executor's part: planning, writing each run's output set, submitting and scheduling each
+# task, following the queue, and gathering. Printed last as a ratio to one 30 m field run
+# (scripts/field-trial.sh's scenario), timed here too.
 # Usage: bench/executor_overhead.sh BUILD_DIR
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

@@ -40,6 +40,31 @@ using namespace planter::sim;
 
 namespace {
 
+#ifdef PLANTER_WITH_SWEEP
+// Where a multi-run command's runs execute (sim/runner/executor.h).
+void add_executor_options(CLI::App& cmd, ExecutorOptions& ex) {
+  cmd.add_option("--executor", ex.kind, "where the runs execute: local or slurm")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"local", "slurm"}));
+  cmd.add_flag("--plan-only", ex.plan_only,
+               "write the plan (and with slurm its sbatch script) and run nothing");
+  cmd.add_option("--partition", ex.partition, "slurm: the partition");
+  cmd.add_option("--account", ex.account, "slurm: the account");
+  cmd.add_option("--time-limit", ex.time_limit,
+                 "slurm: each task's limit (sbatch --time; default ten times a run timed here)");
+  cmd.add_option("--throttle", ex.throttle, "slurm: most tasks at once (0: no limit)")
+      ->check(planter::config::finite_range(0, 100000));
+  cmd.add_option("--sbatch-args", ex.sbatch_args, "slurm: more arguments for sbatch");
+  cmd.add_option("--runs-per-task", ex.runs_per_task,
+                 "slurm: runs each array task executes in turn (short runs: several)")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(1, 100000));
+  cmd.add_option("--poll", ex.poll_s, "slurm: seconds between looks at the queue")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0.1, 600.0));
+}
+#endif
+
 void print_summary(const Summary& s) {
   std::printf("scenario            %s\n", s.scenario.c_str());
   std::printf("distance            %.2f m in %.1f s simulated (%.2f s wall, %.0fx real time)\n",
@@ -229,27 +254,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--jobs", sweep_options.jobs, "runs at a time (0: one per core)")
       ->capture_default_str()
       ->check(planter::config::finite_range(0, 256));
-  ExecutorOptions& ex = sweep_options.executor;
-  sweep->add_option("--executor", ex.kind, "where the runs execute: local or slurm")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"local", "slurm"}));
-  sweep->add_flag("--plan-only", ex.plan_only,
-                  "write the plan (and with slurm its sbatch script) and run nothing");
-  sweep->add_option("--partition", ex.partition, "slurm: the partition");
-  sweep->add_option("--account", ex.account, "slurm: the account");
-  sweep->add_option("--time-limit", ex.time_limit,
-                    "slurm: each task's limit (sbatch --time; default ten times a run timed here)");
-  sweep->add_option("--throttle", ex.throttle, "slurm: most tasks at once (0: no limit)")
-      ->check(planter::config::finite_range(0, 100000));
-  sweep->add_option("--sbatch-args", ex.sbatch_args, "slurm: more arguments for sbatch");
-  sweep
-      ->add_option("--runs-per-task", ex.runs_per_task,
-                   "slurm: runs each array task executes in turn (short runs: several)")
-      ->capture_default_str()
-      ->check(planter::config::finite_range(1, 100000));
-  sweep->add_option("--poll", ex.poll_s, "slurm: seconds between looks at the queue")
-      ->capture_default_str()
-      ->check(planter::config::finite_range(0.1, 600.0));
+  add_executor_options(*sweep, sweep_options.executor);
   SensitivityOptions sensitivity_options;
   auto* sensitivity = app.add_subcommand(
       "sensitivity",
@@ -270,6 +275,7 @@ int main(int argc, char** argv) {
   sensitivity->add_option("--jobs", sensitivity_options.jobs, "runs at a time (0: one per core)")
       ->capture_default_str()
       ->check(planter::config::finite_range(0, 256));
+  add_executor_options(*sensitivity, sensitivity_options.executor);
 #endif
   std::string plan_path;
   std::size_t plan_index = 0;

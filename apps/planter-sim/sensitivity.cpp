@@ -12,10 +12,11 @@
 #include <vector>
 
 #include "apps/planter-sim/sweep.h"
+#include "apps/version/version.h"
 #include "config/output_set.h"
 #include "report/html_text.h"
 #include "sim/plant/model_values.h"
-#include "sim/runner/run_many.h"
+#include "sim/runner/run_plan.h"
 #include "sim/runner/scenario.h"
 
 namespace planter::sim {
@@ -74,6 +75,8 @@ std::string fmt(const char* f, double v) {
 int run_sensitivity(const std::string& scenario_path, const std::string& out_dir,
                     const SensitivityOptions& o) {
   const Scenario base = load_scenario(scenario_path);
+  if (const std::string why = executor_refusal(o.executor); !why.empty())
+    throw std::runtime_error(why);
   config::OutputSet out(out_dir, "planter-sim sensitivity", o.force);
   const auto values = model_values();
   const std::size_t k = values.size();
@@ -103,32 +106,27 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
       trajectory_of.push_back(t);
     }
   }
-  std::vector<Scenario> runs;
-  runs.reserve(points.size());
+  RunPlan plan = new_plan(scenario_path, apps::version());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    Scenario s = base;
-    s.plant.route.distance_m = o.distance_m;
-    s.plant.route.stops.clear();
-    s.seed = base.seed + static_cast<std::uint64_t>(trajectory_of[i]);
+    PlannedRun run;
+    run.distance_m = o.distance_m;
+    run.seed = base.seed + static_cast<std::uint64_t>(trajectory_of[i]);
     for (std::size_t f = 0; f < k; ++f)
-      values[f].ref(s.plant) = values[f].low + points[i][f] * (values[f].high - values[f].low);
-    runs.push_back(std::move(s));
+      run.values.emplace_back(values[f].key,
+                              values[f].low + points[i][f] * (values[f].high - values[f].low));
+    plan.runs.push_back(run);
+    // With --optimum each point also runs the paper's design (one replicate) around it.
+    if (o.optimum)
+      for (const PlannedRun& d : design_runs(base, run)) plan.runs.push_back(d);
   }
-  // With --optimum each point also runs the paper's design (one replicate) around it.
   const std::size_t per_point = o.optimum ? 1 + design_scenarios(base, o.distance_m).size() : 1;
-  if (o.optimum) {
-    std::vector<Scenario> with_designs;
-    for (const Scenario& s : runs) {
-      with_designs.push_back(s);
-      for (Scenario& d : design_scenarios(s, o.distance_m)) with_designs.push_back(std::move(d));
-    }
-    runs = std::move(with_designs);
-  }
   std::fprintf(stderr,
                "planter-sim sensitivity: %zu runs of %.0f m (%zu points: %d trajectories x (%zu "
                "values + 1)), %d jobs\n",
-               runs.size(), o.distance_m, points.size(), r, k, jobs);
-  const std::vector<Summary> all = run_many(runs, jobs, "sensitivity");
+               plan.runs.size(), o.distance_m, points.size(), r, k, jobs);
+  const std::vector<Summary> all =
+      execute_plan(runs_folder(out_dir) + "/points", plan,
+                   executor_for(o.executor, o.jobs, o.force), "sensitivity");
   const std::size_t responses = o.optimum ? kResponseCount : kPointResponses;
   std::vector<Figures> y;
   std::map<std::string, int> significant_at;  // term -> points where it is significant
@@ -204,7 +202,8 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
     csv << i + 1 << ',' << trajectory_of[i] + 1 << ','
         << (moved[i] == k ? "base" : values[moved[i]].key);
     const Summary& run = all[i * per_point];
-    for (const ModelValue& v : values) csv << ',' << v.value(runs[i * per_point].plant);
+    const Scenario at = planned_scenario(base, plan.runs[i * per_point]);
+    for (const ModelValue& v : values) csv << ',' << v.value(at.plant);
     csv << ',' << y[i][0] << ',' << y[i][1] << ',' << y[i][2] << ',' << run.seedlings_planted << ','
         << run.seedlings_lodged << ',' << run.seedlings_fell_in_carry;
     if (o.optimum) csv << ',' << y[i][3] << ',' << y[i][4] << ',' << y[i][5];
@@ -214,7 +213,7 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
   j["scenario"] = base.name;
   j["method"] = "Morris elementary effects, 4 levels, step 2/3";
   j["trajectories"] = r;
-  j["runs"] = runs.size();
+  j["runs"] = plan.runs.size();
   j["points"] = points.size();
   j["distance_m_per_run"] = o.distance_m;
   for (std::size_t f = 0; f < k; ++f) {
@@ -276,7 +275,7 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
        << report::kTablePageStyle
        << "</head><body><h1>Which model "
           "values the conclusions rest on</h1><p>Morris's elementary effects: "
-       << r << " trajectories over " << k << " values, " << runs.size() << " runs of "
+       << r << " trajectories over " << k << " values, " << plan.runs.size() << " runs of "
        << o.distance_m
        << " m at the scenario's operating point. mu* is the mean absolute change of a figure when "
           "the value crosses its whole plausible range (in points); sigma its spread "
@@ -313,7 +312,7 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
   out.commit();
 
   std::printf("%zu points, %zu runs of %.0f m: Morris, %d trajectories over %zu values\n",
-              points.size(), runs.size(), o.distance_m, r, k);
+              points.size(), plan.runs.size(), o.distance_m, r, k);
   std::printf("%-40s %-10s %8s %5s %8s %5s %8s %5s\n", "value (by uprightness mu*)", "origin",
               "upright", "rank", "damage", "rank", "turned", "rank");
   for (std::size_t f : order)

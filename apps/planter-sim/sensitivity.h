@@ -8,6 +8,8 @@
 // numbers within a trajectory, replicated across them).
 #include <string>
 
+#include "sim/runner/executor.h"
+
 namespace planter::sim {
 
 struct SensitivityOptions {
@@ -16,6 +18,7 @@ struct SensitivityOptions {
   int jobs = 0;              // runs at a time (0: one per core)
   bool optimum = false;      // also the paper's design at each point: where the optimum goes
   bool force = false;
+  ExecutorOptions executor;  // where the runs execute (executor.h); plans in OUT.runs/
 };
 
 // Writes OUT/{sensitivity.csv,sensitivity.json,report.html}; prints the ranking, the spread of

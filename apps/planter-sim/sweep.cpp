@@ -81,10 +81,7 @@ Scenario design_point(const Scenario& base, const Eigen::RowVector3d& coded, dou
 }
 
 ExecutorOptions executor_of(const SweepOptions& o) {
-  ExecutorOptions e = o.executor;
-  e.jobs = o.jobs;
-  e.replace_other_plan = o.force;
-  return e;
+  return executor_for(o.executor, o.jobs, o.force);
 }
 
 // Desirability as Design-Expert sets it by default: each goal over the observed range of its
@@ -229,6 +226,26 @@ std::string surface_map(const std::string& title, const std::string& unit, const
 }
 
 }  // namespace
+
+ExecutorOptions executor_for(const ExecutorOptions& o, int jobs, bool force) {
+  ExecutorOptions e = o;
+  e.jobs = jobs;
+  e.replace_other_plan = force;
+  e.made_by = apps::version();
+  return e;
+}
+
+std::vector<PlannedRun> design_runs(const Scenario& base, const PlannedRun& at) {
+  const Eigen::MatrixXd design = doe::box_behnken_3(kCentrePoints);
+  std::vector<PlannedRun> out;
+  for (Eigen::Index p = 0; p < design.rows(); ++p) {
+    PlannedRun r = at;
+    r.seed = at.seed + static_cast<std::uint64_t>(p);
+    r.operating_point = operating_point_at(base, design.row(p));
+    out.push_back(r);
+  }
+  return out;
+}
 
 std::vector<Scenario> design_scenarios(const Scenario& base, double distance_m) {
   const Eigen::MatrixXd design = doe::box_behnken_3(kCentrePoints);

@@ -26,6 +26,11 @@ struct SweepOptions {
 
 // The folder of a multi-run command's plans and runs: OUT.runs beside OUT.
 std::string runs_folder(const std::string& out_dir);
+// The plan of one run of the paper's design (point p of design_scenarios) on `at`: its seed
+// the run's seed + p, after the run's own model values.
+std::vector<PlannedRun> design_runs(const Scenario& base, const PlannedRun& at);
+// The sweep's and the sensitivity analysis's executor for `--jobs` and `--force`.
+ExecutorOptions executor_for(const ExecutorOptions& o, int jobs, bool force);
 
 // Writes OUT/{sweep.csv,sweep.json,report.html}; prints the figures, the optimum last.
 int run_sweep(const std::string& scenario_path, const std::string& out_dir, const SweepOptions& o);

@@ -1,11 +1,11 @@
 #include "sim/runner/executor.h"
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
@@ -15,13 +15,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
 
 #include "config/durable_file.h"
-
-extern char** environ;
 
 namespace planter::sim {
 namespace {
@@ -35,12 +34,6 @@ std::string program_of(const ExecutorOptions& o) {
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);
   if (ec) throw std::runtime_error("cannot find this program (/proc/self/exe): " + ec.message());
   return self.string();
-}
-
-std::string log_path(const std::string& dir, std::size_t index, const char* kind) {
-  char name[48];
-  std::snprintf(name, sizeof name, "/logs/%05zu.%s.log", index, kind);
-  return dir + name;
 }
 
 // The last line of a log, for the failure's message.
@@ -88,26 +81,6 @@ std::vector<std::size_t> missing_runs(const std::string& dir, const RunPlan& pla
   return out;
 }
 
-// Spawns `program plan-run PLAN INDEX` with its output appended to its log.
-pid_t spawn_run(const std::string& program, const std::string& dir, std::size_t index) {
-  const std::string plan = dir + "/plan.json", idx = std::to_string(index);
-  const std::string log = log_path(dir, index, "local");
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(),
-                                   O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  std::array<char*, 5> argv{const_cast<char*>(program.c_str()), const_cast<char*>("plan-run"),
-                            const_cast<char*>(plan.c_str()), const_cast<char*>(idx.c_str()),
-                            nullptr};
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) throw std::runtime_error("cannot start " + program + ": " + std::strerror(rc));
-  return pid;
-}
-
 struct Failure {
   std::size_t index;
   std::string what, log;
@@ -119,49 +92,47 @@ struct Failure {
   m << failures.size() << " of " << total << " runs failed; the " << total - failures.size()
     << " complete are kept in " << dir << "/runs, and running the same command again runs only "
     << "the missing ones:";
-  for (std::size_t k = 0; k < failures.size() && k < 10; ++k)
-    m << "\n  run " << failures[k].index << ": " << failures[k].what << " (" << failures[k].log
-      << ": " << last_line(failures[k].log) << ")";
+  for (std::size_t k = 0; k < failures.size() && k < 10; ++k) {
+    m << "\n  run " << failures[k].index << ": " << failures[k].what;
+    if (!failures[k].log.empty())
+      m << " (" << failures[k].log << ": " << last_line(failures[k].log) << ")";
+  }
   if (failures.size() > 10) m << "\n  ...";
   throw std::runtime_error(m.str());
 }
 
-void run_local(const std::string& dir, const std::vector<std::size_t>& todo,
+void run_local(const std::string& dir, const RunPlan& plan, const std::vector<std::size_t>& todo,
                const ExecutorOptions& o, Progress& progress, std::size_t done_before) {
-  const std::string program = program_of(o);
+  const Scenario base = plan_base(dir + "/plan.json", plan, o.made_by);
   const int jobs =
       o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  std::map<pid_t, std::size_t> running;
+  std::atomic<std::size_t> next{0}, done{done_before}, running{0};
+  std::mutex mutex;
   std::vector<Failure> failures;
-  std::size_t next = 0, done = done_before;
-  while (next < todo.size() || !running.empty()) {
-    while (next < todo.size() && running.size() < static_cast<std::size_t>(jobs)) {
-      running[spawn_run(program, dir, todo[next])] = todo[next];
-      ++next;
+  auto worker = [&] {
+    for (std::size_t k = next++; k < todo.size(); k = next++) {
+      ++running;
+      try {
+        run_planned(dir, base, plan.runs[todo[k]], todo[k]);
+        ++done;
+      } catch (const std::exception& e) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        failures.push_back({todo[k], e.what(), ""});
+      }
+      --running;
+      const std::lock_guard<std::mutex> lock(mutex);
+      progress.update(done, running, failures.size());
     }
-    progress.update(done, running.size(), failures.size());
-    int status = 0;
-    const pid_t pid = ::waitpid(-1, &status, 0);
-    if (pid < 0) {
-      if (errno == EINTR) continue;
-      throw std::runtime_error(std::string("waiting for the runs: ") + std::strerror(errno));
-    }
-    const auto it = running.find(pid);
-    if (it == running.end()) continue;  // not one of ours
-    const std::size_t index = it->second;
-    running.erase(it);
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && run_complete(dir, index)) {
-      ++done;
-    } else {
-      failures.push_back({index,
-                          WIFSIGNALED(status)
-                              ? "killed by signal " + std::to_string(WTERMSIG(status))
-                              : "exit " + std::to_string(WEXITSTATUS(status)),
-                          log_path(dir, index, "local")});
-    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
+  worker();
+  for (auto& t : threads) t.join();
+  if (!failures.empty()) {
+    std::sort(failures.begin(), failures.end(),
+              [](const Failure& a, const Failure& b) { return a.index < b.index; });
+    throw_failures(failures, todo.size() + done_before, dir);
   }
-  progress.update(done, 0, failures.size());
-  if (!failures.empty()) throw_failures(failures, todo.size() + done_before, dir);
 }
 
 // The output of a command run through the shell, and its exit status.
@@ -253,8 +224,9 @@ std::size_t tasks_alive(const std::string& job) {
   return alive;
 }
 
-void run_slurm(const std::string& dir, std::vector<std::size_t> todo, const ExecutorOptions& o,
-               const std::string& label, Progress& progress, std::size_t done_before) {
+void run_slurm(const std::string& dir, const RunPlan& plan, std::vector<std::size_t> todo,
+               const ExecutorOptions& o, const std::string& label, Progress& progress,
+               std::size_t done_before) {
   std::string time_limit = o.time_limit;
   if (time_limit.empty() && !o.plan_only && !todo.empty()) {
     // A dry run: the first missing run here, timed, sets each task's limit (ten times it, at
@@ -262,7 +234,7 @@ void run_slurm(const std::string& dir, std::vector<std::size_t> todo, const Exec
     const auto t0 = Clock::now();
     ExecutorOptions here = o;
     here.jobs = 1;
-    run_local(dir, {todo.front()}, here, progress, done_before);
+    run_local(dir, plan, {todo.front()}, here, progress, done_before);
     const double s = std::chrono::duration<double>(Clock::now() - t0).count();
     const double per_task = static_cast<double>(std::max(1, o.runs_per_task));
     const long minutes = std::max(1L, static_cast<long>(std::ceil(10.0 * s * per_task / 60.0)));
@@ -339,13 +311,13 @@ std::vector<Summary> execute_plan(const std::string& plan_dir, const RunPlan& pl
   Progress progress(label, plan.runs.size());
   progress.start(done);
   if (o.kind == "slurm")
-    run_slurm(plan_dir, todo, o, label, progress, done);
+    run_slurm(plan_dir, plan, todo, o, label, progress, done);
   else if (o.plan_only)
     throw PlanWritten{plan_dir, "planter-sim plan-run " + plan_dir +
                                     "/plan.json INDEX, for each "
                                     "INDEX of the plan's runs"};
   else if (!todo.empty())
-    run_local(plan_dir, todo, o, progress, done);
+    run_local(plan_dir, plan, todo, o, progress, done);
   std::vector<Summary> out;
   out.reserve(plan.runs.size());
   for (std::size_t i = 0; i < plan.runs.size(); ++i) out.push_back(read_run_summary(plan_dir, i));

@@ -1,10 +1,12 @@
 #pragma once
-// Executors of a run plan (run_plan.h, issue 31): every run not yet complete becomes one
-// `planter-sim plan-run PLAN INDEX` process, here (`local`, `jobs` at a time) or as one task of
-// a Slurm job array (`slurm`: sbatch --array with a throttle, followed with squeue, each task's
-// log beside the plan). The runs' summaries come back in the plan's order; a run that failed is
-// reported by its index and its log, and nothing is gathered until every run is complete. A
-// second call with the same plan runs only what is missing.
+// Executors of a run plan (run_plan.h, issue 31): every run not yet complete runs here
+// (`local`: `jobs` threads in this process, the plan's scenario loaded once) or as a task of a
+// Slurm job array (`slurm`: `planter-sim plan-run PLAN INDEX` per run, sbatch --array with a
+// throttle, followed with squeue, each task's log beside the plan). Either writes each run's
+// output set the same way, so the two give the same results and resume each other's plans. The
+// runs' summaries come back in the plan's order; a run that failed is reported by its index and its
+// log, and nothing is gathered until every run is complete. A second call with the same plan runs
+// only what is missing.
 #include <string>
 #include <vector>
 
@@ -15,8 +17,9 @@ namespace planter::sim {
 
 struct ExecutorOptions {
   std::string kind = "local";  // "local" or "slurm"
-  int jobs = 0;                // local: processes at a time (0: one per core)
-  std::string program;         // the planter-sim each run executes ("": this one)
+  int jobs = 0;                // local: runs at a time (0: one per core)
+  std::string program;         // slurm: the planter-sim each task executes ("": this one)
+  std::string made_by;         // the program's version, which the plan's key holds
   // Slurm: sbatch's --partition, --account, --time (per task; "": ten times the first run's
   // wall time measured here, at least a minute), the array's throttle (0: none), and more
   // arguments for sbatch as they would be typed.

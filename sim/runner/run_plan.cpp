@@ -1,5 +1,6 @@
 #include "sim/runner/run_plan.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include "config/content_hash.h"
 #include "config/durable_file.h"
 #include "config/output_set.h"
+#include "sim/plant/model_values.h"
 #include "sim/runner/lockstep_runner.h"
 
 namespace planter::sim {
@@ -54,6 +56,11 @@ std::string plan_json(const RunPlan& plan) {
                                 {"depth_mm", r.operating_point->depth_mm},
                                 {"contact_area_mm2", r.operating_point->contact_area_mm2}};
     if (r.clamp_setpoint_N) one["clamp_setpoint_N"] = *r.clamp_setpoint_N;
+    if (!r.values.empty()) {
+      nlohmann::ordered_json values;
+      for (const auto& [key, value] : r.values) values[key] = value;
+      one["values"] = values;
+    }
     runs.push_back(one);
   }
   j["runs"] = runs;
@@ -80,6 +87,9 @@ RunPlan read_plan(const std::string& path) {
       }
       if (one.contains("clamp_setpoint_N"))
         r.clamp_setpoint_N = one.at("clamp_setpoint_N").get<double>();
+      if (one.contains("values"))
+        for (const auto& [key, value] : one.at("values").items())
+          r.values.emplace_back(key, value.get<double>());
       plan.runs.push_back(r);
     }
   } catch (const nlohmann::json::exception& e) {
@@ -102,6 +112,14 @@ Scenario planned_scenario(const Scenario& base, const PlannedRun& run) {
   s.seed = run.seed;
   s.plant.route.distance_m = run.distance_m;
   s.plant.route.stops.clear();
+  for (const auto& [key, value] : run.values) {
+    const auto values = model_values();
+    const auto it = std::find_if(values.begin(), values.end(),
+                                 [&](const ModelValue& v) { return key == v.key; });
+    if (it == values.end())
+      throw std::runtime_error("the plan sets '" + key + "', which is no model value");
+    it->ref(s.plant) = value;
+  }
   if (run.operating_point)
     set_operating_point(s, run.operating_point->sigma, run.operating_point->depth_mm,
                         run.operating_point->contact_area_mm2);
@@ -126,6 +144,28 @@ bool run_complete(const std::string& plan_dir, std::size_t index) {
          std::filesystem::is_regular_file(run_dir(plan_dir, index) + "/summary.json", ec);
 }
 
+Scenario plan_base(const std::string& plan_path, const RunPlan& plan, const std::string& made_by) {
+  Scenario base = load_scenario(plan.scenario);
+  if (inputs_hash(plan.scenario, base, made_by) != plan.inputs_hash)
+    throw std::runtime_error(plan_path +
+                             ": its scenario, board, machine or calibration file, or "
+                             "the program (" +
+                             made_by +
+                             "), changed since the plan was made; "
+                             "make the plan again");
+  return base;
+}
+
+void run_planned(const std::string& plan_dir, const Scenario& base, const PlannedRun& run,
+                 std::size_t index) {
+  LockstepRunner runner(planned_scenario(base, run));
+  const Summary summary = runner.run();
+  std::filesystem::create_directories(plan_dir + "/runs");
+  config::OutputSet out(run_dir(plan_dir, index), kPlanTool, false);
+  out.write("summary.json", summary.to_json() + "\n");
+  out.commit();
+}
+
 void execute_planned_run(const std::string& plan_path, std::size_t index,
                          const std::string& made_by) {
   const RunPlan plan = read_plan(plan_path);
@@ -135,21 +175,7 @@ void execute_planned_run(const std::string& plan_path, std::size_t index,
                              " runs, 0-" + std::to_string(plan.runs.size() - 1) + ")");
   const std::string dir = std::filesystem::path(plan_path).parent_path().string();
   if (run_complete(dir, index)) return;
-  const Scenario base = load_scenario(plan.scenario);
-  if (inputs_hash(plan.scenario, base, made_by) != plan.inputs_hash)
-    throw std::runtime_error(plan_path +
-                             ": its scenario, board, machine or calibration file, or "
-                             "the program (" +
-                             made_by +
-                             "), changed since the plan was made; "
-                             "make the plan again");
-  const Scenario s = planned_scenario(base, plan.runs[index]);
-  LockstepRunner runner(s);
-  const Summary summary = runner.run();
-  std::filesystem::create_directories(dir + "/runs");
-  config::OutputSet out(run_dir(dir, index), kPlanTool, false);
-  out.write("summary.json", summary.to_json() + "\n");
-  out.commit();
+  run_planned(dir, plan_base(plan_path, plan, made_by), plan.runs[index], index);
 }
 
 Summary read_run_summary(const std::string& plan_dir, std::size_t index) {

@@ -24,6 +24,8 @@ struct PlannedRun {
   double distance_m = 10.0;  // without stops
   std::optional<OperatingPoint> operating_point;
   std::optional<double> clamp_setpoint_N;  // the ceiling raised to 20 N above it if needed
+  // Model values set by their keys (sim/plant/model_values.h), before the operating point.
+  std::vector<std::pair<std::string, double>> values;
 };
 
 struct RunPlan {
@@ -48,6 +50,13 @@ Scenario planned_scenario(const Scenario& base, const PlannedRun& run);
 // DIR/runs/00012: run 12's output set; complete when its manifest is there.
 std::string run_dir(const std::string& plan_dir, std::size_t index);
 bool run_complete(const std::string& plan_dir, std::size_t index);
+// Runs run `index` of a plan in DIR on `base` (the plan's scenario, loaded and checked against
+// the plan's key) and writes its summary.json whole or not at all.
+void run_planned(const std::string& plan_dir, const Scenario& base, const PlannedRun& run,
+                 std::size_t index);
+// The plan's scenario, loaded; throws when the inputs or the program (`made_by`) are no longer
+// the plan's.
+Scenario plan_base(const std::string& plan_path, const RunPlan& plan, const std::string& made_by);
 // Runs one run of the plan in DIR (the plan file's folder) and writes its summary.json whole
 // or not at all; a complete run is left as it is. Throws on a bad plan or index, or when the
 // inputs or the program (`made_by`) are no longer the plan's.

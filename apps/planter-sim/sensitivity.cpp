@@ -119,7 +119,7 @@ int run_sensitivity(const std::string& scenario_path, const std::string& out_dir
     if (o.optimum)
       for (const PlannedRun& d : design_runs(base, run)) plan.runs.push_back(d);
   }
-  const std::size_t per_point = o.optimum ? 1 + design_scenarios(base, o.distance_m).size() : 1;
+  const std::size_t per_point = o.optimum ? 1 + design_runs(base, PlannedRun{}).size() : 1;
   std::fprintf(stderr,
                "planter-sim sensitivity: %zu runs of %.0f m (%zu points: %d trajectories x (%zu "
                "values + 1)), %d jobs\n",

@@ -18,7 +18,6 @@
 #include "report/html_text.h"
 #include "sim/plant/model_values.h"
 #include "sim/runner/model_assumptions.h"
-#include "sim/runner/run_many.h"
 #include "sim/runner/run_plan.h"
 #include "sim/runner/scenario.h"
 
@@ -68,16 +67,6 @@ OperatingPoint operating_point_at(const Scenario& base, const Eigen::RowVector3d
   const double omega = kFactors[1].value(coded(1));
   return {omega * base.board.controller.sigma.disc_radius_m / base.plant.route.speed_mps,
           kFactors[2].value(coded(2)), kFactors[0].value(coded(0))};
-}
-
-// The base scenario at one coded point of the design, on `distance_m` without stops.
-Scenario design_point(const Scenario& base, const Eigen::RowVector3d& coded, double distance_m,
-                      std::uint64_t seed) {
-  PlannedRun r;
-  r.seed = seed;
-  r.distance_m = distance_m;
-  r.operating_point = operating_point_at(base, coded);
-  return planned_scenario(base, r);
 }
 
 ExecutorOptions executor_of(const SweepOptions& o) {
@@ -244,15 +233,6 @@ std::vector<PlannedRun> design_runs(const Scenario& base, const PlannedRun& at) 
     r.operating_point = operating_point_at(base, design.row(p));
     out.push_back(r);
   }
-  return out;
-}
-
-std::vector<Scenario> design_scenarios(const Scenario& base, double distance_m) {
-  const Eigen::MatrixXd design = doe::box_behnken_3(kCentrePoints);
-  std::vector<Scenario> out;
-  for (Eigen::Index p = 0; p < design.rows(); ++p)
-    out.push_back(
-        design_point(base, design.row(p), distance_m, base.seed + static_cast<std::uint64_t>(p)));
   return out;
 }
 

@@ -26,8 +26,9 @@ struct SweepOptions {
 
 // The folder of a multi-run command's plans and runs: OUT.runs beside OUT.
 std::string runs_folder(const std::string& out_dir);
-// The plan of one run of the paper's design (point p of design_scenarios) on `at`: its seed
-// the run's seed + p, after the run's own model values.
+// The plan of one run of the paper's design (point p of the Box-Behnken design; what the
+// sensitivity analysis runs to see where the optimum goes) on `at`: its seed the run's seed + p,
+// after the run's own model values.
 std::vector<PlannedRun> design_runs(const Scenario& base, const PlannedRun& at);
 // The sweep's and the sensitivity analysis's executor for `--jobs` and `--force`.
 ExecutorOptions executor_for(const ExecutorOptions& o, int jobs, bool force);
@@ -35,9 +36,6 @@ ExecutorOptions executor_for(const ExecutorOptions& o, int jobs, bool force);
 // Writes OUT/{sweep.csv,sweep.json,report.html}; prints the figures, the optimum last.
 int run_sweep(const std::string& scenario_path, const std::string& out_dir, const SweepOptions& o);
 
-// The paper's design, one replicate, as scenarios: what the sensitivity analysis runs to see
-// where the optimum goes when a model value changes.
-std::vector<Scenario> design_scenarios(const Scenario& base, double distance_m);
 struct DesignOptimum {
   double contact_area_mm2 = 0, disc_speed_radps = 0, depth_mm = 0, desirability = 0;
   // The terms of uprightness's quadratic significant at p < 0.05 ("A", "BC", "C^2", ...), with
@@ -55,7 +53,7 @@ inline constexpr double kPaperCentreUprightness_pct = 94.8, kPaperCentreDamage_p
 std::string optimum_text(double area_mm2, double disc_speed_radps, double depth_mm);
 // The span of the design's factor (0 contact area, 1 disc speed, 2 depth), in its unit.
 double design_span(int factor);
-// The desirability optimum of design_scenarios' results, in the same order.
+// The desirability optimum of design_runs' results, in the same order.
 DesignOptimum design_optimum(const std::vector<Summary>& results);
 
 }  // namespace planter::sim

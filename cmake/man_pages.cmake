@@ -7,7 +7,9 @@ if(NOT PLANTER_HELP2MAN)
 endif()
 # planter_man_page(<program target> "<one line: what it is>")
 function(planter_man_page target what)
-  if(NOT PLANTER_HELP2MAN)
+  # Not from the sanitizer or fuzzing builds: no package is made of them, and a leak report at
+  # exit would fail the page.
+  if(NOT PLANTER_HELP2MAN OR PLANTER_SANITIZE OR PLANTER_FUZZ)
     return()
   endif()
   set(run $<TARGET_FILE:${target}>)

@@ -27,7 +27,8 @@ spawn() {  # spawn WORKER NAME ARGS...
   "$@" >"$out/$name.line" 2>&1 &
 }
 judge() {  # judge NAME EXPECT: prints the case's line from its fit.json
-  /usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/$1-fit/fit.json" "$1" "$2"
+  /usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/$1-fit/fit.json" "$1" "$2" \
+    "$out/$1.coverage"
 }
 sim_case() {  # sim_case NAME NOISE EXPECT [--base-sed SED_EXPR] [--drop COLUMN] [effects lines...]
   local name=$1 noise=$2 expect=$3 base_sed="" drop=""
@@ -178,4 +179,21 @@ for name in "${names[@]}"; do
 done
 total=${#names[@]}
 echo "of the $passed that pass, $exact name nothing beyond what was hidden"
+# Whether the stated uncertainty is as sure as it is right (issue 32, item 5): the hidden value
+# inside the stated 95 % interval should be about 95 % of the statistical parameters.
+for kind in statistical grid; do
+  covered=0
+  checked=0
+  for name in "${names[@]}"; do
+    [ -s "$out/$name.coverage" ] || continue
+    covered=$((covered + $(grep -c "^covered $kind " "$out/$name.coverage" || true)))
+    checked=$((checked + $(grep -c " $kind " "$out/$name.coverage" || true)))
+  done
+  if [ "$kind" = statistical ]; then
+    echo "stated 95 % intervals (+-1.96 SD) holding the hidden value: $covered of $checked parameters"
+  else
+    echo "grid parameters within their stated resolution of the hidden value: $covered of $checked"
+  fi
+done
+grep -h "^missed statistical" "$out"/*.coverage 2>/dev/null | sed 's/^/  /' || true
 echo "planter-fit blind proof: $passed of $total cases pass"

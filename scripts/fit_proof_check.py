@@ -1,9 +1,11 @@
 #!/usr/bin/python3
 """Checks one planter-fit verdict against the effect hidden in the recording.
 
-Usage: fit_proof_check.py FIT_JSON CASE EXPECT
+Usage: fit_proof_check.py FIT_JSON CASE EXPECT [COVERAGE_OUT]
 EXPECT is "clean", "unexplained:OUTPUT" or "channel:effect name:param=value[,param=value]" items joined by ";".
 Prints one line: PASS or FAIL, the case, and what was found. Exit 0 on PASS, 1 on FAIL.
+COVERAGE_OUT, if given, gets one line per hidden parameter found: whether the stated interval
+(+-1.96 SD; a grid parameter's resolution) holds the hidden value (issue 32, item 5).
 """
 import json
 import sys
@@ -18,6 +20,7 @@ def main():
         for e in c["effects"]:
             found.append("%s:%s" % (c["output"], e["effect"]))
     problems = []
+    coverage = []  # (parameter, hidden value within the stated interval, grid)
     if expect == "clean":
         if found:
             problems.append("false positive")
@@ -68,11 +71,19 @@ def main():
                 problems.append("%s: %s not named" % (output, name))
                 continue
             values = {p["name"]: p["value"] for p in effect["parameters"]}
+            stated = {p["name"]: p for p in effect["parameters"]}
             for pv in filter(None, params.split(",")):
                 key, want = pv.split("=")
                 got = values.get(key)
                 if got is None or abs(got - float(want)) > 0.2 * abs(float(want)):
                     problems.append("%s %s = %s, hidden %s" % (name, key, got, want))
+                if got is not None:
+                    # Does the stated interval hold the hidden value? 95 %: +-1.96 SD; a grid
+                    # parameter's +- is the resolution reached, checked as it is.
+                    p = stated[key]
+                    half = p["sd"] * (1.0 if p.get("grid") else 1.96)
+                    coverage.append((name + " " + key, abs(got - float(want)) <= half,
+                                     bool(p.get("grid"))))
             # A tone found above the analysed rate carries its own held-out RMS (at the
             # recording's rate); the channel's is that of the decimated analysis.
             if "held_out_rms" in effect:
@@ -95,6 +106,12 @@ def main():
         verdict, case, ", ".join(f for f in found if f in wanted) or "nothing",
         "; also named: " + ", ".join(extra) if extra and wanted else "",
         "" if not problems else "  [" + "; ".join(problems) + "]"))
+    if len(sys.argv) > 4:
+        # One line per parameter checked: "covered|missed statistical|grid name".
+        with open(sys.argv[4], "w") as f:
+            for what, covered, grid in coverage:
+                f.write("%s %s %s\n" % ("covered" if covered else "missed",
+                                         "grid" if grid else "statistical", what))
     return 0 if not problems else 1
 
 

@@ -52,21 +52,7 @@ sim_case() {  # sim_case NAME NOISE EXPECT [--base-sed SED_EXPR] [--drop COLUMN]
   if [ -n "$drop" ]; then
     # As a field log without that sensor: the column left out, beside the run's folder.
     recording=$out/$name-without-$drop.csv
-    /usr/bin/python3 - "$out/$name/recording.csv" "$recording" "$drop" <<'PY'
-import sys
-src, dst, drop = sys.argv[1:]
-with open(src) as f, open(dst, "w") as g:
-    at = None
-    for line in f:
-        if line.startswith("#"):
-            g.write(line)
-            continue
-        cells = line.rstrip("\n").split(",")
-        if at is None:
-            at = cells.index(drop)
-        del cells[at]
-        g.write(",".join(cells) + "\n")
-PY
+    /usr/bin/python3 "$root/scripts/drop-columns.py" "$out/$name/recording.csv" "$recording" "$drop"
   fi
   "$fit" "$recording" --out "$out/$name-fit" --json --jobs 1 \
     >"$out/$name-fit.stdout" 2>&1

@@ -19,20 +19,7 @@ clean=$(grep -cE "^(ground|disc drive|clamp|depth) .* no significant mismatch " 
 [ "$channels" -eq 6 ] && [ "$clean" -eq 6 ] ||
   { echo "FAIL: $clean of $channels channels are 'no significant mismatch' on the simulator's own field run"; exit 1; }
 # The same recording without the known columns, as a field log without those sensors.
-python3 - "$work/field/recording.csv" "$work/without.csv" <<'PY'
-import sys
-src, dst = sys.argv[1:]
-with open(src) as f, open(dst, "w") as g:
-    keep = None
-    for line in f:
-        if line.startswith("#"):
-            g.write(line)
-            continue
-        cells = line.rstrip("\n").split(",")
-        if keep is None:
-            keep = [i for i, c in enumerate(cells) if not c.startswith("known_")]
-        g.write(",".join(cells[i] for i in keep) + "\n")
-PY
+python3 "$src/scripts/drop-columns.py" "$work/field/recording.csv" "$work/without.csv" 'known_*'
 "$fit" "$work/without.csv" --out "$work/without-fit" --jobs 2 >"$work/without.out"
 unclean=$(grep -cE "^(ground|disc drive|clamp|depth) " "$work/without.out" | tr -d ' ')
 still_clean=$(grep -cE "^(ground|disc drive|clamp|depth) .* no significant mismatch " "$work/without.out" || true)

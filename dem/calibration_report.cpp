@@ -109,24 +109,24 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
       << " N/m<sup>3</sup>, sigma_c = " << c.setup.bonds.tensile_strength_Pa << " Pa: <b>"
       << c.result.peak_force_N << " N at " << c.result.peak_displacement_m * 1e3
       << " mm</b> (first peak: the first 5 % drop); collapse (the largest fall) "
-      << c.result.collapse_force_N << " N at " << c.result.collapse_displacement_m * 1e3
-      << " mm. Both are marked on the chart. Parameters: <code>calibrated.toml</code>.</p>";
+      << collapse_text(c.result)
+      << ". Both are marked on the chart. Parameters: <code>calibrated.toml</code>.</p>";
     std::vector<double> x, f;
     for (const auto& p : r.calibrated.result.curve) {
       x.push_back(p.displacement_m * 1e3);
       f.push_back(p.force_N);
     }
-    h << charts.lines({"Calibrated model: upper platen force",
-                       "N",
-                       "displacement [mm]",
-                       0.0,
-                       std::max(1.15 * c.result.collapse_force_N, 1.15 * o.target_N),
-                       {{c.result.peak_displacement_m * 1e3, "#c33", "first peak"},
-                        {c.result.collapse_displacement_m * 1e3, "#933", "collapse"}},
-                       {{o.target_N, "#36c", "target"},
-                        {c.result.peak_force_N, "#c33", "first peak"},
-                        {c.result.collapse_force_N, "#933", "collapse"}},
-                       ""},
+    std::vector<report::Marker> at_x{{c.result.peak_displacement_m * 1e3, "#c33", "first peak"}};
+    std::vector<report::Marker> at_y{{o.target_N, "#36c", "target"},
+                                     {c.result.peak_force_N, "#c33", "first peak"}};
+    if (c.result.collapse_drop_N > 0.0) {  // a curve that never falls has no collapse to mark
+      at_x.push_back({c.result.collapse_displacement_m * 1e3, "#933", "collapse"});
+      at_y.push_back({c.result.collapse_force_N, "#933", "collapse"});
+    }
+    h << charts.lines({"Calibrated model: upper platen force", "N", "displacement [mm]", 0.0,
+                       std::max(1.15 * c.result.collapse_force_N,
+                                std::max(1.15 * c.result.peak_force_N, 1.15 * o.target_N)),
+                       at_x, at_y, ""},
                       x, {{&f, "#c33", "DEM, calibrated"}});
   }
   h << "</body></html>\n";

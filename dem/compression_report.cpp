@@ -78,9 +78,9 @@ void write_compression_outputs(config::OutputSet& out, const CompressionRun& run
        << r.peak_displacement_m * 1e3 << " mm"
        << (r.first_peak_found ? "" : " (no drop within the stroke: this is the maximum)")
        << "</td><td>paper: 140.6 N at about 4 mm; measured peaks 127.2-191.6 N</td></tr>"
-       << "<tr><td>collapse (the largest fall)</td><td>" << r.collapse_force_N << " N at "
-       << r.collapse_displacement_m * 1e3 << " mm</td><td>"
-       << (r.collapse_force_N > 1.02 * r.peak_force_N
+       << "<tr><td>collapse (the largest fall)</td><td>" << collapse_text(r) << "</td><td>"
+       << (r.collapse_drop_N <= 0.0 ? ""
+           : r.collapse_force_N > 1.02 * r.peak_force_N
                ? "a later peak than the first: the first drop came before the tube's collapse"
                : "the first peak")
        << "</td></tr>"

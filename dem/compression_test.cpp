@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace planter::dem {
 
@@ -52,6 +53,14 @@ void find_collapse(CompressionResult& r) {
       r.collapse_displacement_m = r.curve[m].displacement_m;
     }
   }
+}
+
+std::string collapse_text(const CompressionResult& r) {
+  if (r.collapse_drop_N <= 0.0) return "none: the force never falls within the stroke";
+  char text[64];
+  std::snprintf(text, sizeof text, "%.1f N at %.2f mm", r.collapse_force_N,
+                r.collapse_displacement_m * 1e3);
+  return text;
 }
 
 void find_first_peak(CompressionResult& r, double drop_fraction) {

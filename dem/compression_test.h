@@ -3,6 +3,7 @@
 // platen comes down on it at the loading speed. Speeding the platen up is the usual shortcut
 // (the paper's 0.2 m/min needs ~1e6 steps); the result carries the speed used and the largest
 // kinetic-to-work ratio, so a run that was too fast to be quasi-static says so.
+#include <string>
 #include <vector>
 
 #include "dem/material.h"
@@ -70,5 +71,7 @@ CompressionResult run_compression(const CompressionSetup& setup);
 void find_first_peak(CompressionResult& r, double drop_fraction);
 // Sets the collapse_* fields from the curve.
 void find_collapse(CompressionResult& r);
+// "153.0 N at 3.24 mm", or "none: the force never falls within the stroke".
+std::string collapse_text(const CompressionResult& r);
 
 }  // namespace planter::dem

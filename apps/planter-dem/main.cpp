@@ -92,8 +92,7 @@ int compress(const Common& c) {
   std::printf("quasi-static check: kinetic energy / platen work <= %.4f\n", r.max_kinetic_to_work);
   std::printf("broken bonds: %d of %d\n", r.broken_bonds, r.bonds);
   std::printf("outputs: %s/{curve.csv,result.json,params.toml,report.html}\n", c.out.c_str());
-  std::printf("collapse (the largest fall): %.1f N at %.2f mm\n", r.collapse_force_N,
-              r.collapse_displacement_m * 1e3);
+  std::printf("collapse (the largest fall): %s\n", dem::collapse_text(r).c_str());
   std::printf("%s: %.1f N at %.2f mm (paper: 140.6 N at about 4 mm), %.1f s wall\n",
               r.first_peak_found ? "first peak" : "maximum (no peak within the stroke)",
               r.peak_force_N, r.peak_displacement_m * 1e3, run.wall_s);
@@ -135,14 +134,16 @@ int calibrate(const Common& c, double target_N, double target_mm, int jobs, int 
   }
   std::printf("outputs: %s/{calibration.json,calibrated.toml,report.html}\n", c.out.c_str());
   const auto& v = r.verification.result;
-  std::printf("box-behnken optimum: predicted %.1f N; simulated %.1f N at %.2f mm (%+.1f %%)\n",
-              r.predicted_N, v.peak_force_N, v.peak_displacement_m * 1e3,
-              100.0 * (v.peak_force_N - target_N) / target_N);
+  std::printf(
+      "box-behnken optimum: predicted %.1f N; simulated %.1f N at %.2f mm (%+.1f %%); collapse "
+      "%s\n",
+      r.predicted_N, v.peak_force_N, v.peak_displacement_m * 1e3,
+      100.0 * (v.peak_force_N - target_N) / target_N, dem::collapse_text(v).c_str());
   const auto& cal = r.calibrated;
   std::printf("refined in %zu run(s): S = %.4g N/m^3, sigma_c = %.4g Pa\n", r.refinement.size(),
               cal.setup.bonds.normal_stiffness_N_m3, cal.setup.bonds.tensile_strength_Pa);
-  std::printf("calibrated: collapse (the largest fall) %.1f N at %.2f mm\n",
-              cal.result.collapse_force_N, cal.result.collapse_displacement_m * 1e3);
+  std::printf("calibrated: collapse (the largest fall) %s\n",
+              dem::collapse_text(cal.result).c_str());
   std::printf(
       "calibrated: first peak (a 5 %% drop) %.1f N at %.2f mm (target %.1f N%s, %+.1f %%)\n",
       cal.result.peak_force_N, cal.result.peak_displacement_m * 1e3, target_N,

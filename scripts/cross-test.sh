@@ -33,7 +33,8 @@ for p in "${presets[@]}"; do
   fi
 done
 libs=(libgpiod-dev libsocketcan-dev libtomlplusplus-dev libgtest-dev libgmock-dev pkgconf)
-wanted=(qemu-user binutils-multiarch)
+# help2man makes the man pages the packages carry (run under qemu-user: cmake/man_pages.cmake).
+wanted=(qemu-user binutils-multiarch help2man)
 for p in "${presets[@]}"; do
   a=${arch[$p]}
   dpkg --print-foreign-architectures | grep -qx "$a" || $sudo_cmd dpkg --add-architecture "$a"
@@ -78,7 +79,8 @@ for p in "${presets[@]}"; do
   cmake -S . -B "build-$p" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPLANTER_BOARD="$p" \
     -DPLANTER_BUILD_BENCH=OFF "${console_opts[@]}" >/dev/null
   cmake --build "build-$p" -j "$(nproc)" --target planterd planter-can planter_unit_tests \
-    planter_can_tests planterd_service_tests planter_dem_tests fuzz_can_frame fuzz_text_inputs fuzz_board_file
+    planter_can_tests planterd_service_tests planter_dem_tests fuzz_can_frame fuzz_text_inputs fuzz_board_file \
+    planterd-man planter-can-man
   echo "== unit tests of $p under qemu-user"
   (cd "build-$p" && ctest -L unit -j "$(nproc)" --output-on-failure | tail -3)
   (cd "build-$p" && cpack -G DEB >/dev/null)

@@ -19,7 +19,10 @@ function(planter_man_page target what)
     endif()
     # help2man runs the program as one word: a wrapper gives it the emulator, and the console's
     # private sysroot libraries where the build links them (console/CMakeLists.txt).
-    string(REPLACE ";" ":" libs "${PLANTER_CONSOLE_SYSROOT_LIBS}")
+    set(libs "")
+    if(PLANTER_CONSOLE_SYSROOT)
+      set(libs "${PLANTER_CONSOLE_SYSROOT}/usr/lib/${PLANTER_TRIPLE}:${PLANTER_CONSOLE_SYSROOT}/lib/${PLANTER_TRIPLE}")
+    endif()
     set(wrapper ${CMAKE_CURRENT_BINARY_DIR}/${target}-under-emulator)
     file(GENERATE OUTPUT ${wrapper}
          CONTENT "#!/bin/sh\nLD_LIBRARY_PATH='${libs}' exec ${CMAKE_CROSSCOMPILING_EMULATOR} $<TARGET_FILE:${target}> \"$@\"\n"
@@ -30,10 +33,12 @@ function(planter_man_page target what)
   set(page ${CMAKE_CURRENT_BINARY_DIR}/${target}.1)
   add_custom_command(
     OUTPUT ${page}.gz
-    COMMAND ${PLANTER_HELP2MAN} --no-info --no-discard-stderr --section=1
+    # stdout only: a program that cannot start prints its error on stderr, and help2man then
+    # fails the build instead of making a page of the error.
+    COMMAND ${PLANTER_HELP2MAN} --no-info --section=1
             "--name=${what}" --output=${page} ${run}
     COMMAND gzip -n -9 -f ${page}
-    DEPENDS ${target}
+    DEPENDS ${target} ${run}
     COMMENT "man page for ${target} (help2man)"
     VERBATIM)
   add_custom_target(${target}-man ALL DEPENDS ${page}.gz)

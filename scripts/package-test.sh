@@ -36,6 +36,11 @@ case $arch in
   amd64) want="Advanced Micro Devices X86-64" ;;
 esac
 [ "$machine" = "$want" ] || fail "planterd is built for '$machine', not $want"
+# The man pages are the programs' own --help (a page made of a loader's error is no page).
+zgrep -q -- 'board' "$work/root/usr/share/man/man1/planterd.1.gz" ||
+  fail "planterd's man page does not hold its options: $(zcat "$work/root/usr/share/man/man1/planterd.1.gz" | sed -n 8p)"
+zgrep -q -- 'iface' "$work/root/usr/share/man/man1/planter-can.1.gz" ||
+  fail "planter-can's man page does not hold its options"
 echo "package: $(basename "$deb"): $(field Version) $arch, $(wc -l <<<"$files") entries, planterd for $machine"
 echo "package: Depends: $(field Depends)"
 

@@ -112,13 +112,13 @@ Scenario planned_scenario(const Scenario& base, const PlannedRun& run) {
   s.seed = run.seed;
   s.plant.route.distance_m = run.distance_m;
   s.plant.route.stops.clear();
-  for (const auto& [key, value] : run.values) {
+  for (const auto& setting : run.values) {
     const auto values = model_values();
     const auto it = std::find_if(values.begin(), values.end(),
-                                 [&](const ModelValue& v) { return key == v.key; });
+                                 [&](const ModelValue& v) { return setting.first == v.key; });
     if (it == values.end())
-      throw std::runtime_error("the plan sets '" + key + "', which is no model value");
-    it->ref(s.plant) = value;
+      throw std::runtime_error("the plan sets '" + setting.first + "', which is no model value");
+    it->ref(s.plant) = setting.second;
   }
   if (run.operating_point)
     set_operating_point(s, run.operating_point->sigma, run.operating_point->depth_mm,

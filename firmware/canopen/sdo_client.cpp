@@ -4,23 +4,10 @@
 
 #include "firmware/canopen/cob_id.h"
 #include "firmware/canopen/le_bytes.h"
+#include "firmware/canopen/sdo_payload.h"
 
 namespace planter::canopen {
-namespace {
-
-std::array<std::uint8_t, 8> mux_payload(std::uint8_t command, std::uint16_t index,
-                                        std::uint8_t sub) {
-  return {command,
-          static_cast<std::uint8_t>(index & 0xFF),
-          static_cast<std::uint8_t>(index >> 8),
-          sub,
-          0,
-          0,
-          0,
-          0};
-}
-
-}  // namespace
+namespace {}  // namespace
 
 SdoClient::SdoClient(std::uint8_t node_id, std::int64_t timeout_ns)
     : node_id_(node_id), timeout_ns_(timeout_ns) {}
@@ -37,7 +24,7 @@ bool SdoClient::start_read(std::uint16_t index, std::uint8_t sub, std::span<std:
   phase_ = Phase::kUploadInit;
   status_ = SdoStatus::kBusy;
   deadline_ns_ = now_ns + timeout_ns_;
-  send_request(mux_payload(0x40, index, sub), bus);
+  send_request(sdo_mux_payload(0x40, index, sub), bus);
   return true;
 }
 
@@ -57,12 +44,12 @@ bool SdoClient::start_write(std::uint16_t index, std::uint8_t sub,
   if (write_size_ <= 4) {
     // Expedited: e = 1, s = 1, n = number of unused bytes.
     auto payload =
-        mux_payload(static_cast<std::uint8_t>(0x23 | ((4 - write_size_) << 2)), index, sub);
+        sdo_mux_payload(static_cast<std::uint8_t>(0x23 | ((4 - write_size_) << 2)), index, sub);
     std::copy(data.begin(), data.end(), payload.begin() + 4);
     phase_ = Phase::kDownloadInit;
     send_request(payload, bus);
   } else {
-    auto payload = mux_payload(0x21, index, sub);  // segmented, size indicated
+    auto payload = sdo_mux_payload(0x21, index, sub);  // segmented, size indicated
     const auto size = static_cast<std::uint32_t>(write_size_);
     for (int i = 0; i < 4; ++i) payload[4 + i] = static_cast<std::uint8_t>(size >> (8 * i));
     phase_ = Phase::kDownloadInit;
@@ -219,9 +206,7 @@ void SdoClient::send_request(const std::array<std::uint8_t, 8>& payload, hal::Ca
 }
 
 void SdoClient::send_abort(std::uint32_t code, hal::CanBus& bus) {
-  auto payload = mux_payload(0x80, index_, sub_);
-  for (int i = 0; i < 4; ++i) payload[4 + i] = static_cast<std::uint8_t>(code >> (8 * i));
-  send_request(payload, bus);
+  send_request(sdo_abort_payload(index_, sub_, code), bus);
 }
 
 void SdoClient::finish(SdoStatus status, std::uint32_t code) {

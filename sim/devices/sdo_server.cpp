@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "firmware/canopen/cob_id.h"
+#include "firmware/canopen/sdo_payload.h"
 
 namespace planter::canopen {
 
@@ -24,17 +25,13 @@ bool SdoServer::on_frame(const hal::CanFrame& frame, hal::CanBus& bus) {
   }
   if (ccs == 2) {  // initiate upload
     segment_entry_ = nullptr;
-    ObjectEntry* e = od_.find(index, sub);
-    if (e == nullptr) {
-      abort(index, sub, od_.has_index(index) ? abort_code::kNoSubIndex : abort_code::kNoObject,
-            bus);
-      return true;
-    }
+    ObjectEntry* e = entry_or_abort(index, sub, bus);
+    if (e == nullptr) return true;
     if (e->access == Access::kWriteOnly) {
       abort(index, sub, abort_code::kWriteOnly, bus);
       return true;
     }
-    std::array<std::uint8_t, 8> r{0, d[1], d[2], sub, 0, 0, 0, 0};
+    std::array<std::uint8_t, 8> r = sdo_mux_payload(0, index, sub);
     if (e->size > 0 && e->size <= 4) {
       r[0] = static_cast<std::uint8_t>(0x43 | ((4 - e->size) << 2));
       for (int i = 0; i < e->size; ++i) r[4 + i] = static_cast<std::uint8_t>(e->value >> (8 * i));
@@ -81,12 +78,8 @@ bool SdoServer::on_frame(const hal::CanFrame& frame, hal::CanBus& bus) {
   }
   if (ccs == 1) {  // initiate download
     segment_entry_ = nullptr;
-    ObjectEntry* e = od_.find(index, sub);
-    if (e == nullptr) {
-      abort(index, sub, od_.has_index(index) ? abort_code::kNoSubIndex : abort_code::kNoObject,
-            bus);
-      return true;
-    }
+    ObjectEntry* e = entry_or_abort(index, sub, bus);
+    if (e == nullptr) return true;
     if (e->access == Access::kReadOnly || e->access == Access::kConst) {
       abort(index, sub, abort_code::kReadOnly, bus);
       return true;
@@ -98,7 +91,7 @@ bool SdoServer::on_frame(const hal::CanFrame& frame, hal::CanBus& bus) {
         abort(index, sub, code, bus);
         return true;
       }
-      reply({0x60, d[1], d[2], sub, 0, 0, 0, 0}, bus);
+      reply(sdo_mux_payload(0x60, index, sub), bus);
       return true;
     }
     total_ = (cmd & 0x01) != 0
@@ -112,7 +105,7 @@ bool SdoServer::on_frame(const hal::CanFrame& frame, hal::CanBus& bus) {
     segment_upload_ = false;
     toggle_ = false;
     offset_ = 0;
-    reply({0x60, d[1], d[2], sub, 0, 0, 0, 0}, bus);
+    reply(sdo_mux_payload(0x60, index, sub), bus);
     return true;
   }
   if (ccs == 0) {  // download segment
@@ -168,6 +161,13 @@ std::uint32_t SdoServer::write_value(ObjectEntry& entry, const std::uint8_t* dat
   return 0;
 }
 
+ObjectEntry* SdoServer::entry_or_abort(std::uint16_t index, std::uint8_t sub, hal::CanBus& bus) {
+  ObjectEntry* e = od_.find(index, sub);
+  if (e == nullptr)
+    abort(index, sub, od_.has_index(index) ? abort_code::kNoSubIndex : abort_code::kNoObject, bus);
+  return e;
+}
+
 void SdoServer::reply(const std::array<std::uint8_t, 8>& payload, hal::CanBus& bus) {
   hal::CanFrame f{};
   f.id = kSdoResponseBase + node_id_;
@@ -177,16 +177,7 @@ void SdoServer::reply(const std::array<std::uint8_t, 8>& payload, hal::CanBus& b
 }
 
 void SdoServer::abort(std::uint16_t index, std::uint8_t sub, std::uint32_t code, hal::CanBus& bus) {
-  std::array<std::uint8_t, 8> r{0x80,
-                                static_cast<std::uint8_t>(index & 0xFF),
-                                static_cast<std::uint8_t>(index >> 8),
-                                sub,
-                                0,
-                                0,
-                                0,
-                                0};
-  for (int i = 0; i < 4; ++i) r[4 + i] = static_cast<std::uint8_t>(code >> (8 * i));
-  reply(r, bus);
+  reply(sdo_abort_payload(index, sub, code), bus);
 }
 
 }  // namespace planter::canopen

@@ -31,6 +31,8 @@ class SdoServer {
  private:
   void reply(const std::array<std::uint8_t, 8>& payload, hal::CanBus& bus);
   void abort(std::uint16_t index, std::uint8_t sub, std::uint32_t code, hal::CanBus& bus);
+  // The entry, or nullptr after aborting with "no such object" or "no such sub-index".
+  ObjectEntry* entry_or_abort(std::uint16_t index, std::uint8_t sub, hal::CanBus& bus);
   std::uint32_t write_value(ObjectEntry& entry, const std::uint8_t* data, std::size_t n);
 
   std::uint8_t node_id_;

@@ -42,5 +42,4 @@ function(planter_man_page target what)
     COMMENT "man page for ${target} (help2man)"
     VERBATIM)
   add_custom_target(${target}-man ALL DEPENDS ${page}.gz)
-  set_property(GLOBAL APPEND PROPERTY planter_man_pages ${page}.gz)
 endfunction()

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -69,10 +67,6 @@ OperatingPoint operating_point_at(const Scenario& base, const Eigen::RowVector3d
           kFactors[2].value(coded(2)), kFactors[0].value(coded(0))};
 }
 
-ExecutorOptions executor_of(const SweepOptions& o) {
-  return executor_for(o.executor, o.jobs, o.force);
-}
-
 // Desirability as Design-Expert sets it by default: each goal over the observed range of its
 // response; uprightness up, the peak radial force on the seedling down.
 doe::Optimum optimum_of(const doe::Anova& upright_fit, const Eigen::VectorXd& upright,
@@ -98,7 +92,8 @@ std::vector<Run> run_all(const Scenario& base, const std::string& scenario_path,
     plan.runs.push_back(r);
   }
   const std::vector<Summary> results =
-      execute_plan(runs + "/stage-" + std::to_string(stage), plan, executor_of(o), "sweep");
+      execute_plan(runs + "/stage-" + std::to_string(stage), plan,
+                   executor_for(o.executor, o.jobs, o.force), "sweep");
   std::vector<Run> out;
   for (std::size_t i = 0; i < todo.size(); ++i) {
     const Summary& r = results[i];
@@ -359,7 +354,8 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
     force_plan.runs.push_back(r);
   }
   const std::vector<Summary> force_curve =
-      execute_plan(runs_dir + "/force-curve", force_plan, executor_of(o), "sweep: clamp force");
+      execute_plan(runs_dir + "/force-curve", force_plan, executor_for(o.executor, o.jobs, o.force),
+                   "sweep: clamp force");
 
   // Interior maxima of uprightness along disc speed and depth, through the optimum: where the
   // surface's slope along the factor is zero, if it curves down.

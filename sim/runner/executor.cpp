@@ -7,14 +7,11 @@
 #include <array>
 #include <atomic>
 #include <cctype>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
@@ -280,19 +277,6 @@ void run_slurm(const std::string& dir, const RunPlan& plan, std::vector<std::siz
 }
 
 }  // namespace
-
-std::string index_ranges(const std::vector<std::size_t>& sorted) {
-  std::string out;
-  for (std::size_t k = 0; k < sorted.size();) {
-    std::size_t end = k;
-    while (end + 1 < sorted.size() && sorted[end + 1] == sorted[end] + 1) ++end;
-    if (!out.empty()) out += ',';
-    out += std::to_string(sorted[k]);
-    if (end > k) out += '-' + std::to_string(sorted[end]);
-    k = end + 1;
-  }
-  return out;
-}
 
 std::string executor_refusal(const ExecutorOptions& o) {
   if (o.kind != "local" && o.kind != "slurm") return "--executor '" + o.kind + "': local or slurm";

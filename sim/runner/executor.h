@@ -50,7 +50,4 @@ struct PlanWritten {
 std::vector<Summary> execute_plan(const std::string& plan_dir, const RunPlan& plan,
                                   const ExecutorOptions& o, const std::string& label);
 
-// The array's index list for sbatch: "0-3,7,9-10".
-std::string index_ranges(const std::vector<std::size_t>& sorted);
-
 }  // namespace planter::sim

@@ -3,27 +3,18 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
 
 #include "config/content_hash.h"
 #include "config/durable_file.h"
+#include "config/input_file.h"
 #include "config/output_set.h"
 #include "sim/plant/model_values.h"
 #include "sim/runner/lockstep_runner.h"
 
 namespace planter::sim {
 namespace {
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 constexpr const char* kPlanTool = "planter-sim plan-run";
 
@@ -33,7 +24,7 @@ std::string inputs_hash(const std::string& scenario_path, const Scenario& s,
   for (const std::string& f :
        {scenario_path, s.board.file, s.board.machine_file, s.board.calibration_file}) {
     if (f.empty()) continue;
-    all += "file " + f + "\n" + read_text(f) + "\n";
+    all += "file " + f + "\n" + config::read_input_file(f) + "\n";
   }
   return config::content_hash(all);
 }
@@ -69,8 +60,9 @@ std::string plan_json(const RunPlan& plan) {
 
 RunPlan read_plan(const std::string& path) {
   RunPlan plan;
+  const std::string text = config::read_input_file(path);
   try {
-    const nlohmann::json j = nlohmann::json::parse(read_text(path));
+    const nlohmann::json j = nlohmann::json::parse(text);
     if (j.at("kind") != "planter-sim run plan" || j.at("version") != 1)
       throw std::runtime_error("not a planter-sim run plan of version 1");
     plan.scenario = j.at("scenario").get<std::string>();
@@ -181,7 +173,7 @@ void execute_planned_run(const std::string& plan_path, std::size_t index,
 Summary read_run_summary(const std::string& plan_dir, std::size_t index) {
   const std::string path = run_dir(plan_dir, index) + "/summary.json";
   try {
-    return Summary::from_json(read_text(path));
+    return Summary::from_json(config::read_input_file(path));
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(path + ": not a run's summary: " + e.what());
   }
@@ -194,7 +186,7 @@ void place_plan(const std::string& plan_dir, const RunPlan& plan, bool replace) 
   const std::string text = plan_json(plan);
   std::error_code ec;
   if (fs::exists(path, ec)) {
-    if (read_text(path) == text) return;
+    if (config::read_input_file(path) == text) return;
     if (!replace)
       throw std::runtime_error(plan_dir +
                                " holds another plan (other inputs, another build of "

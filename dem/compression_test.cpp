@@ -23,14 +23,24 @@ std::vector<double> smoothed_force(const std::vector<CurvePoint>& curve, std::si
 
 std::size_t smoothing_half_width(std::size_t n) { return std::max<std::size_t>(1, n / 120); }
 
-}  // namespace
+// The raw curve's largest value within `half` samples of a smoothed peak at `at`: the figure
+// reported is one the curve holds, not the smoothing's.
+void raw_peak_near(const std::vector<CurvePoint>& curve, std::size_t at, std::size_t half,
+                   double& force_N, double& displacement_m) {
+  const std::size_t n = curve.size();
+  for (std::size_t m = at >= half ? at - half : 0; m <= std::min(n - 1, at + half); ++m) {
+    if (curve[m].force_N > force_N) {
+      force_N = curve[m].force_N;
+      displacement_m = curve[m].displacement_m;
+    }
+  }
+}
 
-void find_collapse(CompressionResult& r) {
-  // The collapse is the peak the force falls furthest from before it climbs above that peak
-  // again (densification): a drop of a few bonds before it can be the first peak, and the chart
-  // shows both.
-  const std::size_t n = r.curve.size();
-  const std::vector<double> smooth = smoothed_force(r.curve, smoothing_half_width(n));
+// The collapse is the peak the force falls furthest from before it climbs above that peak
+// again (densification): a drop of a few bonds before it can be the first peak, and the chart
+// shows both.
+void set_collapse(CompressionResult& r, const std::vector<double>& smooth, std::size_t half) {
+  const std::size_t n = smooth.size();
   r.collapse_drop_N = 0.0;
   r.collapse_force_N = 0.0;
   r.collapse_displacement_m = 0.0;
@@ -44,15 +54,14 @@ void find_collapse(CompressionResult& r) {
       at = i;
     }
   }
-  if (at == n) return;
-  // The raw curve's largest value around the smoothed peak, as for the first peak.
-  const std::size_t half = smoothing_half_width(n);
-  for (std::size_t m = at >= half ? at - half : 0; m <= std::min(n - 1, at + half); ++m) {
-    if (r.curve[m].force_N > r.collapse_force_N) {
-      r.collapse_force_N = r.curve[m].force_N;
-      r.collapse_displacement_m = r.curve[m].displacement_m;
-    }
-  }
+  if (at < n) raw_peak_near(r.curve, at, half, r.collapse_force_N, r.collapse_displacement_m);
+}
+
+}  // namespace
+
+void find_collapse(CompressionResult& r) {
+  const std::size_t half = smoothing_half_width(r.curve.size());
+  set_collapse(r, smoothed_force(r.curve, half), half);
 }
 
 std::string collapse_text(const CompressionResult& r) {
@@ -83,18 +92,10 @@ void find_first_peak(CompressionResult& r, double drop_fraction) {
       break;
     }
   }
-  // Report the raw curve's largest value around the smoothed peak.
+  set_collapse(r, smooth, half);
   r.peak_force_N = 0.0;
   r.peak_displacement_m = 0.0;
-  find_collapse(r);
-  if (best < 0.0) return;
-  const std::size_t lo = best_k >= half ? best_k - half : 0;
-  for (std::size_t m = lo; m <= std::min(n - 1, best_k + half); ++m) {
-    if (r.curve[m].force_N > r.peak_force_N) {
-      r.peak_force_N = r.curve[m].force_N;
-      r.peak_displacement_m = r.curve[m].displacement_m;
-    }
-  }
+  if (best >= 0.0) raw_peak_near(r.curve, best_k, half, r.peak_force_N, r.peak_displacement_m);
 }
 
 CompressionWorld make_compression_world(const CompressionSetup& s) {

@@ -19,9 +19,10 @@ cleanup() {
 }
 trap cleanup EXIT
 now() { date +%s.%N; }
+calc() { awk "BEGIN { print $1 }"; }  # awk: in every Debian, unlike bc
 field_start=$(now)
 "$sim" run "$root/scenarios/zhangqiu-field.toml" --out "$work/field" --quiet >/dev/null
-field_s=$(echo "$(now) - $field_start" | bc -l)
+field_s=$(calc "$(now) - $field_start")
 runs_sim_s() {  # the runs' own simulation wall time, summed over OUT.runs
   python3 - "$1" <<'PY'
 import glob, json, sys
@@ -31,22 +32,22 @@ PY
 args=(sweep "$root/scenarios/zhangqiu-field.toml" --distance 0.5 --replicates 1 --max-replicates 1)
 start=$(now)
 "$sim" "${args[@]}" --out "$work/local" --jobs 1 >/dev/null
-local_s=$(echo "$(now) - $start" | bc -l)
+local_s=$(calc "$(now) - $start")
 local_sim=$(runs_sim_s "$work/local.runs")
 eval "$("$root/scripts/slurm-cluster.sh" start "$work/cluster" 2>/dev/null)"
 start=$(now)
 "$sim" "${args[@]}" --out "$work/slurm" --executor slurm --time-limit 5 --poll 0.2 >/dev/null 2>&1
-slurm_s=$(echo "$(now) - $start" | bc -l)
+slurm_s=$(calc "$(now) - $start")
 slurm_sim=$(runs_sim_s "$work/slurm.runs")
 start=$(now)
 "$sim" "${args[@]}" --out "$work/batched" --executor slurm --time-limit 5 --poll 0.2 \
   --runs-per-task 8 >/dev/null 2>&1
-batched_s=$(echo "$(now) - $start" | bc -l)
+batched_s=$(calc "$(now) - $start")
 batched_sim=$(runs_sim_s "$work/batched.runs")
 n=21
-local_over=$(echo "($local_s - $local_sim) / $n" | bc -l)
-slurm_over=$(echo "($slurm_s - $slurm_sim) / $n" | bc -l)
-batched_over=$(echo "($batched_s - $batched_sim) / $n" | bc -l)
+local_over=$(calc "($local_s - $local_sim) / $n")
+slurm_over=$(calc "($slurm_s - $slurm_sim) / $n")
+batched_over=$(calc "($batched_s - $batched_sim) / $n")
 printf 'one 30 m field run: %.3f s wall\n' "$field_s"
 printf 'local executor: %d runs in %.2f s, of which the runs simulated %.2f s: %.3f s a run\n' \
   "$n" "$local_s" "$local_sim" "$local_over"
@@ -55,5 +56,5 @@ printf 'slurm executor (one node, 2 CPUs): %d runs in %.2f s, of which the runs 
 printf 'slurm executor, 8 runs a task: %d runs in %.2f s, of which the runs simulated %.2f s: %.3f s a run\n' \
   "$n" "$batched_s" "$batched_sim" "$batched_over"
 printf 'executor overhead per run against one 30 m field run: local %.2f, slurm %.2f (8 runs a task: %.2f)\n' \
-  "$(echo "$local_over / $field_s" | bc -l)" "$(echo "$slurm_over / $field_s" | bc -l)" \
-  "$(echo "$batched_over / $field_s" | bc -l)"
+  "$(calc "$local_over / $field_s")" "$(calc "$slurm_over / $field_s")" \
+  "$(calc "$batched_over / $field_s")"

@@ -5,12 +5,21 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "config/input_file.h"
 #include "config/toml_bounds.h"
 
 namespace planter::config {
 namespace {
+// A row's bound as an integer: doubles hold integers exactly to 2^53, and the int64 ends
+// (a seed's range) saturate instead of overflowing.
+std::int64_t integer_bound(double v) {
+  if (v >= 9.2233720368547758e18) return INT64_MAX;
+  if (v <= -9.2233720368547758e18) return INT64_MIN;
+  return static_cast<std::int64_t>(v);
+}
+
 std::string format_number(double v) {
   std::ostringstream s;
   s << v;
@@ -18,8 +27,9 @@ std::string format_number(double v) {
 }
 }  // namespace
 
-TomlSection::TomlSection(const toml::table& table, std::string path, std::string file)
-    : table_(&table), path_(std::move(path)), file_(std::move(file)) {}
+TomlSection::TomlSection(const toml::table& table, std::string path, std::string file,
+                         KeyTables keys)
+    : table_(&table), keys_(keys), path_(std::move(path)), file_(std::move(file)) {}
 TomlSection::~TomlSection() = default;
 TomlSection::TomlSection(TomlSection&&) noexcept = default;
 
@@ -141,7 +151,7 @@ std::optional<TomlSection> TomlSection::table(const std::string& key) {
   if (n == nullptr) return std::nullopt;
   const toml::table* t = n->as_table();
   if (t == nullptr) fail(key, "must be a table");
-  return TomlSection(*t, dotted(key), file_);
+  return TomlSection(*t, dotted(key), file_, keys_);
 }
 
 std::vector<TomlSection> TomlSection::array_of_tables(const std::string& key) {
@@ -154,7 +164,7 @@ std::vector<TomlSection> TomlSection::array_of_tables(const std::string& key) {
   for (const auto& item : *a) {
     const toml::table* t = item.as_table();
     if (t == nullptr) fail(key, "must be an array of tables");
-    out.emplace_back(*t, dotted(key) + "[" + std::to_string(i++) + "]", file_);
+    out.emplace_back(*t, dotted(key) + "[" + std::to_string(i++) + "]", file_, keys_);
   }
   return out;
 }
@@ -165,17 +175,80 @@ std::vector<std::string> TomlSection::keys() const {
   return out;
 }
 
-void TomlSection::reject_unknown_keys(const std::string& hint) const {
+void TomlSection::reject_unknown_keys() const {
   for (const auto& [k, v] : *table_) {
     const std::string key(k.str());
     if (used_.count(key) == 0) {
       throw ConfigError(file_, static_cast<int>(v.source().begin.line), dotted(key),
-                        hint.empty() ? "unknown key" : "unknown key here; " + hint);
+                        unknown_key_text(keys_, path_, key));
     }
   }
 }
 
-TomlDocument::TomlDocument(const std::string& file) : file_(file) {
+const ConfigKey& TomlSection::own(const ConfigKey& k) const {
+  // A row read from the wrong table is the loader's bug, not the user's.
+  if (!table_matches(k.table, path_))
+    throw std::logic_error("key " + std::string(k.table) + "." + std::string(k.name) +
+                           " read in table '" + path_ + "'");
+  return k;
+}
+
+void TomlSection::no_default_needs_key(const ConfigKey& k) const {
+  // A row without a default is read only where its key is present (the loader asks has()).
+  if (std::isnan(k.fallback) && !has(std::string(k.name)))
+    throw std::logic_error("key " + std::string(k.name) + " has no default and is absent");
+}
+
+double TomlSection::number(const ConfigKey& k) {
+  own(k);
+  if (k.required)
+    return required_number(std::string(k.name), k.min, k.max, std::string(k.unit).c_str());
+  no_default_needs_key(k);
+  return number(k, k.fallback);
+}
+
+double TomlSection::number(const ConfigKey& k, double fallback) {
+  own(k);
+  return number(std::string(k.name), fallback, k.min, k.max, std::string(k.unit).c_str());
+}
+
+std::int64_t TomlSection::integer(const ConfigKey& k) {
+  own(k);
+  if (k.required)
+    return required_integer(std::string(k.name), integer_bound(k.min), integer_bound(k.max));
+  no_default_needs_key(k);
+  return integer(k, std::isnan(k.fallback) ? 0 : integer_bound(k.fallback));
+}
+
+std::int64_t TomlSection::integer(const ConfigKey& k, std::int64_t fallback) {
+  own(k);
+  return integer(std::string(k.name), fallback, integer_bound(k.min), integer_bound(k.max));
+}
+
+bool TomlSection::boolean(const ConfigKey& k) {
+  own(k);
+  return boolean(std::string(k.name), k.fallback != 0.0);
+}
+
+std::string TomlSection::string(const ConfigKey& k) {
+  own(k);
+  if (k.required && !has(std::string(k.name)))
+    throw ConfigError(file_, line(), dotted(std::string(k.name)),
+                      "is required: " + std::string(k.meaning));
+  return string(std::string(k.name), std::string(k.default_text));
+}
+
+std::string TomlSection::string(const ConfigKey& k, const std::string& fallback) {
+  own(k);
+  return string(std::string(k.name), fallback);
+}
+
+std::vector<std::string> TomlSection::strings(const ConfigKey& k) {
+  own(k);
+  return strings(std::string(k.name));
+}
+
+TomlDocument::TomlDocument(const std::string& file, KeyTables keys) : file_(file), keys_(keys) {
   const std::string text = read_input_file(file);
   check_toml_bounds(text, file);
   try {
@@ -188,6 +261,6 @@ TomlDocument::TomlDocument(const std::string& file) : file_(file) {
 
 TomlDocument::~TomlDocument() = default;
 
-TomlSection TomlDocument::root() { return TomlSection(*table_, "", file_); }
+TomlSection TomlDocument::root() { return TomlSection(*table_, "", file_, keys_); }
 
 }  // namespace planter::config

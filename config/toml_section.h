@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "config/config_error.h"
+#include "config/config_key.h"
 
 namespace toml {
 inline namespace v3 {
@@ -21,7 +22,7 @@ namespace planter::config {
 
 class TomlSection {
  public:
-  TomlSection(const toml::table& table, std::string path, std::string file);
+  TomlSection(const toml::table& table, std::string path, std::string file, KeyTables keys = {});
   ~TomlSection();
   TomlSection(TomlSection&&) noexcept;
 
@@ -34,13 +35,25 @@ class TomlSection {
   bool boolean(const std::string& key, bool fallback);
   std::string string(const std::string& key, const std::string& fallback);
   std::vector<std::string> strings(const std::string& key);
+  // Reads through a key's row (config/config_key.h): its name, range, unit and default, or
+  // `fallback` where the default depends on other keys. The row must be this table's.
+  double number(const ConfigKey& k);
+  double number(const ConfigKey& k, double fallback);
+  std::int64_t integer(const ConfigKey& k);
+  std::int64_t integer(const ConfigKey& k, std::int64_t fallback);
+  bool boolean(const ConfigKey& k);
+  std::string string(const ConfigKey& k);  // default_text when absent
+  std::string string(const ConfigKey& k, const std::string& fallback);
+  std::vector<std::string> strings(const ConfigKey& k);
+  bool has(const ConfigKey& k) const { return has(std::string(k.name)); }
   bool has(const std::string& key) const;
   std::optional<TomlSection> table(const std::string& key);
   std::vector<TomlSection> array_of_tables(const std::string& key);
   std::vector<std::string> keys() const;
-  // Throws for any key that was never read: a typo must not pass silently. `hint` (if any)
-  // follows "unknown key" and says where such a key belongs.
-  void reject_unknown_keys(const std::string& hint = "") const;
+  // Throws for any key that was never read: a typo must not pass silently. The message says
+  // which file such a key belongs in, or what replaced it, or what this table holds, from the
+  // key tables the document was opened with.
+  void reject_unknown_keys() const;
 
   [[nodiscard]] int line() const;
   [[nodiscard]] int line_of(const std::string& key) const;
@@ -52,7 +65,10 @@ class TomlSection {
 
  private:
   const toml::node* get(const std::string& key);
+  const ConfigKey& own(const ConfigKey& k) const;
+  void no_default_needs_key(const ConfigKey& k) const;
   const toml::table* table_;
+  KeyTables keys_;
   std::string path_;
   std::string file_;
   std::set<std::string> used_;
@@ -61,12 +77,14 @@ class TomlSection {
 // Parses a file; syntax errors become ConfigError with the parser's line.
 class TomlDocument {
  public:
-  explicit TomlDocument(const std::string& file);
+  // `keys`: the rows of this file kind and of the others, for the unknown-key messages.
+  explicit TomlDocument(const std::string& file, KeyTables keys = {});
   ~TomlDocument();
   TomlSection root();
 
  private:
   std::string file_;
+  KeyTables keys_;
   std::unique_ptr<toml::table> table_;
 };
 

@@ -3,16 +3,23 @@
 #include <cstdio>
 
 #include "config/toml_section.h"
+#include "dem/dem_keys.h"
 
 namespace planter::dem {
 namespace {
 
-void read_material(config::TomlSection& t, ContactMaterial& m) {
-  m.shear_modulus_Pa = t.number("shear_modulus_Pa", m.shear_modulus_Pa, 1e3, 1e12, "Pa");
-  m.poisson = t.number("poisson", m.poisson, 0.0, 0.499);
-  m.restitution = t.number("restitution", m.restitution, 0.01, 1.0);
-  m.friction = t.number("friction", m.friction, 0.0, 5.0);
-  m.rolling_friction = t.number("rolling_friction", m.rolling_friction, 0.0, 1.0);
+consteval const config::ConfigKey& dk(std::string_view dotted) {
+  return config::key_in(kDemBodyKeys, dotted);
+}
+
+// The rows of material_rows(), in their order.
+void read_material(config::TomlSection& t, const std::array<config::ConfigKey, 5>& rows,
+                   ContactMaterial& m) {
+  m.shear_modulus_Pa = t.number(rows[0]);
+  m.poisson = t.number(rows[1]);
+  m.restitution = t.number(rows[2]);
+  m.friction = t.number(rows[3]);
+  m.rolling_friction = t.number(rows[4]);
   t.reject_unknown_keys();
 }
 
@@ -28,7 +35,7 @@ std::string material_toml(const char* name, const ContactMaterial& m) {
 }  // namespace
 
 CompressionSetup load_compression_setup(const std::string& path) {
-  config::TomlDocument doc(path);
+  config::TomlDocument doc(path, {config::FileKind::kDemSetup, kDemFileKeys});
   config::TomlSection root = doc.root();
   // An empty file would run the paper's defaults while the user believes their file was used.
   if (root.keys().empty()) {
@@ -39,15 +46,13 @@ CompressionSetup load_compression_setup(const std::string& path) {
   CompressionSetup s;
   if (auto t = root.table("seedling")) {
     SeedlingGeometry& g = s.seedling;
-    g.length_m = 1e-3 * t->number("length_mm", 1e3 * g.length_m, 5.0, 400.0, "mm");
-    g.diameter_m = 1e-3 * t->number("diameter_mm", 1e3 * g.diameter_m, 3.0, 30.0, "mm");
-    g.particle_radius_m =
-        1e-3 * t->number("particle_radius_mm", 1e3 * g.particle_radius_m, 0.3, 5.0, "mm");
-    g.layers = static_cast<int>(t->integer("layers", g.layers, 1, 4));
-    g.density_kg_m3 = t->number("density_kg_m3", g.density_kg_m3, 100.0, 3000.0, "kg/m^3");
-    g.bond_gap_m = 1e-3 * t->number("bond_gap_mm", 1e3 * g.bond_gap_m, 0.0, 3.0, "mm");
-    g.curvature_radius_m =
-        1e-3 * t->number("curvature_radius_mm", 1e3 * g.curvature_radius_m, 0.0, 1e5, "mm");
+    g.length_m = 1e-3 * t->number(dk("seedling.length_mm"));
+    g.diameter_m = 1e-3 * t->number(dk("seedling.diameter_mm"));
+    g.particle_radius_m = 1e-3 * t->number(dk("seedling.particle_radius_mm"));
+    g.layers = static_cast<int>(t->integer(dk("seedling.layers")));
+    g.density_kg_m3 = t->number(dk("seedling.density_kg_m3"));
+    g.bond_gap_m = 1e-3 * t->number(dk("seedling.bond_gap_mm"));
+    g.curvature_radius_m = 1e-3 * t->number(dk("seedling.curvature_radius_mm"));
     if (g.curvature_radius_m > 0.0 && g.curvature_radius_m < g.length_m / 3.0)
       t->fail("curvature_radius_mm", "must be 0 (straight) or at least a third of length_mm");
     if (2.0 * g.particle_radius_m > 0.5 * g.diameter_m)
@@ -56,26 +61,24 @@ CompressionSetup load_compression_setup(const std::string& path) {
   }
   if (auto t = root.table("bond")) {
     BondParameters& b = s.bonds;
-    b.normal_stiffness_N_m3 =
-        t->number("normal_stiffness_N_m3", b.normal_stiffness_N_m3, 1e5, 1e12, "N/m^3");
-    b.shear_stiffness_N_m3 =
-        t->number("shear_stiffness_N_m3", b.shear_stiffness_N_m3, 1e5, 1e12, "N/m^3");
-    b.tensile_strength_Pa =
-        t->number("tensile_strength_Pa", b.tensile_strength_Pa, 1e2, 1e10, "Pa");
-    b.shear_strength_Pa = t->number("shear_strength_Pa", b.shear_strength_Pa, 1e2, 1e10, "Pa");
-    b.radius_m = 1e-3 * t->number("radius_mm", 1e3 * b.radius_m, 0.1, 10.0, "mm");
+    b.normal_stiffness_N_m3 = t->number(dk("bond.normal_stiffness_N_m3"));
+    b.shear_stiffness_N_m3 = t->number(dk("bond.shear_stiffness_N_m3"));
+    b.tensile_strength_Pa = t->number(dk("bond.tensile_strength_Pa"));
+    b.shear_strength_Pa = t->number(dk("bond.shear_strength_Pa"));
+    b.radius_m = 1e-3 * t->number(dk("bond.radius_mm"));
     t->reject_unknown_keys();
   }
-  if (auto t = root.table("seedling_contact")) read_material(*t, s.seedling_material);
-  if (auto t = root.table("platen_contact")) read_material(*t, s.platen_material);
+  if (auto t = root.table("seedling_contact"))
+    read_material(*t, kSeedlingContactKeys, s.seedling_material);
+  if (auto t = root.table("platen_contact"))
+    read_material(*t, kPlatenContactKeys, s.platen_material);
   if (auto t = root.table("test")) {
-    s.platen_speed_mps =
-        t->number("platen_speed_m_min", s.platen_speed_mps * 60.0, 0.001, 10.0, "m/min") / 60.0;
-    s.speedup = t->number("speedup", s.speedup, 1.0, 500.0);
-    s.time_step_s = t->number("time_step_s", s.time_step_s, 1e-8, 1e-4, "s");
-    s.stroke_m = 1e-3 * t->number("stroke_mm", 1e3 * s.stroke_m, 0.1, 20.0, "mm");
-    s.local_damping = t->number("local_damping", s.local_damping, 0.0, 0.9);
-    s.samples = static_cast<int>(t->integer("samples", s.samples, 10, 100000));
+    s.platen_speed_mps = t->number(dk("test.platen_speed_m_min")) / 60.0;
+    s.speedup = t->number(dk("test.speedup"));
+    s.time_step_s = t->number(dk("test.time_step_s"));
+    s.stroke_m = 1e-3 * t->number(dk("test.stroke_mm"));
+    s.local_damping = t->number(dk("test.local_damping"));
+    s.samples = static_cast<int>(t->integer(dk("test.samples")));
     if (s.stroke_m >= s.seedling.diameter_m)
       t->fail("stroke_mm", "must be less than the seedling's diameter");
     t->reject_unknown_keys();

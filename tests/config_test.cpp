@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <regex>
 #include <sstream>
 
@@ -17,6 +18,7 @@
 #include "sim/runner/model_assumptions.h"
 #include "sim/runner/recording_writer.h"
 #include "sim/runner/scenario.h"
+#include "sim/runner/scenario_keys.h"
 
 using namespace planter;
 
@@ -139,8 +141,9 @@ TEST(BoardConfig, TheCalibrationHoldsOnlyMeasuredValues) {
   std::ofstream(cal) << "[encoder]\nwheel_radius_m = 0.152\ncounts_per_rev = 1024\n";
   const std::string e = error_of(path);
   EXPECT_NE(e.find(cal + ":"), std::string::npos) << e;
-  EXPECT_NE(e.find("'encoder.counts_per_rev': unknown key here; a calibration holds"),
-            std::string::npos)
+  EXPECT_NE(
+      e.find("'encoder.counts_per_rev': unknown key here; this key belongs in the board file"),
+      std::string::npos)
       << e;
   std::ofstream(cal) << "[nodes.force_sensor]\nzero_counts = 31\ncounts_per_unit = 10.8\n"
                         "[control]\ndepth_max_mm = 150.0\n";
@@ -311,6 +314,86 @@ namespace {
 
 // Issue 28, item 8: a dotted key of 40,000 parts crashed every tool inside the TOML parser
 // (stack overflow). Refused before the parser, with the file, the line and the limit.
+// Issue 29: the loader reads every row of the scenario's key table with the row's range. A
+// scenario with one key just past its row's maximum is refused, naming that key.
+TEST(ScenarioConfig, EveryRowIsReadWithItsRange) {
+  namespace fs = std::filesystem;
+  const std::string board = std::string(PLANTER_SOURCE_DIR) + "/boards/host-sim/board.toml";
+  int checked = 0;
+  for (std::span<const config::ConfigKey> rows : sim::kScenarioFileKeys) {
+    for (const config::ConfigKey& k : rows) {
+      if (k.file != config::FileKind::kScenario) continue;
+      if (k.type != config::KeyType::kNumber && k.type != config::KeyType::kInteger) continue;
+      if (k.max >= 9e18) continue;  // a seed: no integer lies past it
+      std::ostringstream value;
+      value << std::fixed << std::setprecision(3) << k.max + std::abs(k.max) + 1.0;
+      std::string text = "[scenario]\nboard = \"" + board + "\"\n";
+      std::string dotted = std::string(k.table) + "." + std::string(k.name);
+      const std::string line =
+          std::string(k.name) + " = " +
+          (k.type == config::KeyType::kInteger ? std::to_string(static_cast<long long>(k.max) + 1)
+                                               : value.str()) +
+          "\n";
+      if (k.table == "scenario") {
+        text += line;
+      } else if (k.table == "route.stops[]") {
+        text += "[[route.stops]]\n" + line;
+        dotted = "route.stops[0]." + std::string(k.name);
+      } else {
+        text += "[" + std::string(k.table) + "]\n" + line;
+      }
+      const fs::path file =
+          fs::temp_directory_path() / ("planter-row-" + std::to_string(::getpid()) + ".toml");
+      std::ofstream(file) << text;
+      std::string e;
+      try {
+        sim::load_scenario(file.string());
+      } catch (const config::ConfigError& err) {
+        e = err.what();
+      }
+      EXPECT_NE(e.find("'" + dotted + "': "), std::string::npos) << dotted << ": " << e;
+      EXPECT_NE(e.find("out of range"), std::string::npos) << dotted << ": " << e;
+      fs::remove(file);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 80);
+}
+
+// A key the loader no longer reads says what replaced it; a key of the machine's in a scenario
+// says where it belongs; a typo lists what the table holds.
+TEST(ScenarioConfig, RetiredMisplacedAndMistypedKeysSayWhatToDo) {
+  const auto error_with = [](const std::string& lines) {
+    const std::string path = std::filesystem::temp_directory_path() /
+                             ("planter-keys-" + std::to_string(::getpid()) + ".toml");
+    std::ofstream(path) << "[scenario]\nboard = \"" << PLANTER_SOURCE_DIR
+                        << "/boards/host-sim/board.toml\"\n"
+                        << lines << "\n";
+    std::string e;
+    try {
+      sim::load_scenario(path);
+    } catch (const config::ConfigError& err) {
+      e = err.what();
+    }
+    std::filesystem::remove(path);
+    return e;
+  };
+  const std::string retired = error_with("[soil]\ndraft_coeff = 1.0");
+  EXPECT_NE(retired.find("'soil.draft_coeff': was c_s in a draft proportional to speed"),
+            std::string::npos)
+      << retired;
+  const std::string misplaced = error_with("[planting_monitor]\nskip_ratio = 1.5");
+  EXPECT_NE(misplaced.find("'planting_monitor': unknown key here; this key belongs in the "
+                           "machine file (machines/<machine>.toml"),
+            std::string::npos)
+      << misplaced;
+  const std::string typo = error_with("[terrain]\nroughnes_mm = 2.0");
+  EXPECT_NE(typo.find("'terrain.roughnes_mm': unknown key; this table holds roughness_mm, "
+                      "wavelength_m, depth_share"),
+            std::string::npos)
+      << typo;
+}
+
 std::string scratch_toml(const std::string& text) {
   const std::string path = std::filesystem::temp_directory_path() /
                            ("planter-bounds-" + std::to_string(getpid()) + ".toml");

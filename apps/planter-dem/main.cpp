@@ -19,6 +19,7 @@
 #include "config/durable_file.h"
 #include "dem/calibration.h"
 #include "dem/compression_report.h"
+#include "dem/dem_keys.h"
 #include "dem/dem_params.h"
 #include "dem/reduced_order.h"
 
@@ -195,6 +196,15 @@ int main(int argc, char** argv) {
       "planter-dem: the seedling's bonded-particle model, its calibration and the "
       "reduced-order force model"};
   app.set_version_flag("--version", std::string("planter-dem ") + planter::apps::version());
+  app.add_flag_callback(
+      "--list-keys",
+      [] {
+        if (!planter::config::write_key_reference(stdout, planter::dem::kDemFileKeys))
+          throw CLI::RuntimeError("planter-dem: cannot write the key reference to standard output",
+                                  1);
+        throw CLI::Success();
+      },
+      "print every key of the --params file (table, default, unit, range, meaning) and exit");
   app.require_subcommand(1);
   Common common;
   auto add_common = [&](CLI::App* sub) {

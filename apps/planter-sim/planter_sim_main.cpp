@@ -32,6 +32,7 @@
 #include "sim/runner/model_assumptions.h"
 #include "sim/runner/recording_writer.h"
 #include "sim/runner/run_plan.h"
+#include "sim/runner/scenario_keys.h"
 #include "sim/seedling/measured_strength.h"
 
 namespace fs = std::filesystem;
@@ -217,6 +218,16 @@ int print_effect_keys() {
 int main(int argc, char** argv) {
   CLI::App app{"planter-sim: the transplanter's plant model and lockstep simulation runner"};
   app.set_version_flag("--version", std::string("planter-sim ") + planter::apps::version());
+  app.add_flag_callback(
+      "--list-keys",
+      [] {
+        if (!planter::config::write_key_reference(stdout, planter::sim::kScenarioFileKeys))
+          throw CLI::RuntimeError("planter-sim: cannot write the key reference to standard output",
+                                  1);
+        throw CLI::Success();
+      },
+      "print every key of a scenario and of a seedling force model (table, default, unit, "
+      "range, meaning) and exit");
   app.require_subcommand(1);
   std::string scenario, out = "out";
   bool quiet = false, force = false;

@@ -30,6 +30,7 @@
 #include "console/console_server.h"
 #endif
 #include "apps/version/version.h"
+#include "config/board_keys.h"
 #include "firmware/controller/control_cycle.h"
 #include "hal/linux/hal_error.h"
 #include "hal/linux/rt_loop.h"
@@ -380,6 +381,15 @@ class OperatorConsole {
 int parse_options(int argc, char** argv, Options& opt) {
   CLI::App app{"planterd: the scallion transplanter's controller daemon"};
   app.set_version_flag("--version", std::string("planterd ") + planter::apps::version());
+  app.add_flag_callback(
+      "--list-keys",
+      [] {
+        if (!planter::config::write_key_reference(stdout, planter::config::kBoardFileKeys))
+          throw CLI::RuntimeError("planterd: cannot write the key reference to standard output", 1);
+        throw CLI::Success();
+      },
+      "print every key of the board, machine and calibration files (table, default, unit, range, "
+      "meaning) and exit");
   app.add_option("--board", opt.board, "board file (boards/<board>/board.toml)")->required();
   app.add_option("--record", opt.record, "record telemetry to this CSV (docs/recording-format.md)");
   app.add_flag("--run", opt.run, "start planting as soon as every node is ready (unattended)");

@@ -52,7 +52,9 @@ struct SoilConfig {
   soil::Soil firmed{16.0, 30.0, 3.0};
 };
 
-struct SeedlingConfig {
+// The seedlings' sizes, feed and strength: plain numbers, so that the scenario's key table
+// (sim/runner/scenario_keys.h) takes its defaults from here at compile time.
+struct SeedlingSpread {
   double length_min_mm = 182.6, length_max_mm = 210.8;
   double diameter_min_mm = 8.3, diameter_max_mm = 11.4;
   double reference_diameter_mm = 10.0;
@@ -81,6 +83,9 @@ struct SeedlingConfig {
   // Tilt scatter the release mechanics leave out (crooked seedlings, settling soil, the covering
   // wheel): calibrated to the paper's centre point (seedling_release.h).
   double tilt_noise_deg = 5.0;
+};
+
+struct SeedlingConfig : SeedlingSpread {
   // From the DEM (planter-dem reduce) when the scenario names one: the compression a force
   // gives (peak_compression_mm). Not the strength: that comes from the measured peaks.
   SeedlingForceModel force_model;

@@ -2,30 +2,50 @@
 
 #include <filesystem>
 
+#include "config/board_keys.h"
 #include "config/toml_section.h"
 #include "sim/plant/effect_keys.h"
+#include "sim/runner/scenario_keys.h"
 
 namespace planter::sim {
 
 using config::ConfigError;
 using config::TomlSection;
 
+namespace {
+
+consteval const config::ConfigKey& sk(std::string_view dotted) {
+  return config::key_in(kScenarioKeys, dotted);
+}
+consteval const config::ConfigKey& fk(std::string_view dotted) {
+  return config::key_in(kSeedlingForceKeys, dotted);
+}
+
+// A scenario's rows and the board files' (a machine key in a scenario says where it belongs).
+inline constexpr std::span<const config::ConfigKey> kKnownKeys[] = {
+    kScenarioKeys,      kScenarioEffectKeys,  kSeedlingForceKeys,
+    config::kBoardKeys, config::kMachineKeys, config::kCalibrationKeys};
+
+config::KeyTables key_tables(config::FileKind here) { return {here, kKnownKeys}; }
+
+}  // namespace
+
 SeedlingForceModel load_seedling_force_model(const std::string& path) {
-  config::TomlDocument doc(path);
+  config::TomlDocument doc(path, key_tables(config::FileKind::kSeedlingForce));
   TomlSection root = doc.root();
   auto t = root.table("seedling_force");
   if (!t) throw ConfigError(path, 1, "seedling_force", "table is missing (planter-dem reduce)");
   SeedlingForceModel m;
-  m.reference_diameter_mm = t->required_number("reference_diameter_mm", 3.0, 30.0, "mm");
-  m.exponent = t->required_number("exponent", 0.5, 4.0);
-  m.stiffness_N_per_mm_n = t->required_number("stiffness_N_per_mm_n", 1e-3, 1e5);
-  m.stiffness_slope_per_mm = t->required_number("stiffness_slope_per_mm", -1e5, 1e5);
-  m.peak_force_N = t->required_number("peak_force_N", 1.0, 1e4, "N");
-  m.peak_force_slope_N_per_mm = t->required_number("peak_force_slope_N_per_mm", -1e4, 1e4);
-  m.peak_displacement_mm = t->required_number("peak_displacement_mm", 0.05, 20.0, "mm");
-  m.peak_displacement_slope = t->required_number("peak_displacement_slope", -10.0, 10.0);
-  m.residual_fraction = t->required_number("residual_fraction", 0.0, 1.0);
-  m.damping_N_s_per_mm = t->required_number("damping_N_s_per_mm", 0.0, 1e4);
+  m.reference_diameter_mm = t->number(fk("seedling_force.reference_diameter_mm"));
+  m.exponent = t->number(fk("seedling_force.exponent"));
+  m.stiffness_N_per_mm_n = t->number(fk("seedling_force.stiffness_N_per_mm_n"));
+  m.stiffness_slope_per_mm = t->number(fk("seedling_force.stiffness_slope_per_mm"));
+  m.peak_force_N = t->number(fk("seedling_force.peak_force_N"));
+  m.peak_force_slope_N_per_mm = t->number(fk("seedling_force.peak_force_slope_N_per_mm"));
+  m.peak_displacement_mm = t->number(fk("seedling_force.peak_displacement_mm"));
+  m.peak_displacement_slope = t->number(fk("seedling_force.peak_displacement_slope"));
+  m.residual_fraction = t->number(fk("seedling_force.residual_fraction"));
+  m.damping_N_s_per_mm = t->number(fk("seedling_force.damping_N_s_per_mm"));
   t->reject_unknown_keys();
   root.reject_unknown_keys();
   m.loaded = true;
@@ -33,14 +53,14 @@ SeedlingForceModel load_seedling_force_model(const std::string& path) {
 }
 
 Scenario load_scenario(const std::string& path) {
-  config::TomlDocument doc(path);
+  config::TomlDocument doc(path, key_tables(config::FileKind::kScenario));
   TomlSection root = doc.root();
   Scenario s;
   s.file = path;
   auto sc = root.table("scenario");
   if (!sc) throw ConfigError(path, 1, "scenario", "table is missing (name, board, seed)");
-  s.name = sc->string("name", std::filesystem::path(path).stem().string());
-  const std::string board = sc->string("board", "");
+  s.name = sc->string(sk("scenario.name"), std::filesystem::path(path).stem().string());
+  const std::string board = sc->string(sk("scenario.board"));
   if (board.empty())
     sc->fail("board", "is required: path of a board file, relative to the scenario");
   const auto board_path = std::filesystem::path(path).parent_path() / board;
@@ -49,27 +69,27 @@ Scenario load_scenario(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(board_path, ec))
     sc->fail("board", board_path.string() + " is not a file (boards/<board>/board.toml)");
-  s.seed = static_cast<std::uint64_t>(sc->integer("seed", 1, 0, INT64_MAX));
-  s.tail_s = sc->number("tail_s", 3.0, 0.0, 600.0, "s");
-  s.max_duration_s = sc->number("max_duration_s", 3600.0, 1.0, 86400.0, "s");
-  s.plant.start_delay_s = sc->number("start_delay_s", 3.0, 0.0, 600.0, "s");
+  s.seed = static_cast<std::uint64_t>(sc->integer(sk("scenario.seed")));
+  s.tail_s = sc->number(sk("scenario.tail_s"));
+  s.max_duration_s = sc->number(sk("scenario.max_duration_s"));
+  s.plant.start_delay_s = sc->number(sk("scenario.start_delay_s"));
   sc->reject_unknown_keys();
   s.board = config::load_board(board_path.string());
   s.plant.disc_radius_m = s.board.controller.sigma.disc_radius_m;
 
   PlantConfig& p = s.plant;
   if (auto r = root.table("route")) {
-    p.route.distance_m = r->number("distance_m", 30.0, 0.1, 10000.0, "m");
-    p.route.speed_mps = r->number("speed_mps", 0.06, 0.005, 1.0, "m/s");
-    p.route.accel_mps2 = r->number("accel_mps2", 0.03, 0.001, 5.0, "m/s^2");
-    p.route.speed_variation_pct = r->number("speed_variation_pct", 0.0, 0.0, 50.0, "%");
-    p.route.speed_variation_period_s =
-        r->number("speed_variation_period_s", 20.0, 0.5, 1000.0, "s");
+    p.route.distance_m = r->number(sk("route.distance_m"));
+    p.route.speed_mps = r->number(sk("route.speed_mps"));
+    p.route.accel_mps2 = r->number(sk("route.accel_mps2"));
+    p.route.speed_variation_pct = r->number(sk("route.speed_variation_pct"));
+    p.route.speed_variation_period_s = r->number(sk("route.speed_variation_period_s"));
     for (auto& stop : r->array_of_tables("stops")) {
       StopEvent e;
-      e.at_m = stop.number("at_m", 0.0, 0.0, p.route.distance_m, "m");
-      e.duration_s = stop.number("duration_s", 5.0, 0.0, 3600.0, "s");
-      e.planting_off = stop.boolean("planting_off", false);
+      e.at_m = stop.number(sk("route.stops[].at_m"));
+      if (e.at_m > p.route.distance_m) stop.fail("at_m", "must not be beyond route.distance_m");
+      e.duration_s = stop.number(sk("route.stops[].duration_s"));
+      e.planting_off = stop.boolean(sk("route.stops[].planting_off"));
       // Off and on again needs the disc to stop and the start delay to pass within the stop.
       if (e.planting_off && e.duration_s < p.start_delay_s + 5.0)
         stop.fail("duration_s", "must be at least start_delay_s + 5 s with planting_off = true");
@@ -77,75 +97,63 @@ Scenario load_scenario(const std::string& path) {
       p.route.stops.push_back(e);
     }
     if (p.route.stops.size() > 32) r->fail("stops", "at most 32 stops");
-    p.route.push_at_s = r->number("push_at_s", -1.0, -1.0, 1e6, "s");
+    p.route.push_at_s = r->number(sk("route.push_at_s"));
     r->reject_unknown_keys();
   }
   if (auto t = root.table("terrain")) {
-    p.terrain.roughness_mm = t->number("roughness_mm", 0.0, 0.0, 100.0, "mm");
-    p.terrain.wavelength_m = t->number("wavelength_m", 0.5, 0.01, 100.0, "m");
-    p.terrain.depth_share = t->number("depth_share", 0.3, 0.0, 1.0);
+    p.terrain.roughness_mm = t->number(sk("terrain.roughness_mm"));
+    p.terrain.wavelength_m = t->number(sk("terrain.wavelength_m"));
+    p.terrain.depth_share = t->number(sk("terrain.depth_share"));
     t->reject_unknown_keys();
   }
   if (auto t = root.table("soil")) {
-    p.soil.wheel_radius_m = t->number("wheel_radius_m", 0.15, 0.02, 1.0, "m");
-    p.soil.slip_mean_pct = t->number("slip_mean_pct", 0.0, -20.0, 50.0, "%");
-    p.soil.slip_variation_pct = t->number("slip_variation_pct", 0.0, 0.0, 20.0, "%");
-    p.soil.slip_variation_wavelength_m =
-        t->number("slip_variation_wavelength_m", 3.7, 0.1, 1000.0, "m");
-    if (t->has("draft_coeff"))
-      t->fail(
-          "draft_coeff",
-          "was c_s in a draft proportional to speed, which was wrong; the draft now has "
-          "ASABE D497's form: set texture and, if measured, draft_a_N_per_cm (docs/simulator.md, "
-          "\"Model assumptions\")");
+    p.soil.wheel_radius_m = t->number(sk("soil.wheel_radius_m"));
+    p.soil.slip_mean_pct = t->number(sk("soil.slip_mean_pct"));
+    p.soil.slip_variation_pct = t->number(sk("soil.slip_variation_pct"));
+    p.soil.slip_variation_wavelength_m = t->number(sk("soil.slip_variation_wavelength_m"));
     soil::OpenerDraftLaw& d = p.soil.draft;
-    const std::string texture = t->string("texture", "medium");
+    const std::string texture = t->string(sk("soil.texture"));
     d.texture_factor = soil::texture_factor_of(texture);
     if (d.texture_factor < 0.0)
       t->fail("texture", "is '" + texture + "'; allowed: fine, medium, coarse (D497's F_i)");
-    d.a_N_per_cm = t->number("draft_a_N_per_cm", d.a_N_per_cm, 0.0, 1e4, "N/cm");
-    d.b_N_per_cm_kmh = t->number("draft_b_N_per_cm_kmh", d.b_N_per_cm_kmh, 0.0, 1e4, "N/(cm km/h)");
-    d.c_N_per_cm_kmh2 =
-        t->number("draft_c_N_per_cm_kmh2", d.c_N_per_cm_kmh2, 0.0, 1e4, "N/(cm (km/h)^2)");
-    d.depth_exponent = t->number("draft_depth_exponent", d.depth_exponent, 1.0, 2.0);
+    d.a_N_per_cm = t->number(sk("soil.draft_a_N_per_cm"));
+    d.b_N_per_cm_kmh = t->number(sk("soil.draft_b_N_per_cm_kmh"));
+    d.c_N_per_cm_kmh2 = t->number(sk("soil.draft_c_N_per_cm_kmh2"));
+    d.depth_exponent = t->number(sk("soil.draft_depth_exponent"));
     soil::Soil& g = p.soil.backflow;
     soil::Soil& f = p.soil.firmed;
-    g.unit_weight_kN_per_m3 =
-        t->number("unit_weight_kN_per_m3", g.unit_weight_kN_per_m3, 5.0, 25.0, "kN/m^3");
-    g.friction_angle_deg = t->number("friction_angle_deg", g.friction_angle_deg, 10.0, 50.0, "deg");
+    g.unit_weight_kN_per_m3 = t->number(sk("soil.unit_weight_kN_per_m3"));
+    g.friction_angle_deg = t->number(sk("soil.friction_angle_deg"));
     f.friction_angle_deg = g.friction_angle_deg;
-    g.cohesion_kPa = t->number("cohesion_kPa", g.cohesion_kPa, 0.0, 100.0, "kPa");
-    f.unit_weight_kN_per_m3 =
-        t->number("firmed_unit_weight_kN_per_m3", f.unit_weight_kN_per_m3, 5.0, 25.0, "kN/m^3");
-    f.cohesion_kPa = t->number("firmed_cohesion_kPa", f.cohesion_kPa, 0.0, 100.0, "kPa");
+    g.cohesion_kPa = t->number(sk("soil.cohesion_kPa"));
+    f.unit_weight_kN_per_m3 = t->number(sk("soil.firmed_unit_weight_kN_per_m3"));
+    f.cohesion_kPa = t->number(sk("soil.firmed_cohesion_kPa"));
     t->reject_unknown_keys();
   }
   if (auto t = root.table("seedlings")) {
     SeedlingConfig& c = p.seedlings;
-    c.length_min_mm = t->number("length_min_mm", c.length_min_mm, 50.0, 500.0, "mm");
-    c.length_max_mm = t->number("length_max_mm", c.length_max_mm, c.length_min_mm, 500.0, "mm");
-    c.diameter_min_mm = t->number("diameter_min_mm", c.diameter_min_mm, 2.0, 30.0, "mm");
-    c.diameter_max_mm =
-        t->number("diameter_max_mm", c.diameter_max_mm, c.diameter_min_mm, 30.0, "mm");
-    if (t->has("feed_pitch_mm"))
-      t->fail("feed_pitch_mm",
-              "is the machine's: [planting_monitor] clamp_pitch_mm in machines/<machine>.toml "
-              "(the planting monitor's target spacing comes from it too)");
-    c.feed_miss_pct = t->number("feed_miss_pct", c.feed_miss_pct, 0.0, 100.0, "%");
-    c.feed_double_pct =
-        t->number("feed_double_pct", c.feed_double_pct, 0.0, 100.0 - c.feed_miss_pct, "%");
+    c.length_min_mm = t->number(sk("seedlings.length_min_mm"));
+    c.length_max_mm = t->number(sk("seedlings.length_max_mm"));
+    if (c.length_max_mm < c.length_min_mm)
+      t->fail("length_max_mm", "must be at least length_min_mm");
+    c.diameter_min_mm = t->number(sk("seedlings.diameter_min_mm"));
+    c.diameter_max_mm = t->number(sk("seedlings.diameter_max_mm"));
+    if (c.diameter_max_mm < c.diameter_min_mm)
+      t->fail("diameter_max_mm", "must be at least diameter_min_mm");
+    c.feed_miss_pct = t->number(sk("seedlings.feed_miss_pct"));
+    c.feed_double_pct = t->number(sk("seedlings.feed_double_pct"));
+    if (c.feed_double_pct > 100.0 - c.feed_miss_pct)
+      t->fail("feed_double_pct", "must be at most 100 - feed_miss_pct");
     // Unset: the measured peaks' (sim/seedling/measured_strength.h).
-    if (t->has("strength_mean_N"))
-      c.strength_mean_N = t->number("strength_mean_N", 0.0, 10.0, 1000.0, "N");
-    if (t->has("strength_sd_N")) c.strength_sd_N = t->number("strength_sd_N", 0.0, 0.0, 500.0, "N");
-    c.strength_diameter_exponent =
-        t->number("strength_diameter_exponent", c.strength_diameter_exponent, -3.0, 3.0);
-    c.strength_test_length_mm =
-        t->number("strength_test_length_mm", c.strength_test_length_mm, 1.0, 200.0, "mm");
-    c.tilt_noise_deg = t->number("tilt_noise_deg", c.tilt_noise_deg, 0.0, 45.0, "deg");
-    c.density_kg_per_m3 =
-        t->number("density_kg_per_m3", c.density_kg_per_m3, 100.0, 2000.0, "kg/m^3");
-    const std::string model = t->string("force_model", "");
+    if (t->has(sk("seedlings.strength_mean_N")))
+      c.strength_mean_N = t->number(sk("seedlings.strength_mean_N"));
+    if (t->has(sk("seedlings.strength_sd_N")))
+      c.strength_sd_N = t->number(sk("seedlings.strength_sd_N"));
+    c.strength_diameter_exponent = t->number(sk("seedlings.strength_diameter_exponent"));
+    c.strength_test_length_mm = t->number(sk("seedlings.strength_test_length_mm"));
+    c.tilt_noise_deg = t->number(sk("seedlings.tilt_noise_deg"));
+    c.density_kg_per_m3 = t->number(sk("seedlings.density_kg_per_m3"));
+    const std::string model = t->string(sk("seedlings.force_model"));
     if (!model.empty()) {
       const auto model_path = std::filesystem::path(path).parent_path() / model;
       if (!std::filesystem::exists(model_path))
@@ -157,57 +165,39 @@ Scenario load_scenario(const std::string& path) {
   }
   if (auto t = root.table("mechanism")) {
     MechanismConfig& m = p.mechanism;
-    m.contact_area_mm2 = t->number("contact_area_mm2", m.contact_area_mm2, 50.0, 600.0, "mm^2");
-    for (const char* old_key : {"release_angle_deg", "kinematic_gain", "optimum_sigma"})
-      if (t->has(old_key))
-        t->fail(old_key,
-                "belonged to the tilt formula the release mechanics replaced; the release is "
-                "set by release_after_lowest_deg, root_clearance_mm, residual_grip_share, "
-                "root_protrusion_mm and lip_friction");
-    if (t->has("root_reach_mm"))
-      t->fail("root_reach_mm",
-              "was typed to the paper's optimum depth and is gone: the disc rides with the "
-              "opener, so the root's reach follows from the depth and root_clearance_mm");
-    m.carry_angle_deg = t->number("carry_angle_deg", m.carry_angle_deg, 30.0, 300.0, "deg");
-    m.release_after_lowest_deg =
-        t->number("release_after_lowest_deg", m.release_after_lowest_deg, -60.0, 60.0, "deg");
-    m.root_clearance_mm = t->number("root_clearance_mm", m.root_clearance_mm, 0.0, 100.0, "mm");
-    m.covering_wheel_behind_mm =
-        t->number("covering_wheel_behind_mm", m.covering_wheel_behind_mm, 0.0, 2000.0, "mm");
-    m.handoff_speed_mismatch_mps =
-        t->number("handoff_speed_mismatch_mps", m.handoff_speed_mismatch_mps, 0.0, 2.0, "m/s");
-    m.protrusion_band_mm = t->number("protrusion_band_mm", m.protrusion_band_mm, 5.0, 200.0, "mm");
-    m.nip_time_s = t->number("nip_time_s", m.nip_time_s, 0.01, 5.0, "s");
-    m.residual_grip_share = t->number("residual_grip_share", m.residual_grip_share, 0.0, 1.0);
-    m.root_protrusion_mm = t->number("root_protrusion_mm", m.root_protrusion_mm, 10.0, 200.0, "mm");
-    m.lip_friction = t->number("lip_friction", m.lip_friction, 0.0, 2.0);
-    m.lip_shear_modulus_MPa =
-        t->number("lip_shear_modulus_MPa", m.lip_shear_modulus_MPa, 0.01, 100.0, "MPa");
-    m.lip_shear_layer_mm = t->number("lip_shear_layer_mm", m.lip_shear_layer_mm, 0.5, 100.0, "mm");
-    m.backflow_fill = t->number("backflow_fill", m.backflow_fill, 0.0, 1.0);
+    m.contact_area_mm2 = t->number(sk("mechanism.contact_area_mm2"));
+    m.carry_angle_deg = t->number(sk("mechanism.carry_angle_deg"));
+    m.release_after_lowest_deg = t->number(sk("mechanism.release_after_lowest_deg"));
+    m.root_clearance_mm = t->number(sk("mechanism.root_clearance_mm"));
+    m.covering_wheel_behind_mm = t->number(sk("mechanism.covering_wheel_behind_mm"));
+    m.handoff_speed_mismatch_mps = t->number(sk("mechanism.handoff_speed_mismatch_mps"));
+    m.protrusion_band_mm = t->number(sk("mechanism.protrusion_band_mm"));
+    m.nip_time_s = t->number(sk("mechanism.nip_time_s"));
+    m.residual_grip_share = t->number(sk("mechanism.residual_grip_share"));
+    m.root_protrusion_mm = t->number(sk("mechanism.root_protrusion_mm"));
+    m.lip_friction = t->number(sk("mechanism.lip_friction"));
+    m.lip_shear_modulus_MPa = t->number(sk("mechanism.lip_shear_modulus_MPa"));
+    m.lip_shear_layer_mm = t->number(sk("mechanism.lip_shear_layer_mm"));
+    m.backflow_fill = t->number(sk("mechanism.backflow_fill"));
     t->reject_unknown_keys();
   }
   if (auto t = root.table("plant")) {
     DriveModelConfig& d = p.drive;
-    d.disc_time_constant_s =
-        t->number("disc_time_constant_s", d.disc_time_constant_s, 0.001, 5.0, "s");
-    d.disc_inertia_kgm2 =
-        t->number("disc_inertia_kgm2", d.disc_inertia_kgm2, 1e-4, 100.0, "kg*m^2");
-    d.disc_damping_Nms = t->number("disc_damping_Nms", d.disc_damping_Nms, 0.0, 1000.0, "N*m*s");
-    d.actuator_time_constant_s =
-        t->number("actuator_time_constant_s", d.actuator_time_constant_s, 0.001, 5.0, "s");
-    d.clamp_k_N = t->number("clamp_k_N", d.clamp_k_N, 0.1, 1e4);
-    d.clamp_x0_mm = t->number("clamp_x0_mm", d.clamp_x0_mm, 0.0, 50.0, "mm");
-    d.clamp_n = t->number("clamp_n", d.clamp_n, 1.0, 3.0);
-    d.force_noise_N = t->number("force_noise_N", d.force_noise_N, 0.0, 50.0, "N");
-    d.depth_travel_max_mm =
-        t->number("depth_travel_max_mm", d.depth_travel_max_mm, 10.0, 500.0, "mm");
+    d.disc_time_constant_s = t->number(sk("plant.disc_time_constant_s"));
+    d.disc_inertia_kgm2 = t->number(sk("plant.disc_inertia_kgm2"));
+    d.disc_damping_Nms = t->number(sk("plant.disc_damping_Nms"));
+    d.actuator_time_constant_s = t->number(sk("plant.actuator_time_constant_s"));
+    d.clamp_k_N = t->number(sk("plant.clamp_k_N"));
+    d.clamp_x0_mm = t->number(sk("plant.clamp_x0_mm"));
+    d.clamp_n = t->number(sk("plant.clamp_n"));
+    d.force_noise_N = t->number(sk("plant.force_noise_N"));
+    d.depth_travel_max_mm = t->number(sk("plant.depth_travel_max_mm"));
     t->reject_unknown_keys();
   }
   if (auto t = root.table("effects")) {
     Effects& e = p.effects;
-    for (const EffectKey& k : kEffectKeys)
-      e.*k.member = t->number(k.key, k.fallback, k.min, k.max, k.unit);
+    for (std::size_t i = 0; i < kEffectKeys.size(); ++i)
+      e.*kEffectKeys[i].member = t->number(kScenarioEffectKeys[i]);
     if (e.clamp_relaxation_frac + e.clamp_relaxation2_frac > 0.9)
       t->fail("clamp_relaxation2_frac",
               "with clamp_relaxation_frac must stay at most 0.9 (the branches share the load)");
@@ -216,17 +206,17 @@ Scenario load_scenario(const std::string& path) {
   if (auto t = root.table("controller")) {
     // Operating-point overrides of the board's [control] table.
     auto& c = s.board.controller;
-    c.sigma.sigma = t->number("sigma", c.sigma.sigma, 0.5, 3.0);
-    c.clamp.setpoint_N = t->number("clamp_force_N", c.clamp.setpoint_N, 0.0, 200.0, "N");
+    c.sigma.sigma = t->number(sk("controller.sigma"), c.sigma.sigma);
+    c.clamp.setpoint_N = t->number(sk("controller.clamp_force_N"), c.clamp.setpoint_N);
     if (c.clamp.setpoint_N >= c.clamp.ceiling_N)
       t->fail("clamp_force_N", "must be below the board's clamp_ceiling_N");
-    c.depth.target_mm = t->number("depth_mm", c.depth.target_mm, 40.0, 160.0, "mm");
+    c.depth.target_mm = t->number(sk("controller.depth_mm"), c.depth.target_mm);
     t->reject_unknown_keys();
   }
   if (auto t = root.table("faults")) {
-    s.faults.estop_at_s = t->number("estop_at_s", -1.0, -1.0, 1e6, "s");
-    s.faults.estop_release_at_s = t->number("estop_release_at_s", -1.0, -1.0, 1e6, "s");
-    s.faults.silent_node = t->string("silent_node", "");
+    s.faults.estop_at_s = t->number(sk("faults.estop_at_s"));
+    s.faults.estop_release_at_s = t->number(sk("faults.estop_release_at_s"));
+    s.faults.silent_node = t->string(sk("faults.silent_node"));
     if (!s.faults.silent_node.empty()) {
       bool known = false;
       for (std::size_t i = 0; i < kNodeCount; ++i)
@@ -235,7 +225,7 @@ Scenario load_scenario(const std::string& path) {
         t->fail("silent_node",
                 "must be one of disc_drive, roller_actuator, depth_actuator, force_sensor");
     }
-    s.faults.silent_at_s = t->number("silent_at_s", -1.0, -1.0, 1e6, "s");
+    s.faults.silent_at_s = t->number(sk("faults.silent_at_s"));
     t->reject_unknown_keys();
   }
   root.reject_unknown_keys();

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "config/board_keys.h"
 #include "config/toml_section.h"
 #include "planter/hal/can_frame.h"
 
@@ -89,7 +90,7 @@ void check_node_scaling(TomlSection& node, const NodeConfig& n, const Controller
         const double max_counts = std::ldexp(1.0, m.entries[i].bits - 1) - 1.0;
         const double counts = s.full_scale * cpu + std::fabs(n.zero_counts);
         if (counts > max_counts) {
-          node.fail("counts_per_unit",
+          node.fail(key_in(kMachineKeys, "nodes.*.counts_per_unit"),
                     format(cpu) + " makes the " + s.what + " (" + format(s.full_scale) + " " +
                         s.unit + ") " + format(counts) + " counts, beyond the " +
                         std::to_string(m.entries[i].bits) + "-bit object's " + format(max_counts) +
@@ -97,16 +98,17 @@ void check_node_scaling(TomlSection& node, const NodeConfig& n, const Controller
                         format((max_counts - std::fabs(n.zero_counts)) / s.full_scale));
         }
         if (1.0 / cpu > s.resolution) {
-          node.fail("counts_per_unit", format(cpu) + " makes one count " + format(1.0 / cpu) + " " +
-                                           s.unit + " of " + s.what + "; the loops need at most " +
-                                           format(s.resolution) + " (allowed at least " +
-                                           format(1.0 / s.resolution) + ")");
+          node.fail(key_in(kMachineKeys, "nodes.*.counts_per_unit"),
+                    format(cpu) + " makes one count " + format(1.0 / cpu) + " " + s.unit + " of " +
+                        s.what + "; the loops need at most " + format(s.resolution) +
+                        " (allowed at least " + format(1.0 / s.resolution) + ")");
         }
       }
     }
   }
   if (n.profile_velocity_units_per_s * cpu > 4294967295.0) {
-    node.fail("profile_velocity", "times counts_per_unit exceeds 0x6081's 32 bits");
+    node.fail(key_in(kMachineKeys, "nodes.*.profile_velocity"),
+              "times counts_per_unit exceeds 0x6081's 32 bits");
   }
 }
 

@@ -66,22 +66,25 @@ Calibration read_calibration(const std::string& path) {
   TomlSection root = doc.root();
   Calibration cal;
   if (auto enc = root.table("encoder")) {
-    if (enc->has("wheel_radius_m")) cal.wheel_radius_m = enc->number(ck("encoder.wheel_radius_m"));
+    if (enc->has(ck("encoder.wheel_radius_m")))
+      cal.wheel_radius_m = enc->number(ck("encoder.wheel_radius_m"));
     enc->reject_unknown_keys();
   }
   if (auto nodes = root.table("nodes")) {
     if (auto f = nodes->table("force_sensor")) {
-      if (f->has("zero_counts"))
+      if (f->has(ck("nodes.force_sensor.zero_counts")))
         cal.force_zero_counts = f->number(ck("nodes.force_sensor.zero_counts"));
-      if (f->has("counts_per_unit"))
+      if (f->has(ck("nodes.force_sensor.counts_per_unit")))
         cal.force_counts_per_unit = f->number(ck("nodes.force_sensor.counts_per_unit"));
       f->reject_unknown_keys();
     }
     nodes->reject_unknown_keys();
   }
   if (auto ctl = root.table("control")) {
-    if (ctl->has("depth_min_mm")) cal.depth_min_mm = ctl->number(ck("control.depth_min_mm"));
-    if (ctl->has("depth_max_mm")) cal.depth_max_mm = ctl->number(ck("control.depth_max_mm"));
+    if (ctl->has(ck("control.depth_min_mm")))
+      cal.depth_min_mm = ctl->number(ck("control.depth_min_mm"));
+    if (ctl->has(ck("control.depth_max_mm")))
+      cal.depth_max_mm = ctl->number(ck("control.depth_max_mm"));
     ctl->reject_unknown_keys();
   }
   root.reject_unknown_keys();
@@ -93,7 +96,7 @@ Calibration read_calibration(const std::string& path) {
 std::string find_machine(const std::string& board_path, TomlSection& board,
                          const std::string& name) {
   if (name.find('/') != std::string::npos || name.find("..") != std::string::npos)
-    board.fail("machine", "must be a machine's name (machines/<name>.toml), not a path");
+    board.fail(bk("board.machine"), "must be a machine's name (machines/<name>.toml), not a path");
   std::filesystem::path dir = std::filesystem::path(board_path).parent_path();
   if (dir.empty()) dir = ".";
   std::filesystem::path tried;
@@ -107,8 +110,9 @@ std::string find_machine(const std::string& board_path, TomlSection& board,
       return ec ? candidate.string() : resolved.string();
     }
   }
-  board.fail("machine", "no machines/" + name + ".toml beside the board file or up to two " +
-                            "folders above it (first tried " + tried.string() + ")");
+  board.fail(bk("board.machine"), "no machines/" + name +
+                                      ".toml beside the board file or up to two " +
+                                      "folders above it (first tried " + tried.string() + ")");
 }
 
 void parse_node(TomlSection& nodes, NodeRole role, NodeConfig& out, std::set<int>& ids,
@@ -121,11 +125,13 @@ void parse_node(TomlSection& nodes, NodeRole role, NodeConfig& out, std::set<int
   out.role = role;
   out.node_id = static_cast<std::uint8_t>(t->integer(mk("nodes.*.id")));
   if (!ids.insert(out.node_id).second)
-    t->fail("id", "node ID " + std::to_string(out.node_id) + " is used by another node");
+    t->fail(mk("nodes.*.id"),
+            "node ID " + std::to_string(out.node_id) + " is used by another node");
   const bool sensor = role == NodeRole::kForceSensor;
   out.profile = static_cast<std::uint16_t>(t->integer(mk("nodes.*.profile"), sensor ? 404 : 402));
   if (out.profile != (sensor ? 404 : 402))
-    t->fail("profile", sensor ? "must be 404 (measuring device)" : "must be 402 (drive)");
+    t->fail(mk("nodes.*.profile"),
+            sensor ? "must be 404 (measuring device)" : "must be 402 (drive)");
   out.vendor_id = static_cast<std::uint32_t>(t->integer(mk("nodes.*.vendor_id")));
   out.product_code = static_cast<std::uint32_t>(t->integer(mk("nodes.*.product_code")));
   out.counts_per_unit = t->number(mk("nodes.*.counts_per_unit"));
@@ -156,10 +162,10 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
   auto board = root.table("board");
   if (!board) throw ConfigError(path, 1, "board", "table is missing (name, toolchain, machine)");
   b.name = board->string(bk("board.name"));
-  if (b.name.empty()) board->fail("name", "must not be empty");
+  if (b.name.empty()) board->fail(bk("board.name"), "must not be empty");
   b.toolchain = board->string(bk("board.toolchain"));
   if (!board->has(bk("board.machine")) || board->string(bk("board.machine")).empty())
-    board->fail("machine",
+    board->fail(bk("board.machine"),
                 "is required: a board names its machine (machines/<name>.toml beside the board "
                 "or up to two folders above it). A board file that holds the machine's sections "
                 "itself, the format from before boards and machines were split, is no longer "
@@ -173,13 +179,15 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     const bool toml_name =
         calibration.size() > 5 && calibration.compare(calibration.size() - 5, 5, ".toml") == 0;
     if (calibration.find('/') != std::string::npos || !toml_name)
-      board->fail("calibration", "must be the name of a .toml file beside the board file");
+      board->fail(bk("board.calibration"),
+                  "must be the name of a .toml file beside the board file");
     b.calibration_file = (std::filesystem::path(path).parent_path() / calibration).string();
     std::error_code ec;
     if (calibration_override.empty() && !std::filesystem::exists(b.calibration_file, ec)) {
-      board->fail("calibration", b.calibration_file +
-                                     ": no such file (the unit's calibration; planter-can "
-                                     "calibrate writes its values, the package installs one)");
+      board->fail(bk("board.calibration"),
+                  b.calibration_file +
+                      ": no such file (the unit's calibration; planter-can "
+                      "calibrate writes its values, the package installs one)");
     }
     cal =
         read_calibration(calibration_override.empty() ? b.calibration_file : calibration_override);
@@ -194,7 +202,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     if (!m) throw ConfigError(b.machine_file, 1, "machine", "table is missing (name)");
     b.machine_name = m->string(mk("machine.name"));
     if (b.machine_name != machine)
-      m->fail("name",
+      m->fail(mk("machine.name"),
               "is \"" + b.machine_name + "\" but the file is named for \"" + machine + "\"");
     m->reject_unknown_keys();
   }
@@ -220,7 +228,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     b.gpio.status = static_cast<int>(gpio->integer(bk("gpio.status_line")));
     c.estop_active_low = gpio->boolean(bk("gpio.estop_active_low"));
     // The seedling photo-eye is optional: without it the planting monitor has nothing to count.
-    if (gpio->has("seedling_sensor_line")) {
+    if (gpio->has(bk("gpio.seedling_sensor_line"))) {
       b.gpio.seedling_sensor = static_cast<int>(gpio->integer(bk("gpio.seedling_sensor_line")));
       b.gpio.seedling_sensor_active_low = gpio->boolean(bk("gpio.seedling_sensor_active_low"));
       c.monitor.sensor_fitted = true;
@@ -272,12 +280,12 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     c.clamp.setpoint_N = ctl->number(mk("control.clamp_force_N"));
     c.clamp.ceiling_N = ctl->number(mk("control.clamp_ceiling_N"));
     if (c.clamp.ceiling_N >= kSeedlingDamageThresholdN) {
-      ctl->fail("clamp_ceiling_N",
+      ctl->fail(mk("control.clamp_ceiling_N"),
                 std::to_string(c.clamp.ceiling_N) +
                     " N is not below the seedling damage threshold; allowed [10, 127.2) N");
     }
     if (c.clamp.setpoint_N >= c.clamp.ceiling_N)
-      ctl->fail("clamp_force_N", "must be below clamp_ceiling_N");
+      ctl->fail(mk("control.clamp_force_N"), "must be below clamp_ceiling_N");
     c.clamp.kp_mm_per_N = ctl->number(mk("control.clamp_kp_mm_per_N"));
     c.clamp.ki_mm_per_Ns = ctl->number(mk("control.clamp_ki_mm_per_Ns"));
     c.clamp.model_k_N = ctl->number(mk("control.clamp_model_k_N"));
@@ -294,9 +302,10 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     const std::string from_cal =
         cal.depth_min_mm || cal.depth_max_mm ? " (end stops from " + b.calibration_file + ")" : "";
     if (c.depth.max_mm <= c.depth.min_mm)
-      ctl->fail("depth_max_mm", "must be above depth_min_mm" + from_cal);
+      ctl->fail(mk("control.depth_max_mm"), "must be above depth_min_mm" + from_cal);
     if (c.depth.target_mm > c.depth.max_mm)
-      ctl->fail("depth_mm", "must not be beyond depth_max_mm (the actuator's travel)" + from_cal);
+      ctl->fail(mk("control.depth_mm"),
+                "must not be beyond depth_max_mm (the actuator's travel)" + from_cal);
     ctl->reject_unknown_keys();
   }
   // [planting_monitor]: the clamp pitch is the machine's; the skip and multiple limits follow
@@ -357,7 +366,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     for (char ch : b.console.viewer_secret)
       letters += std::isalnum(static_cast<unsigned char>(ch)) ? 1 : 0;
     if (!b.console.viewer_secret.empty() && letters < 12)
-      con->fail("viewer_secret",
+      con->fail(bk("console.viewer_secret"),
                 "needs at least 12 letters or digits (leave it out: viewing is open)");
     con->reject_unknown_keys();
   }

@@ -108,8 +108,8 @@ inline constexpr ConfigKey kMachineKeys[] = {
 
 inline constexpr ConfigKey kCalibrationKeys[] = {
   number_key(kCalibration, "encoder", "wheel_radius_m", kNoDefault, 0.02, 1.0, "m", "the soil wheel's measured effective radius", "the machine's"),
-  number_key(kCalibration, "nodes.force_sensor", "zero_counts", kNoDefault, -1e9, 1e9, "", "the load cell's measured tare", "the machine's"),
-  number_key(kCalibration, "nodes.force_sensor", "counts_per_unit", kNoDefault, 1e-6, 1e9, "", "the load cell's measured span, counts per N", "the machine's"),
+  number_key(kCalibration, "nodes.force_sensor", "zero_counts", kNoDefault, -1e9, 1e9, "counts", "the load cell's measured tare", "the machine's"),
+  number_key(kCalibration, "nodes.force_sensor", "counts_per_unit", kNoDefault, 1e-6, 1e9, "counts/N", "the load cell's measured span, counts per N", "the machine's"),
   number_key(kCalibration, "control", "depth_min_mm", kNoDefault, -50.0, 500.0, "mm", "the depth actuator's measured upper end stop", "the machine's"),
   number_key(kCalibration, "control", "depth_max_mm", kNoDefault, 10.0, 500.0, "mm", "the depth actuator's measured lower end stop", "the machine's"),
 };

@@ -60,6 +60,9 @@ class TomlSection {
   [[nodiscard]] std::string dotted(const std::string& key) const;
   [[nodiscard]] const std::string& file() const { return file_; }
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+  [[noreturn]] void fail(const ConfigKey& k, const std::string& what) const {
+    fail(std::string(k.name), what);
+  }
   // fail()s when a string value holds a control character (newline, tab, ...).
   void reject_control_characters(const std::string& key, const std::string& s) const;
 

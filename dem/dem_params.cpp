@@ -54,9 +54,10 @@ CompressionSetup load_compression_setup(const std::string& path) {
     g.bond_gap_m = 1e-3 * t->number(dk("seedling.bond_gap_mm"));
     g.curvature_radius_m = 1e-3 * t->number(dk("seedling.curvature_radius_mm"));
     if (g.curvature_radius_m > 0.0 && g.curvature_radius_m < g.length_m / 3.0)
-      t->fail("curvature_radius_mm", "must be 0 (straight) or at least a third of length_mm");
+      t->fail(dk("seedling.curvature_radius_mm"),
+              "must be 0 (straight) or at least a third of length_mm");
     if (2.0 * g.particle_radius_m > 0.5 * g.diameter_m)
-      t->fail("particle_radius_mm", "must be at most a quarter of diameter_mm");
+      t->fail(dk("seedling.particle_radius_mm"), "must be at most a quarter of diameter_mm");
     t->reject_unknown_keys();
   }
   if (auto t = root.table("bond")) {
@@ -80,7 +81,7 @@ CompressionSetup load_compression_setup(const std::string& path) {
     s.local_damping = t->number(dk("test.local_damping"));
     s.samples = static_cast<int>(t->integer(dk("test.samples")));
     if (s.stroke_m >= s.seedling.diameter_m)
-      t->fail("stroke_mm", "must be less than the seedling's diameter");
+      t->fail(dk("test.stroke_mm"), "must be less than the seedling's diameter");
     t->reject_unknown_keys();
   }
   root.reject_unknown_keys();

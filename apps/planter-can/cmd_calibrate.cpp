@@ -8,6 +8,7 @@
 #include "apps/planter-can/board_file_edit.h"
 #include "apps/planter-can/operator_prompt.h"
 #include "apps/planter-can/sdo_session.h"
+#include "config/board_keys.h"
 #include "firmware/canopen/cia402.h"
 #include "firmware/canopen/pdo.h"
 #include "firmware/io/signal_table.h"
@@ -18,11 +19,20 @@ namespace {
 
 namespace c402 = canopen::cia402;
 
+// One calibrated value: its row of the calibration's key table (config/board_keys.h), the
+// value in use and the measured one.
 struct Change {
-  std::string table, key;
+  const config::ConfigKey& row;
   double before = 0.0, after = 0.0;
-  std::string unit;
 };
+
+consteval const config::ConfigKey& ck(std::string_view dotted) {
+  return config::key_in(config::kCalibrationKeys, dotted);
+}
+
+std::string dotted(const config::ConfigKey& k) {
+  return std::string(k.table) + "." + std::string(k.name);
+}
 
 std::string number_text(double v) {
   char b[32];
@@ -36,7 +46,8 @@ int report(ToolContext& ctx, const CalibrateOptions& opt, const std::vector<Chan
   bool written = false;
   if (opt.write) {
     std::vector<BoardEdit> edits;
-    for (const auto& c : changes) edits.push_back({c.table, c.key, number_text(c.after)});
+    for (const auto& c : changes)
+      edits.push_back({std::string(c.row.table), std::string(c.row.name), number_text(c.after)});
     written = write_board_edits(ctx.board->file, edits, write_error, &backup, &written_file);
   }
   if (ctx.json) {
@@ -46,11 +57,11 @@ int report(ToolContext& ctx, const CalibrateOptions& opt, const std::vector<Chan
       j["backup"] = backup;
     }
     for (const auto& c : changes) {
-      j["changes"].push_back({{"table", c.table},
-                              {"key", c.key},
+      j["changes"].push_back({{"table", c.row.table},
+                              {"key", c.row.name},
                               {"before", c.before},
                               {"after", c.after},
-                              {"unit", c.unit}});
+                              {"unit", c.row.unit}});
     }
     if (!write_error.empty()) j["error"] = write_error;
     ctx.out << j.dump(2) << "\n";
@@ -59,8 +70,8 @@ int report(ToolContext& ctx, const CalibrateOptions& opt, const std::vector<Chan
     std::snprintf(line, sizeof line, "%-28s %14s %14s  %s\n", "key", "before", "after", "unit");
     ctx.out << line;
     for (const auto& c : changes) {
-      std::snprintf(line, sizeof line, "%-28s %14.6g %14.6g  %s\n", (c.table + "." + c.key).c_str(),
-                    c.before, c.after, c.unit.c_str());
+      std::snprintf(line, sizeof line, "%-28s %14.6g %14.6g  %s\n", dotted(c.row).c_str(), c.before,
+                    c.after, std::string(c.row.unit).c_str());
       ctx.out << line;
     }
     if (written)
@@ -121,9 +132,8 @@ int calibrate_force(ToolContext& ctx, const CalibrateOptions& opt, OperatorPromp
             << " counts only (noise " << zero_sd << "); was the weight hung?\n";
     return kExitFailed;
   }
-  std::vector<Change> changes{
-      {"nodes.force_sensor", "zero_counts", n.zero_counts, zero, "counts"},
-      {"nodes.force_sensor", "counts_per_unit", n.counts_per_unit, span, "counts/N"}};
+  std::vector<Change> changes{{ck("nodes.force_sensor.zero_counts"), n.zero_counts, zero},
+                              {ck("nodes.force_sensor.counts_per_unit"), n.counts_per_unit, span}};
   const double before_N = bus_to_si(BusScale::kTared, n, loaded);
   nlohmann::json ev{{"zero_counts_mean", zero},     {"zero_counts_sd", zero_sd},
                     {"loaded_counts_mean", loaded}, {"loaded_counts_sd", loaded_sd},
@@ -205,7 +215,7 @@ int calibrate_soil_wheel(ToolContext& ctx, const CalibrateOptions& opt, Operator
                   before_counts_per_m, counts < 0 ? "; counts ran backwards: A/B swapped?" : "");
     ctx.out << line;
   }
-  std::vector<Change> changes{{"encoder", "wheel_radius_m", enc.wheel_radius_m, radius, "m"}};
+  std::vector<Change> changes{{ck("encoder.wheel_radius_m"), enc.wheel_radius_m, radius}};
   return report(ctx, opt, changes, ev);
 }
 
@@ -338,9 +348,9 @@ int calibrate_depth(ToolContext& ctx, const CalibrateOptions& opt) {
     ctx.out << line;
   }
   std::vector<Change> changes{
-      {"control", "depth_min_mm", depth.min_mm,
-       bus_to_si(BusScale::kPerCount, n, static_cast<double>(home)), "mm"},
-      {"control", "depth_max_mm", depth.max_mm, reached ? depth.max_mm : top_mm, "mm"}};
+      {ck("control.depth_min_mm"), depth.min_mm,
+       bus_to_si(BusScale::kPerCount, n, static_cast<double>(home))},
+      {ck("control.depth_max_mm"), depth.max_mm, reached ? depth.max_mm : top_mm}};
   return report(ctx, opt, changes, ev);
 }
 

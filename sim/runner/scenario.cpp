@@ -62,13 +62,14 @@ Scenario load_scenario(const std::string& path) {
   s.name = sc->string(sk("scenario.name"), std::filesystem::path(path).stem().string());
   const std::string board = sc->string(sk("scenario.board"));
   if (board.empty())
-    sc->fail("board", "is required: path of a board file, relative to the scenario");
+    sc->fail(sk("scenario.board"), "is required: path of a board file, relative to the scenario");
   const auto board_path = std::filesystem::path(path).parent_path() / board;
   if (!std::filesystem::exists(board_path))
-    sc->fail("board", "file " + board_path.string() + " does not exist");
+    sc->fail(sk("scenario.board"), "file " + board_path.string() + " does not exist");
   std::error_code ec;
   if (!std::filesystem::is_regular_file(board_path, ec))
-    sc->fail("board", board_path.string() + " is not a file (boards/<board>/board.toml)");
+    sc->fail(sk("scenario.board"),
+             board_path.string() + " is not a file (boards/<board>/board.toml)");
   s.seed = static_cast<std::uint64_t>(sc->integer(sk("scenario.seed")));
   s.tail_s = sc->number(sk("scenario.tail_s"));
   s.max_duration_s = sc->number(sk("scenario.max_duration_s"));
@@ -87,16 +88,18 @@ Scenario load_scenario(const std::string& path) {
     for (auto& stop : r->array_of_tables("stops")) {
       StopEvent e;
       e.at_m = stop.number(sk("route.stops[].at_m"));
-      if (e.at_m > p.route.distance_m) stop.fail("at_m", "must not be beyond route.distance_m");
+      if (e.at_m > p.route.distance_m)
+        stop.fail(sk("route.stops[].at_m"), "must not be beyond route.distance_m");
       e.duration_s = stop.number(sk("route.stops[].duration_s"));
       e.planting_off = stop.boolean(sk("route.stops[].planting_off"));
       // Off and on again needs the disc to stop and the start delay to pass within the stop.
       if (e.planting_off && e.duration_s < p.start_delay_s + 5.0)
-        stop.fail("duration_s", "must be at least start_delay_s + 5 s with planting_off = true");
+        stop.fail(sk("route.stops[].duration_s"),
+                  "must be at least start_delay_s + 5 s with planting_off = true");
       stop.reject_unknown_keys();
       p.route.stops.push_back(e);
     }
-    if (p.route.stops.size() > 32) r->fail("stops", "at most 32 stops");
+    if (p.route.stops.size() > 32) r->fail(sk("route.stops"), "at most 32 stops");
     p.route.push_at_s = r->number(sk("route.push_at_s"));
     r->reject_unknown_keys();
   }
@@ -115,7 +118,8 @@ Scenario load_scenario(const std::string& path) {
     const std::string texture = t->string(sk("soil.texture"));
     d.texture_factor = soil::texture_factor_of(texture);
     if (d.texture_factor < 0.0)
-      t->fail("texture", "is '" + texture + "'; allowed: fine, medium, coarse (D497's F_i)");
+      t->fail(sk("soil.texture"),
+              "is '" + texture + "'; allowed: fine, medium, coarse (D497's F_i)");
     d.a_N_per_cm = t->number(sk("soil.draft_a_N_per_cm"));
     d.b_N_per_cm_kmh = t->number(sk("soil.draft_b_N_per_cm_kmh"));
     d.c_N_per_cm_kmh2 = t->number(sk("soil.draft_c_N_per_cm_kmh2"));
@@ -135,15 +139,15 @@ Scenario load_scenario(const std::string& path) {
     c.length_min_mm = t->number(sk("seedlings.length_min_mm"));
     c.length_max_mm = t->number(sk("seedlings.length_max_mm"));
     if (c.length_max_mm < c.length_min_mm)
-      t->fail("length_max_mm", "must be at least length_min_mm");
+      t->fail(sk("seedlings.length_max_mm"), "must be at least length_min_mm");
     c.diameter_min_mm = t->number(sk("seedlings.diameter_min_mm"));
     c.diameter_max_mm = t->number(sk("seedlings.diameter_max_mm"));
     if (c.diameter_max_mm < c.diameter_min_mm)
-      t->fail("diameter_max_mm", "must be at least diameter_min_mm");
+      t->fail(sk("seedlings.diameter_max_mm"), "must be at least diameter_min_mm");
     c.feed_miss_pct = t->number(sk("seedlings.feed_miss_pct"));
     c.feed_double_pct = t->number(sk("seedlings.feed_double_pct"));
     if (c.feed_double_pct > 100.0 - c.feed_miss_pct)
-      t->fail("feed_double_pct", "must be at most 100 - feed_miss_pct");
+      t->fail(sk("seedlings.feed_double_pct"), "must be at most 100 - feed_miss_pct");
     // Unset: the measured peaks' (sim/seedling/measured_strength.h).
     if (t->has(sk("seedlings.strength_mean_N")))
       c.strength_mean_N = t->number(sk("seedlings.strength_mean_N"));
@@ -157,7 +161,7 @@ Scenario load_scenario(const std::string& path) {
     if (!model.empty()) {
       const auto model_path = std::filesystem::path(path).parent_path() / model;
       if (!std::filesystem::exists(model_path))
-        t->fail("force_model", "file " + model_path.string() + " does not exist");
+        t->fail(sk("seedlings.force_model"), "file " + model_path.string() + " does not exist");
       c.force_model = load_seedling_force_model(model_path.string());
       c.force_model_file = model;
     }
@@ -199,7 +203,7 @@ Scenario load_scenario(const std::string& path) {
     for (std::size_t i = 0; i < kEffectKeys.size(); ++i)
       e.*kEffectKeys[i].member = t->number(kScenarioEffectKeys[i]);
     if (e.clamp_relaxation_frac + e.clamp_relaxation2_frac > 0.9)
-      t->fail("clamp_relaxation2_frac",
+      t->fail(config::key_in(kScenarioEffectKeys, "effects.clamp_relaxation2_frac"),
               "with clamp_relaxation_frac must stay at most 0.9 (the branches share the load)");
     t->reject_unknown_keys();
   }
@@ -209,7 +213,7 @@ Scenario load_scenario(const std::string& path) {
     c.sigma.sigma = t->number(sk("controller.sigma"), c.sigma.sigma);
     c.clamp.setpoint_N = t->number(sk("controller.clamp_force_N"), c.clamp.setpoint_N);
     if (c.clamp.setpoint_N >= c.clamp.ceiling_N)
-      t->fail("clamp_force_N", "must be below the board's clamp_ceiling_N");
+      t->fail(sk("controller.clamp_force_N"), "must be below the board's clamp_ceiling_N");
     c.depth.target_mm = t->number(sk("controller.depth_mm"), c.depth.target_mm);
     t->reject_unknown_keys();
   }
@@ -222,7 +226,7 @@ Scenario load_scenario(const std::string& path) {
       for (std::size_t i = 0; i < kNodeCount; ++i)
         known = known || s.faults.silent_node == node_role_name(static_cast<NodeRole>(i));
       if (!known)
-        t->fail("silent_node",
+        t->fail(sk("faults.silent_node"),
                 "must be one of disc_drive, roller_actuator, depth_actuator, force_sensor");
     }
     s.faults.silent_at_s = t->number(sk("faults.silent_at_s"));

@@ -44,6 +44,32 @@ void lag(const Recording& r, const std::vector<double>& u, double tau, double u_
   }
 }
 
+// CiA 301's synchronous PDOs: a drive acts on a command at the SYNC after the row that recorded
+// it, one SYNC period later, and holds it for a period: a staircase whose mean runs half a period
+// behind its rows. The discrete lags below hold each analysed sample's input over the next
+// interval, which puts half an analysed interval of delay into the model. The command is shifted
+// by the difference, 1.5 SYNC periods less half an analysed interval: one period at the full
+// rate, none when three rows are averaged into one (decimation.h). A recording that declares
+// its SYNC period (sync_period_s, docs/recording-format.md) carries the path; one that does not
+// is fitted as before, and a path there can show as a transport delay.
+std::vector<double> command_at_drive(const Recording& r, const std::vector<double>& command) {
+  const double sync_s = r.sync_period_s();
+  const std::size_t n = command.size();
+  if (sync_s <= 0.0 || n < 2) return command;
+  const double sample_s = (r.t[n - 1] - r.t[0]) / static_cast<double>(n - 1);
+  const double shift_s = 1.5 * sync_s - 0.5 * sample_s;
+  std::vector<double> out(n);
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double when = std::clamp(r.t[k] - shift_s, r.t[0], r.t[n - 1]);
+    while (j + 2 < n && r.t[j + 1] <= when) ++j;
+    while (j > 0 && r.t[j] > when) --j;
+    const double a = (when - r.t[j]) / (r.t[j + 1] - r.t[j]);
+    out[k] = command[j] + a * (command[j + 1] - command[j]);
+  }
+  return out;
+}
+
 class GroundChannel : public ChannelModel {
  public:
   std::string subsystem() const override { return "ground"; }
@@ -97,7 +123,7 @@ class DiscSpeedChannel : public ChannelModel {
   }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
-    const std::vector<double> u = transform_input(r, r.at("omega_cmd"), fx);
+    const std::vector<double> u = transform_input(r, command_at_drive(r, r.at("omega_cmd")), fx);
     lag(r, u, p[0], p[1], fx, r.at("omega")[0], y);
     apply_output(r, fx, nullptr, nullptr, y);
   }
@@ -244,7 +270,7 @@ class DepthChannel : public ChannelModel {
   }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
-    const std::vector<double> u = transform_input(r, r.at("depth_cmd_mm"), fx);
+    const std::vector<double> u = transform_input(r, command_at_drive(r, r.at("depth_cmd_mm")), fx);
     // The nominal rate limit r_max is part of the structure; a candidate one would repeat it.
     const double tau = p[0], rate = p[1];
     // The furrow's depth is the actuator's position plus what the terrain adds, where known.

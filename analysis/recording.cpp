@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "config/input_file.h"
+#include "config/recording_format.h"
 
 namespace planter::analysis {
 namespace {
@@ -37,6 +38,12 @@ std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t");
   if (b == std::string::npos) return "";
   return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+std::string number_text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
 }
 
 }  // namespace
@@ -105,14 +112,35 @@ bool RecordingReader::next_line(std::string& line) {
   return true;
 }
 
+// The one metadata value planter-fit uses: a wrong one would shift the drives' commands.
+void RecordingReader::check_sync_period(const std::string& value) const {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v) || v <= 0.0 ||
+      v > config::kSyncPeriodMaxS)
+    throw RecordingError(file_, line_no_,
+                         "metadata " + std::string(config::kSyncPeriodKey) + ": '" + value +
+                             "' must be the SYNC period in seconds, in (0, " +
+                             number_text(config::kSyncPeriodMaxS) + "]");
+}
+
+double Recording::sync_period_s() const {
+  const auto it = metadata.find(std::string(config::kSyncPeriodKey));
+  return it == metadata.end() ? 0.0 : std::strtod(it->second.c_str(), nullptr);
+}
+
 void RecordingReader::read_header() {
   std::string line;
   while (next_line(line)) {
     if (line.empty()) continue;
     if (line[0] == '#') {
       const auto colon = line.find(':');
-      if (colon != std::string::npos)
-        metadata_[trim(line.substr(1, colon - 1))] = trim(line.substr(colon + 1));
+      if (colon != std::string::npos) {
+        const std::string key = trim(line.substr(1, colon - 1));
+        const std::string value = trim(line.substr(colon + 1));
+        if (key == config::kSyncPeriodKey) check_sync_period(value);
+        metadata_[key] = value;
+      }
       continue;
     }
     header_ = split_commas(line);

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 
 #include "firmware/io/signal_table.h"
@@ -118,6 +119,12 @@ int format_controller_columns(char* out, std::size_t size, double t_s, const Tel
     out[size - 1] = '\0';
   }
   return static_cast<int>(row.length());
+}
+
+std::string sync_period_value(std::int64_t sync_period_ns) {
+  char value[32];
+  std::snprintf(value, sizeof value, "%.9g", static_cast<double>(sync_period_ns) * 1e-9);
+  return value;
 }
 
 }  // namespace planter::config

@@ -3,12 +3,21 @@
 // simulator so that a field log and a simulated one have the same columns and precision. Both
 // the header and the row come from the signal table (firmware/io/signal_table.h).
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 
 #include "firmware/controller/telemetry.h"
 
 namespace planter::config {
+
+// The metadata line that declares the board's SYNC period. CiA 301 (synchronous PDOs): a drive
+// acts on the data of a synchronous RPDO at the next SYNC, so a command recorded in one row acts
+// one SYNC period later. planter-fit takes that path as part of the drives' nominal structures.
+inline constexpr std::string_view kSyncPeriodKey = "sync_period_s";
+inline constexpr double kSyncPeriodMaxS = 1.0;  // the board file's largest sync_period_ms
+// The value of that line in seconds ("0.01").
+std::string sync_period_value(std::int64_t sync_period_ns);
 
 // Header of the controller columns, without a trailing newline.
 std::string controller_columns();

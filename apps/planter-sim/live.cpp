@@ -20,6 +20,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "config/recording_format.h"
 #include "console/operator_sessions.h"
 #include "sim/runner/lockstep_runner.h"
 #include "sim/runner/recording_writer.h"
@@ -48,10 +49,13 @@ class LiveRecorder : public console::RecordingControl {
     try {
       writer_ = std::make_unique<RecordingWriter>(
           path, path,
-          std::vector<std::pair<std::string, std::string>>{{"source", "planter-sim live"},
-                                                           {"scenario", scenario_.name},
-                                                           {"board", scenario_.board.name},
-                                                           {"units", "1"}});
+          std::vector<std::pair<std::string, std::string>>{
+              {"source", "planter-sim live"},
+              {"scenario", scenario_.name},
+              {"board", scenario_.board.name},
+              {"units", "1"},
+              {std::string(config::kSyncPeriodKey),
+               config::sync_period_value(scenario_.board.controller.can.sync_period_ns)}});
     } catch (const std::exception& e) {
       return console::recording_reply(console::ConsoleResult::kFailed, e.what());
     }

@@ -23,6 +23,7 @@
 #include "config/cli_range.h"
 #include "config/commissioning.h"
 #include "config/config_error.h"
+#include "config/recording_format.h"
 #include "console/command_channel.h"
 #include "console/live_sample.h"
 #include "console/spsc_queue.h"
@@ -37,6 +38,12 @@
 #include "hal/linux/tick_trace.h"
 
 namespace {
+
+// The recording's line that declares the SYNC period (config/recording_format.h).
+std::string sync_period_line(const planter::config::BoardConfig& board) {
+  return std::string(planter::config::kSyncPeriodKey) + ": " +
+         planter::config::sync_period_value(board.controller.can.sync_period_ns);
+}
 
 using namespace planter;
 using hal::linux_backend::monotonic_now_ns;
@@ -340,7 +347,7 @@ class OperatorConsole {
       recording_ = std::make_unique<daemon::ConsoleRecording>(
           o.recordings_dir,
           std::vector<std::string>{"board: " + board.name, "source: planterd console",
-                                   "units: PRODUCT.md v1"});
+                                   "units: PRODUCT.md v1", sync_period_line(board)});
       if (o.commands != nullptr) o.recording = recording_.get();
     }
     server_ = std::make_unique<console::ConsoleServer>(
@@ -440,9 +447,10 @@ int main(int argc, char** argv) {
     hw = std::make_unique<daemon::BoardHardware>(board);
     if (!opt.record.empty()) {
       recording = std::make_unique<daemon::CrashSafeRecording>(
-          opt.record, std::vector<std::string>{
-                          "board: " + board.name, "source: planterd", "units: PRODUCT.md v1",
-                          "flush_ms: " + std::to_string(opt.flush_ms), start_wall_text});
+          opt.record,
+          std::vector<std::string>{"board: " + board.name, "source: planterd",
+                                   "units: PRODUCT.md v1", sync_period_line(board),
+                                   "flush_ms: " + std::to_string(opt.flush_ms), start_wall_text});
       if (!recording->moved_aside_to().empty())
         std::fprintf(stderr, "planterd: previous recording moved to %s\n",
                      recording->moved_aside_to().c_str());

@@ -70,6 +70,40 @@ std::vector<double> command_at_drive(const Recording& r, const std::vector<doubl
   return out;
 }
 
+// The encoder speed as the firmware makes it (firmware/sensing/ground_speed_estimator.cpp): a
+// new estimate at each edge, held until the next one, and at most one count over the time since
+// the last edge, so that it decays as 1/t after a stop and reads 0 before the first edge. Where
+// the recording holds wheel_counts, the rows at which the count changed give the edges (to a
+// row), and a count's length is the distance v_wheel covered over the counts. A recording
+// without the counts is fitted without this.
+void as_estimated_at_edges(const Recording& r, std::vector<double>& y) {
+  if (!r.has("wheel_counts")) return;
+  const auto& counts = r.at("wheel_counts");
+  const auto& v = r.at("v_wheel");
+  const double travelled_counts = std::abs(counts.back() - counts.front());
+  if (travelled_counts < 10.0) return;  // too few edges to know a count's length
+  double distance_m = 0.0;
+  for (std::size_t k = 1; k < v.size(); ++k) distance_m += std::abs(v[k]) * (r.t[k] - r.t[k - 1]);
+  const double m_per_count = distance_m / travelled_counts;
+  bool edge_seen = false;
+  double last_edge_s = 0.0, held = 0.0;
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    if (k > 0 && counts[k] != counts[k - 1]) {
+      edge_seen = true;
+      last_edge_s = r.t[k];
+      held = y[k];
+    }
+    const double since_s = r.t[k] - last_edge_s;
+    if (!edge_seen) {
+      y[k] = 0.0;
+    } else if (since_s > 0.0 && std::abs(held) > m_per_count / since_s) {
+      y[k] = std::copysign(m_per_count / since_s, held);
+    } else {
+      y[k] = held;
+    }
+  }
+}
+
 class GroundChannel : public ChannelModel {
  public:
   std::string subsystem() const override { return "ground"; }
@@ -98,6 +132,7 @@ class GroundChannel : public ChannelModel {
     } else {
       y = transform_input(r, r.at("v_ground"), {lag});
     }
+    as_estimated_at_edges(r, y);
     apply_output(r, fx, r.has("depth_force") ? &r.at("depth_force") : nullptr, nullptr, y);
   }
 };

@@ -71,3 +71,21 @@ TEST(GroundSpeedEstimator, EdgeTimedSpeed) {
   est.update(d.count(), d.last_count_time_ns(), 10'000'000'000LL);
   EXPECT_LT(est.speed_mps(), 0.001);
 }
+
+// The first edge gives no speed (there is no earlier edge to time it from), the second one count
+// over the time between them: never one count over the time since boot.
+TEST(GroundSpeedEstimator, TheFirstEdgeIsNotTimedFromBoot) {
+  QuadratureDecoder d;
+  const double m_per_count = 0.92e-3;
+  GroundSpeedEstimator est(m_per_count, 200'000'000);
+  est.update(d.count(), d.last_count_time_ns(), 3'700'000'000LL);
+  EXPECT_EQ(est.speed_mps(), 0.0);
+  std::int64_t t = 3'700'000'000LL;
+  int index = 0;
+  turn(d, 1, t, 100'000'000, index);  // one edge at 3.8 s
+  est.update(d.count(), d.last_count_time_ns(), 3'810'000'000LL);
+  EXPECT_EQ(est.speed_mps(), 0.0);
+  turn(d, 1, t, 80'000'000, index);  // the next 80 ms later: 11.5 mm/s
+  est.update(d.count(), d.last_count_time_ns(), 3'890'000'000LL);
+  EXPECT_NEAR(est.speed_mps(), m_per_count / 0.08, 1e-6);
+}

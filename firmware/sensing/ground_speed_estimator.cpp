@@ -3,11 +3,20 @@
 #include <algorithm>
 #include <cmath>
 
+#include "firmware/sensing/quadrature_decoder.h"
+
 namespace planter {
 
 void GroundSpeedEstimator::update(std::int64_t count, std::int64_t last_edge_ns,
                                   std::int64_t now_ns) {
   count_ = count;
+  // Before the first edge there is no time to measure from: a start time taken for an edge
+  // made the first speed one count over the whole time since boot (0.25 mm/s against 10 mm/s
+  // true in the HIL scenario, issue 32).
+  if (last_edge_ns == QuadratureDecoder::kNoEdgeNs) {
+    speed_mps_ = 0.0;
+    return;
+  }
   // Keep one sample per distinct edge time so the window spans real edges.
   const Sample newest{count, last_edge_ns};
   if (filled_ == 0 || history_[(head_ + kHistory - 1) % kHistory].edge_ns != last_edge_ns) {

@@ -8,6 +8,9 @@ namespace planter {
 
 class QuadratureDecoder {
  public:
+  // last_count_time_ns() before the first counted edge: no edge has a time yet.
+  static constexpr std::int64_t kNoEdgeNs = INT64_MIN;
+
   explicit QuadratureDecoder(std::int64_t glitch_filter_ns = 0) : glitch_ns_(glitch_filter_ns) {}
 
   // Line 0 = A, line 1 = B; other lines are ignored.
@@ -29,7 +32,7 @@ class QuadratureDecoder {
   bool a_ = false;
   bool b_ = false;
   std::int64_t count_ = 0;
-  std::int64_t last_count_ns_ = 0;
+  std::int64_t last_count_ns_ = kNoEdgeNs;
   std::int64_t last_edge_ns_[2] = {INT64_MIN / 2, INT64_MIN / 2};
   std::uint32_t invalid_ = 0;
   std::uint32_t glitches_ = 0;

@@ -70,28 +70,61 @@ std::vector<double> command_at_drive(const Recording& r, const std::vector<doubl
   return out;
 }
 
-// The encoder speed as the firmware makes it (firmware/sensing/ground_speed_estimator.cpp): a
-// new estimate at each edge, held until the next one, and at most one count over the time since
-// the last edge, so that it decays as 1/t after a stop and reads 0 before the first edge. Where
-// the recording holds wheel_counts, the rows at which the count changed give the edges (to a
-// row), and a count's length is the distance v_wheel covered over the counts. A recording
-// without the counts is fitted without this.
-void as_estimated_at_edges(const Recording& r, std::vector<double>& y) {
-  if (!r.has("wheel_counts")) return;
+// A column at time `when_s` (linear between rows).
+double at_time(const Recording& r, const std::vector<double>& v, double when_s) {
+  const std::size_t n = v.size();
+  if (when_s <= r.t[0]) return v[0];
+  if (when_s >= r.t[n - 1]) return v[n - 1];
+  const auto it = std::upper_bound(r.t.begin(), r.t.end(), when_s);
+  const std::size_t j = static_cast<std::size_t>(it - r.t.begin()) - 1;
+  const double a = (when_s - r.t[j]) / (r.t[j + 1] - r.t[j]);
+  return v[j] + a * (v[j + 1] - v[j]);
+}
+
+// The encoder speed as the firmware makes it (firmware/sensing/ground_speed_estimator.cpp):
+// the distance over the last window of edges divided by its time, where the window (2 lag_s,
+// the estimate then lags about half of it) is cut short by the motion's first edge; a new
+// estimate at each edge, held to the next; one count over the gap at the first edge after a
+// stop; at most one count over the time since the last edge, so that it decays as 1/t after a
+// stop and reads 0 before the first edge. Where the recording holds wheel_counts, the rows at
+// which the count changed give the edges (to a row), and a count's length is the distance
+// v_wheel covered over the counts. Without the counts, or on decimated rows (v_wheel low-pass
+// filtered, the edges thinned: the per-edge behaviour is below what they resolve), the speed
+// `lag_s` late.
+void as_estimated(const Recording& r, const std::vector<double>& rolled, double lag_s,
+                  std::vector<double>& y) {
+  const Effect lag{&effect_spec(EffectKind::kDelay), {lag_s}};
+  const double travelled_counts =
+      r.has("wheel_counts") ? std::abs(r.at("wheel_counts").back() - r.at("wheel_counts")[0]) : 0;
+  if (travelled_counts < 10.0 || r.decimation_stride > 1) {  // < 10: a count's length unknown
+    y = transform_input(r, rolled, {lag});
+    return;
+  }
   const auto& counts = r.at("wheel_counts");
   const auto& v = r.at("v_wheel");
-  const double travelled_counts = std::abs(counts.back() - counts.front());
-  if (travelled_counts < 10.0) return;  // too few edges to know a count's length
   double distance_m = 0.0;
   for (std::size_t k = 1; k < v.size(); ++k) distance_m += std::abs(v[k]) * (r.t[k] - r.t[k - 1]);
   const double m_per_count = distance_m / travelled_counts;
+  const double window_s = 2.0 * lag_s;
+  std::vector<double> travelled(rolled.size(), 0.0);  // the distance rolled, trapezoidal
+  for (std::size_t k = 1; k < rolled.size(); ++k)
+    travelled[k] = travelled[k - 1] + 0.5 * (rolled[k] + rolled[k - 1]) * (r.t[k] - r.t[k - 1]);
   bool edge_seen = false;
-  double last_edge_s = 0.0, held = 0.0;
+  double last_edge_s = 0.0, motion_from_s = 0.0, held = 0.0;
+  y.assign(rolled.size(), 0.0);
   for (std::size_t k = 0; k < y.size(); ++k) {
     if (k > 0 && counts[k] != counts[k - 1]) {
+      const double gap_s = r.t[k] - last_edge_s;
+      if (!edge_seen || gap_s > window_s) {
+        // The motion's first edge: nothing newer to time it from, one count over the gap.
+        held = edge_seen ? std::copysign(m_per_count / gap_s, rolled[k]) : 0.0;
+        motion_from_s = r.t[k];
+      } else {
+        const double span_s = std::min(window_s, r.t[k] - motion_from_s);
+        held = (travelled[k] - at_time(r, travelled, r.t[k] - span_s)) / span_s;
+      }
       edge_seen = true;
       last_edge_s = r.t[k];
-      held = y[k];
     }
     const double since_s = r.t[k] - last_edge_s;
     if (!edge_seen) {
@@ -122,17 +155,13 @@ class GroundChannel : public ChannelModel {
   }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
-    const Effect lag{&effect_spec(EffectKind::kDelay), {p[0]}};
+    std::vector<double> rolled = r.at("v_ground");
     if (r.has("known_slip")) {
       // The wheel rolls the ground less its slip: v_wheel = v (1 - s).
-      std::vector<double> rolled = r.at("v_ground");
       const auto& slip = r.at("known_slip");
       for (std::size_t k = 0; k < rolled.size(); ++k) rolled[k] *= 1.0 - slip[k];
-      y = transform_input(r, rolled, {lag});
-    } else {
-      y = transform_input(r, r.at("v_ground"), {lag});
     }
-    as_estimated_at_edges(r, y);
+    as_estimated(r, rolled, p[0], y);
     apply_output(r, fx, r.has("depth_force") ? &r.at("depth_force") : nullptr, nullptr, y);
   }
 };

@@ -65,6 +65,7 @@ Recording decimated(const Recording& r, std::size_t stride,
   Recording out;
   out.file = r.file;
   out.metadata = r.metadata;
+  out.decimation_stride = r.decimation_stride * stride;
   const double rate = sample_rate_hz(r);
   const double cutoff = kAntiAliasCutoffShare * 0.5 * rate / static_cast<double>(stride);
   for (std::size_t k = 0; k < r.size(); k += stride) out.t.push_back(r.t[k]);

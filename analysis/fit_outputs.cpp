@@ -110,6 +110,9 @@ std::string fit_json(const FitReport& r, double wall_s) {
   j["wall_s"] = wall_s;
   j["unobservable"] = r.unobservable;
   j["known_inputs"] = r.known_inputs;
+  if (!r.stopped_state.empty())
+    j["left_out_after"] = {
+        {"state", r.stopped_state}, {"t_s", r.stopped_at_s}, {"rows", r.stopped_rows}};
   j["glitches"] = nlohmann::json::array();
   for (const auto& g : r.glitches)
     j["glitches"].push_back(
@@ -123,6 +126,7 @@ std::string fit_json(const FitReport& r, double wall_s) {
     ch["output"] = c.channel->output();
     ch["output_unit"] = column_unit(c.channel->output());
     ch["verdict"] = c.verdict;
+    if (!c.refined.empty()) ch["refined_at_full_rate"] = c.refined;
     ch["at_range_edge"] = c.at_range_edge;
     ch["nominal"] = params_json(c.channel->nominal_params(), c.nominal.nominal,
                                 c.nominal.nominal_sd, *c.channel);
@@ -250,6 +254,11 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
     for (const auto& u : r.unobservable) h << " " << u << ";";
     h << "</p>";
   }
+  if (!r.stopped_state.empty())
+    h << "<p>The machine entered '" << report::html_escape(r.stopped_state) << "' at "
+      << r.stopped_at_s << " s: the " << r.stopped_rows
+      << " rows from there on are left out (its drives are disabled and a silent node's values "
+         "stale).</p>";
   if (!r.known_inputs.empty()) {
     h << "<p>Known disturbances the recording carries, taken as inputs:";
     for (const auto& k : r.known_inputs) h << " " << report::html_escape(k) << ";";

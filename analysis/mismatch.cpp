@@ -12,6 +12,7 @@
 #include "analysis/effect_hooks.h"
 #include "analysis/model_file.h"
 #include "analysis/residual_stats.h"
+#include "firmware/supervisor/supervisor.h"
 
 namespace planter::analysis {
 namespace {
@@ -419,9 +420,102 @@ std::string rejection(const Candidate& c, const FitOptions& o) {
   return "";
 }
 
-FitReport analyse(const Recording& full, const FitOptions& o) {
+// The recording up to where the supervisor faulted or the e-stop was pressed: from there the
+// drives are disabled and a silent node's values are stale, which no nominal structure
+// describes (a fault is the supervisor's to report, not a missing physical effect).
+Recording until_stopped(const Recording& r, FitReport& rep) {
+  const std::string fault = supervisor_state_name(SupervisorState::kFault);
+  const std::string estop = supervisor_state_name(SupervisorState::kEStop);
+  for (std::size_t k = 0; k < r.state.size(); ++k) {
+    if (r.state[k] != fault && r.state[k] != estop) continue;
+    if (k < 2) return r;  // nothing before it to analyse; the usual messages follow
+    rep.stopped_state = r.state[k];
+    rep.stopped_at_s = r.t[k];
+    rep.stopped_rows = r.size() - k;
+    Recording cut;
+    cut.file = r.file;
+    cut.metadata = r.metadata;
+    cut.t.assign(r.t.begin(), r.t.begin() + static_cast<std::ptrdiff_t>(k));
+    cut.state.assign(r.state.begin(), r.state.begin() + static_cast<std::ptrdiff_t>(k));
+    for (const auto& [name, v] : r.signals)
+      cut.signals[name].assign(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k));
+    return cut;
+  }
+  return r;
+}
+
+// A transport delay found on decimated rows is a time-resolution parameter: the decimation's
+// own timing (a command averaged over each kept row's interval, decimation.h) can read as a
+// few milliseconds of delay. It is refined at the recording's own rate: the channel is fitted
+// there with the delay (from the coarse value) and without it, from the decimated fit's values,
+// on the same calibration and held-out rows. The delay stays, with its full-rate value, only
+// when it lowers the full-rate held-out RMS by the share any effect must (min_improvement);
+// otherwise it is left out. Either way the reason is kept in `refined`.
+void refine_delay_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held_out,
+                               const Recording& analysed, std::size_t analysed_held_out,
+                               const FitOptions& o) {
+  auto& fx = c.final_fit.effects;
+  const auto it = std::find_if(fx.begin(), fx.end(),
+                               [](const Effect& e) { return e.spec->kind == EffectKind::kDelay; });
+  if (it == fx.end() || c.change || held_out < 2 || held_out >= r.size()) return;
+  const std::size_t index = static_cast<std::size_t>(it - fx.begin());
+  const double coarse = it->values[0];
+  std::vector<Effect> without = fx;
+  without.erase(without.begin() + static_cast<std::ptrdiff_t>(index));
+  Split split;
+  split.calibration_end = held_out;
+  const ChannelFit with_fit = fit_channel(*c.channel, r, split, c.final_fit.nominal, fx);
+  const ChannelFit without_fit = fit_channel(*c.channel, r, split, c.final_fit.nominal, without);
+  // The fit without the delay is the fit with a zero delay: a fit with it that ends worse on
+  // its own calibration rows stopped in a local solution, and the delay is not shown to help.
+  const bool converged = with_fit.rms_calibration <= without_fit.rms_calibration;
+  const double improvement = converged && without_fit.rms_held_out > 0.0
+                                 ? 1.0 - with_fit.rms_held_out / without_fit.rms_held_out
+                                 : 0.0;
+  double refined = coarse;
+  for (const Effect& e : with_fit.effects)
+    if (e.spec->kind == EffectKind::kDelay) refined = e.values[0];
+  char note[260];
+  if (improvement >= o.min_improvement) {
+    it->values[0] = refined;
+    std::snprintf(note, sizeof note,
+                  "transport delay refined at the full rate: %.4g s (decimated rows: %.4g s); "
+                  "full-rate held-out RMS %.4g without it, %.4g with it",
+                  refined, coarse, without_fit.rms_held_out, with_fit.rms_held_out);
+    c.refined.push_back(note);
+    return;
+  }
+  std::snprintf(note, sizeof note,
+                "a transport delay of %.4g s on the decimated rows is left out: at the full rate "
+                "the channel without it leaves a held-out RMS of %.4g, and a delay lowers that "
+                "by %.1f %%, under %.0f %% (the decimation's timing, not the machine's)",
+                coarse, without_fit.rms_held_out, 100.0 * improvement, 100.0 * o.min_improvement);
+  c.refined.push_back(note);
+  if (index < c.final_fit.effect_sd.size())
+    c.final_fit.effect_sd.erase(c.final_fit.effect_sd.begin() + static_cast<std::ptrdiff_t>(index));
+  fx.erase(it);
+  c.chosen.erase(std::remove_if(c.chosen.begin(), c.chosen.end(),
+                                [](const Candidate& k) {
+                                  return k.effect == effect_spec(EffectKind::kDelay).name;
+                                }),
+                 c.chosen.end());
+  // The other values were fitted with the delay: the fit without it starts again from the
+  // nominal one, with whatever else was chosen.
+  if (fx.empty()) {
+    c.final_fit = c.nominal;
+  } else {
+    Split analysed_split;
+    analysed_split.calibration_end = analysed_held_out;
+    c.final_fit = fit_channel(*c.channel, analysed, analysed_split, c.nominal.nominal, fx);
+  }
+  if (c.chosen.empty())
+    c.verdict = c.unexplained ? "unexplained residual" : "no significant mismatch";
+}
+
+FitReport analyse(const Recording& whole, const FitOptions& o) {
   FitReport rep;
   rep.options = o;
+  const Recording full = until_stopped(whole, rep);
   rep.glitches = find_glitches(full, channel_columns());
   const Recording r = analysed_recording(full, o, rep.glitches);
   rep.rate_hz = sample_rate_hz(full);
@@ -481,6 +575,7 @@ FitReport analyse(const Recording& full, const FitOptions& o) {
         std::lower_bound(at_rate.t.begin(), at_rate.t.end(), rep.held_out_from_s) -
         at_rate.t.begin());
     for (auto& c : rep.channels) {
+      refine_delay_at_full_rate(c, at_rate, held_out, r, rep.split.calibration_end, o);
       std::vector<double> pred;
       c.channel->simulate(at_rate, c.final_fit.nominal, c.final_fit.effects, pred);
       const std::vector<double> e = residual_of(pred, at_rate.at(c.channel->output()));

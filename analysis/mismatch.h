@@ -69,6 +69,8 @@ struct ChannelReport {
   // values after the change.
   std::optional<ChangePoint> change;
   ChannelFit final_fit;
+  // What the full rate said of a time-resolution parameter found on decimated rows.
+  std::vector<std::string> refined;
   std::string verdict;  // "no significant mismatch", "effect(s) found", "unexplained residual"
   bool unexplained = false;
   // The final fit's nominal parameters that ended at an edge of their range, as
@@ -117,6 +119,11 @@ struct FitReport {
   // Known disturbances the recording carries and the channels took as inputs: "column (channel)".
   std::vector<std::string> known_inputs;
   std::vector<Glitch> glitches;  // samples excluded as single-sample glitches
+  // Where the machine left nominal operation (a fault or the e-stop in the state column): the
+  // rows from there on are not analysed. Empty when it never did.
+  std::string stopped_state;
+  double stopped_at_s = 0.0;
+  std::size_t stopped_rows = 0;  // rows left out
   std::optional<DayReport> day;  // a recording longer than one window: across it
 };
 

@@ -32,6 +32,7 @@ struct Recording {
   std::vector<double> t;
   std::map<std::string, std::vector<double>> signals;  // numeric columns by name
   std::vector<std::string> state;                      // empty when there is no state column
+  std::size_t decimation_stride = 1;  // rows of the recording per row here (decimation.h)
   [[nodiscard]] bool has(const std::string& name) const { return signals.count(name) != 0; }
   [[nodiscard]] const std::vector<double>& at(const std::string& name) const {
     return signals.at(name);

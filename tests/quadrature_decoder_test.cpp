@@ -89,3 +89,23 @@ TEST(GroundSpeedEstimator, TheFirstEdgeIsNotTimedFromBoot) {
   est.update(d.count(), d.last_count_time_ns(), 3'890'000'000LL);
   EXPECT_NEAR(est.speed_mps(), m_per_count / 0.08, 1e-6);
 }
+
+// After a stop the window does not reach back across it: the second edge after a 5 s stop reads
+// one count over the time between the two new edges, not two counts over 5 s.
+TEST(GroundSpeedEstimator, TheWindowDoesNotReachAcrossAStop) {
+  QuadratureDecoder d;
+  const double m_per_count = 0.92e-3;
+  GroundSpeedEstimator est(m_per_count, 200'000'000);
+  std::int64_t t = 0;
+  int index = 0;
+  for (int k = 0; k < 50; ++k) {  // 0.092 m/s: an edge every 10 ms
+    turn(d, 1, t, 10'000'000, index);
+    est.update(d.count(), d.last_count_time_ns(), t);
+  }
+  EXPECT_NEAR(est.speed_mps(), 0.092, 1e-6);
+  turn(d, 1, t, 5'000'000'000LL, index);  // stands 5 s, then one edge
+  est.update(d.count(), d.last_count_time_ns(), t);
+  turn(d, 1, t, 20'000'000, index);  // the next 20 ms later: 46 mm/s
+  est.update(d.count(), d.last_count_time_ns(), t);
+  EXPECT_NEAR(est.speed_mps(), m_per_count / 0.02, 1e-6);
+}

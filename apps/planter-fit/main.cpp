@@ -41,6 +41,11 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
       "%.1f s)\n",
       r.day ? "first window" : "recording", r.file.c_str(), r.rows, r.rate_hz, r.analysed_rows,
       r.analysed_up_to_hz, r.duration_s, r.held_out_from_s);
+  if (!r.stopped_state.empty())
+    std::printf(
+        "the machine entered '%s' at %.2f s: the %zu rows from there on are left out (its drives "
+        "are disabled and a silent node's values stale: the supervisor's to report, not physics)\n",
+        r.stopped_state.c_str(), r.stopped_at_s, r.stopped_rows);
   for (const auto& u : r.unobservable) std::printf("not observable: %s\n", u.c_str());
   if (!r.known_inputs.empty()) {
     std::printf("known disturbances the recording carries, taken as inputs:");
@@ -71,6 +76,7 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
       }
       std::printf("\n");
     }
+    for (const auto& note : c.refined) std::printf("    %s\n", note.c_str());
     if (c.change) {
       std::printf("    a parameter changed at t = %.1f +- %.1f s:", c.change->at_s,
                   c.change->at_sd_s);

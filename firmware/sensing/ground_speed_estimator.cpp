@@ -24,12 +24,18 @@ void GroundSpeedEstimator::update(std::int64_t count, std::int64_t last_edge_ns,
     head_ = (head_ + 1) % kHistory;
     filled_ = std::min(filled_ + 1, kHistory);
   }
-  // Oldest sample still inside the window (at least one step back).
+  // Oldest sample still inside the window (at least one step back), never across a standstill:
+  // a gap between edges longer than the window, with newer edges after it, is a stop, and the
+  // edges before it belong to the speed before the stop (reaching across made the first window
+  // after a refill stop read the distance since the stop over its whole time).
   const Sample* oldest = nullptr;
+  std::int64_t newer_ns = last_edge_ns;
   for (std::size_t i = 2; i <= filled_; ++i) {
     const Sample& s = history_[(head_ + kHistory - i) % kHistory];
+    if (oldest != nullptr && newer_ns - s.edge_ns > window_ns_) break;
     oldest = &s;
     if (last_edge_ns - s.edge_ns >= window_ns_) break;
+    newer_ns = s.edge_ns;
   }
   if (oldest == nullptr || last_edge_ns == oldest->edge_ns) {
     speed_mps_ = 0.0;

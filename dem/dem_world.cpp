@@ -193,9 +193,10 @@ void DemWorld::step(double dt) {
     p.f.setZero();
     p.tau.setZero();
   }
+  const BondStep bond_constants = bond_step(bond_params_, dt);
   for (auto& b : bonds_) {
-    update_bond(b, bond_params_, particles_[static_cast<std::size_t>(b.i)],
-                particles_[static_cast<std::size_t>(b.j)], dt);
+    update_bond(b, bond_constants, particles_[static_cast<std::size_t>(b.i)],
+                particles_[static_cast<std::size_t>(b.j)]);
   }
   particle_contacts(dt);
   platen_contacts(dt);

@@ -64,7 +64,8 @@ ContactResult hertz_mindlin(const ContactMaterial& m, const PairProperties& p, c
   const double s_n = 2.0 * p.e_star * sqrt_rd;
   const double s_t = 8.0 * p.g_star * sqrt_rd;
   constexpr double kSqrt56 = 0.91287092917527690;  // sqrt(5/6)
-  const double fn_elastic = hertz_normal_force(p, overlap);
+  // hertz_normal_force without its pow: 4/3 E* sqrt(R* d) d = 2/3 s_n d.
+  const double fn_elastic = 2.0 / 3.0 * s_n * overlap;
   // Damping opposes the relative motion (beta < 0): less push while separating (vn > 0).
   const double fn_damp = 2.0 * kSqrt56 * p.beta * std::sqrt(s_n * p.m_star) * vn;
   const double fn = std::max(0.0, fn_elastic + fn_damp);

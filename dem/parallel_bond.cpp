@@ -7,13 +7,14 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Keeps a stored in-plane vector in the current contact plane with its magnitude.
-void rotate_into_plane(Vec3& v, const Vec3& n) {
-  const double mag = v.norm();
-  if (mag == 0.0) return;
+// Keeps a stored in-plane vector in the current contact plane with its magnitude (one square
+// root: the ratio of the squared lengths).
+[[gnu::always_inline]] inline void rotate_into_plane(Vec3& v, const Vec3& n) {
+  const double mag2 = v.squaredNorm();
+  if (mag2 == 0.0) return;
   v -= v.dot(n) * n;
-  const double now = v.norm();
-  v = now > 0.0 ? Vec3(v * (mag / now)) : Vec3::Zero();
+  const double now2 = v.squaredNorm();
+  v = now2 > 0.0 ? Vec3(v * std::sqrt(mag2 / now2)) : Vec3::Zero();
 }
 
 }  // namespace
@@ -34,9 +35,20 @@ double bond_shear_stress(const Bond& b, const BondParameters& p) {
   return b.shear_force.norm() / g.area_m2 + std::fabs(b.twist_moment) * p.radius_m / g.polar_m4;
 }
 
-void update_bond(Bond& b, const BondParameters& p, Particle& pi, Particle& pj, double dt) {
-  if (b.broken) return;
+BondStep bond_step(const BondParameters& p, double dt) {
   const BondGeometry g = bond_geometry(p.radius_m);
+  return {p.normal_stiffness_N_m3 * g.area_m2 * dt,
+          p.shear_stiffness_N_m3 * g.area_m2 * dt,
+          p.shear_stiffness_N_m3 * g.polar_m4 * dt,
+          p.normal_stiffness_N_m3 * g.bending_m4 * dt,
+          g.area_m2,
+          p.radius_m / g.polar_m4,
+          p.tensile_strength_Pa,
+          p.shear_strength_Pa};
+}
+
+void update_bond(Bond& b, const BondStep& s, Particle& pi, Particle& pj) {
+  if (b.broken) return;
   const Vec3 d = pj.x - pi.x;
   const double dist = d.norm();
   if (dist <= 0.0) return;
@@ -53,13 +65,17 @@ void update_bond(Bond& b, const BondParameters& p, Particle& pi, Particle& pj, d
   const Vec3 wt = wr - wn * n;
   rotate_into_plane(b.shear_force, n);
   rotate_into_plane(b.bending_moment, n);
-  b.normal_force_N += -vn * p.normal_stiffness_N_m3 * g.area_m2 * dt;
-  b.shear_force += -vt * p.shear_stiffness_N_m3 * g.area_m2 * dt;
-  b.twist_moment += -wn * p.shear_stiffness_N_m3 * g.polar_m4 * dt;
-  b.bending_moment += -wt * p.normal_stiffness_N_m3 * g.bending_m4 * dt;
-  // Signed criteria: compression lowers the tensile stress, it never breaks a bond alone.
-  if (bond_tensile_stress(b, p) > p.tensile_strength_Pa ||
-      bond_shear_stress(b, p) > p.shear_strength_Pa) {
+  b.normal_force_N += -vn * s.normal_per_m;
+  b.shear_force += -vt * s.shear_per_m;
+  b.twist_moment += -wn * s.twist_per_rad;
+  b.bending_moment += -wt * s.bending_per_rad;
+  // Signed criteria (bond_tensile_stress, bond_shear_stress): compression lowers the tensile
+  // stress, it never breaks a bond alone.
+  const double tensile =
+      -b.normal_force_N / s.area_m2 + 2.0 * b.bending_moment.norm() * s.rim_per_polar;
+  const double shear =
+      b.shear_force.norm() / s.area_m2 + std::fabs(b.twist_moment) * s.rim_per_polar;
+  if (tensile > s.tensile_strength_Pa || shear > s.shear_strength_Pa) {
     b.broken = true;
     return;
   }

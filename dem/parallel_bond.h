@@ -31,9 +31,26 @@ BondGeometry bond_geometry(double radius_m);
 double bond_tensile_stress(const Bond& b, const BondParameters& p);
 double bond_shear_stress(const Bond& b, const BondParameters& p);
 
+// What every bond's step shares, worked out once a step instead of once a bond: the
+// stiffnesses times the bond's section and dt, and the strengths.
+struct BondStep {
+  double normal_per_m;     // S_n A dt
+  double shear_per_m;      // S_t A dt
+  double twist_per_rad;    // S_t J dt
+  double bending_per_rad;  // S_n I dt
+  double area_m2;
+  double rim_per_polar;  // R_B / J
+  double tensile_strength_Pa;
+  double shear_strength_Pa;
+};
+BondStep bond_step(const BondParameters& p, double dt);
+
 // Advances the bond's loads over dt from the particles' current motion, checks breakage, and
 // adds the loads to the particles' force and torque (nothing when broken).
-void update_bond(Bond& b, const BondParameters& p, Particle& pi, Particle& pj, double dt);
+void update_bond(Bond& b, const BondStep& s, Particle& pi, Particle& pj);
+inline void update_bond(Bond& b, const BondParameters& p, Particle& pi, Particle& pj, double dt) {
+  update_bond(b, bond_step(p, dt), pi, pj);
+}
 
 // Elastic energy stored in the bond (for the energy balance).
 double bond_energy(const Bond& b, const BondParameters& p);

@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "apps/version/list_keys.h"
 #include "apps/version/version.h"
 #include "config/cli_range.h"
 #include "config/config_error.h"
@@ -196,15 +197,7 @@ int main(int argc, char** argv) {
       "planter-dem: the seedling's bonded-particle model, its calibration and the "
       "reduced-order force model"};
   app.set_version_flag("--version", std::string("planter-dem ") + planter::apps::version());
-  app.add_flag_callback(
-      "--list-keys",
-      [] {
-        if (!planter::config::write_key_reference(stdout, planter::dem::kDemFileKeys))
-          throw CLI::RuntimeError("planter-dem: cannot write the key reference to standard output",
-                                  1);
-        throw CLI::Success();
-      },
-      "print every key of the --params file (table, default, unit, range, meaning) and exit");
+  planter::apps::add_list_keys_flag(app, planter::dem::kDemFileKeys, "the --params file");
   app.require_subcommand(1);
   Common common;
   auto add_common = [&](CLI::App* sub) {

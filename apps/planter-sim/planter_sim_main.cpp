@@ -26,6 +26,7 @@
 #ifdef PLANTER_WITH_REPLAY
 #include "analysis/recording.h"
 #endif
+#include "apps/version/list_keys.h"
 #include "apps/version/version.h"
 #include "sim/plant/effect_keys.h"
 #include "sim/plant/model_values.h"
@@ -222,16 +223,8 @@ int print_effect_keys() {
 int main(int argc, char** argv) {
   CLI::App app{"planter-sim: the transplanter's plant model and lockstep simulation runner"};
   app.set_version_flag("--version", std::string("planter-sim ") + planter::apps::version());
-  app.add_flag_callback(
-      "--list-keys",
-      [] {
-        if (!planter::config::write_key_reference(stdout, planter::sim::kScenarioFileKeys))
-          throw CLI::RuntimeError("planter-sim: cannot write the key reference to standard output",
-                                  1);
-        throw CLI::Success();
-      },
-      "print every key of a scenario and of a seedling force model (table, default, unit, "
-      "range, meaning) and exit");
+  planter::apps::add_list_keys_flag(app, planter::sim::kScenarioFileKeys,
+                                    "a scenario and of a seedling force model");
   app.require_subcommand(1);
   std::string scenario, out = "out";
   bool quiet = false, force = false;

@@ -30,6 +30,7 @@
 #ifdef PLANTERD_WITH_CONSOLE
 #include "console/console_server.h"
 #endif
+#include "apps/version/list_keys.h"
 #include "apps/version/version.h"
 #include "config/board_keys.h"
 #include "firmware/controller/control_cycle.h"
@@ -388,15 +389,8 @@ class OperatorConsole {
 int parse_options(int argc, char** argv, Options& opt) {
   CLI::App app{"planterd: the scallion transplanter's controller daemon"};
   app.set_version_flag("--version", std::string("planterd ") + planter::apps::version());
-  app.add_flag_callback(
-      "--list-keys",
-      [] {
-        if (!planter::config::write_key_reference(stdout, planter::config::kBoardFileKeys))
-          throw CLI::RuntimeError("planterd: cannot write the key reference to standard output", 1);
-        throw CLI::Success();
-      },
-      "print every key of the board, machine and calibration files (table, default, unit, range, "
-      "meaning) and exit");
+  planter::apps::add_list_keys_flag(app, planter::config::kBoardFileKeys,
+                                    "the board, machine and calibration files");
   app.add_option("--board", opt.board, "board file (boards/<board>/board.toml)")->required();
   app.add_option("--record", opt.record, "record telemetry to this CSV (docs/recording-format.md)");
   app.add_flag("--run", opt.run, "start planting as soon as every node is ready (unattended)");

@@ -209,8 +209,8 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
   board->reject_unknown_keys();
   int bitrate_line = 1, sync_line = 1;
   if (auto can = root.table("can")) {
-    bitrate_line = can->line_of("bitrate");
-    sync_line = can->line_of("sync_period_ms");
+    bitrate_line = can->line_of(std::string(bk("can.bitrate").name));
+    sync_line = can->line_of(std::string(bk("can.sync_period_ms").name));
     b.can_interface = can->string(bk("can.interface"));
     c.can.bitrate_bps = static_cast<std::uint32_t>(can->integer(bk("can.bitrate")));
     c.can.sync_period_ns = can->integer(bk("can.sync_period_ms")) * 1'000'000;
@@ -235,16 +235,18 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
       c.monitor.sensor_filter_ns = gpio->integer(bk("gpio.seedling_sensor_filter_ms")) * 1'000'000;
     }
     // Each line does one job: name the key that reuses an earlier one.
-    const std::pair<const char*, int> lines[] = {{"encoder_a_line", b.gpio.encoder_a},
-                                                 {"encoder_b_line", b.gpio.encoder_b},
-                                                 {"estop_line", b.gpio.estop},
-                                                 {"status_line", b.gpio.status},
-                                                 {"seedling_sensor_line", b.gpio.seedling_sensor}};
+    const std::pair<const ConfigKey*, int> lines[] = {
+        {&bk("gpio.encoder_a_line"), b.gpio.encoder_a},
+        {&bk("gpio.encoder_b_line"), b.gpio.encoder_b},
+        {&bk("gpio.estop_line"), b.gpio.estop},
+        {&bk("gpio.status_line"), b.gpio.status},
+        {&bk("gpio.seedling_sensor_line"), b.gpio.seedling_sensor}};
     for (std::size_t i = 1; i < std::size(lines); ++i) {
       for (std::size_t k = 0; k < i; ++k) {
         if (lines[i].second >= 0 && lines[i].second == lines[k].second)
-          gpio->fail(lines[i].first,
-                     "line " + std::to_string(lines[i].second) + " is already " + lines[k].first +
+          gpio->fail(*lines[i].first,
+                     "line " + std::to_string(lines[i].second) + " is already " +
+                         std::string(lines[k].first->name) +
                          " (encoder A, encoder B, e-stop, status and the seedling photo-eye need "
                          "a line each)");
       }
@@ -345,7 +347,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
   // A PDO arrives once a SYNC period: one staler than that is every PDO (issue 28, item 12: a
   // 1000 ms SYNC against the 100 ms default passed and faulted the boot's first check).
   if (c.supervisor.pdo_stale_ns < 2 * c.can.sync_period_ns)
-    throw ConfigError(path, sync_line, "can.sync_period_ms",
+    throw ConfigError(path, sync_line, dotted_name(bk("can.sync_period_ms")),
                       std::to_string(c.can.sync_period_ns / 1'000'000) +
                           " ms: the supervisor calls a PDO stale after " +
                           std::to_string(c.supervisor.pdo_stale_ns / 1'000'000) +
@@ -391,7 +393,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
                 static_cast<double>(c.can.sync_period_ns) * 1e-6);
   if (b.planned_bus_load_pct > 100.0) {
     throw ConfigError(
-        path, bitrate_line, "can.bitrate",
+        path, bitrate_line, dotted_name(bk("can.bitrate")),
         std::string(load) + "; at most 100 % (raise the bit rate or the SYNC period)");
   }
   if (b.planned_bus_load_pct > 50.0) {

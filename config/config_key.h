@@ -113,6 +113,11 @@ struct KeyTables {
   std::span<const std::span<const ConfigKey>> rows;
 };
 
+// "table.name" ("can.bitrate"), as messages name a key.
+inline std::string dotted_name(const ConfigKey& k) {
+  return k.table.empty() ? std::string(k.name) : std::string(k.table) + "." + std::string(k.name);
+}
+
 // Whether a section at `path` ("nodes.disc_drive", "route.stops[2]") is the row's table.
 bool table_matches(std::string_view row_table, std::string_view path);
 

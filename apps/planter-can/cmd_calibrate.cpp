@@ -30,10 +30,6 @@ consteval const config::ConfigKey& ck(std::string_view dotted) {
   return config::key_in(config::kCalibrationKeys, dotted);
 }
 
-std::string dotted(const config::ConfigKey& k) {
-  return std::string(k.table) + "." + std::string(k.name);
-}
-
 std::string number_text(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.6g", v);
@@ -70,8 +66,9 @@ int report(ToolContext& ctx, const CalibrateOptions& opt, const std::vector<Chan
     std::snprintf(line, sizeof line, "%-28s %14s %14s  %s\n", "key", "before", "after", "unit");
     ctx.out << line;
     for (const auto& c : changes) {
-      std::snprintf(line, sizeof line, "%-28s %14.6g %14.6g  %s\n", dotted(c.row).c_str(), c.before,
-                    c.after, std::string(c.row.unit).c_str());
+      std::snprintf(line, sizeof line, "%-28s %14.6g %14.6g  %s\n",
+                    config::dotted_name(c.row).c_str(), c.before, c.after,
+                    std::string(c.row.unit).c_str());
       ctx.out << line;
     }
     if (written)

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "config/config_key.h"
 #include "config/input_file.h"
 #include "config/recording_format.h"
 
@@ -38,12 +39,6 @@ std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t");
   if (b == std::string::npos) return "";
   return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
-
-std::string number_text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 }  // namespace
@@ -121,7 +116,7 @@ void RecordingReader::check_sync_period(const std::string& value) const {
     throw RecordingError(file_, line_no_,
                          "metadata " + std::string(config::kSyncPeriodKey) + ": '" + value +
                              "' must be the SYNC period in seconds, in (0, " +
-                             number_text(config::kSyncPeriodMaxS) + "]");
+                             config::number_text(config::kSyncPeriodMaxS) + "]");
 }
 
 double Recording::sync_period_s() const {

@@ -30,16 +30,23 @@ bool segment_matches(std::string_view row, std::string_view got) {
   return row == got;
 }
 
-// Whether `dotted` names the row's key, or a table on the way to the row's table.
-bool names_row(const ConfigKey& k, std::string_view dotted) {
-  std::vector<std::string_view> row = segments(k.table);
-  row.push_back(k.name);
-  const std::vector<std::string_view> got = segments(dotted);
-  if (got.size() > row.size()) return false;
+// Whether `got` (a section's path, split) is the row's `path` or a table on the way into it.
+bool leads_into(const std::vector<std::string_view>& path,
+                const std::vector<std::string_view>& got) {
+  if (got.size() > path.size()) return false;
   for (std::size_t i = 0; i < got.size(); ++i)
-    if (!segment_matches(row[i], got[i])) return false;
+    if (!segment_matches(path[i], got[i])) return false;
   return true;
 }
+
+// The row's table and name, split.
+std::vector<std::string_view> row_path(const ConfigKey& k) {
+  std::vector<std::string_view> row = segments(k.table);
+  row.push_back(k.name);
+  return row;
+}
+
+}  // namespace
 
 std::string number_text(double v) {
   std::ostringstream s;
@@ -47,11 +54,17 @@ std::string number_text(double v) {
   return s.str();
 }
 
+std::int64_t row_integer(double v) {
+  if (v >= 9.2233720368547758e18) return INT64_MAX;
+  if (v <= -9.2233720368547758e18) return INT64_MIN;
+  return static_cast<std::int64_t>(v);
+}
+
+namespace {
+
 // An integer row's figures as integers (1000000, not 1e+06); the int64 end as itself.
 std::string figure(const ConfigKey& k, double v) {
-  if (k.type != KeyType::kInteger) return number_text(v);
-  if (v >= 9.2233720368547758e18) return std::to_string(INT64_MAX);
-  return std::to_string(static_cast<long long>(v));
+  return k.type == KeyType::kInteger ? std::to_string(row_integer(v)) : number_text(v);
 }
 
 std::string default_of(const ConfigKey& k) {
@@ -119,10 +132,7 @@ std::string_view file_kind_text(FileKind kind) {
 bool table_matches(std::string_view row_table, std::string_view path) {
   const std::vector<std::string_view> row = segments(row_table);
   const std::vector<std::string_view> got = segments(path);
-  if (row.size() != got.size()) return false;
-  for (std::size_t i = 0; i < row.size(); ++i)
-    if (!segment_matches(row[i], got[i])) return false;
-  return true;
+  return row.size() == got.size() && leads_into(row, got);
 }
 
 const ConfigKey* find_key(std::span<const ConfigKey> rows, std::string_view table,
@@ -134,8 +144,9 @@ const ConfigKey* find_key(std::span<const ConfigKey> rows, std::string_view tabl
 
 std::string unknown_key_text(const KeyTables& tables, std::string_view path,
                              std::string_view name) {
-  const std::string dotted =
-      path.empty() ? std::string(name) : std::string(path) + "." + std::string(name);
+  const std::vector<std::string_view> got = segments(path);
+  std::vector<std::string_view> got_key = got;
+  got_key.push_back(name);
   bool elsewhere[kFileKindCount] = {};
   std::string_view meaning;
   std::vector<std::string_view> held;
@@ -146,19 +157,15 @@ std::string unknown_key_text(const KeyTables& tables, std::string_view path,
         if (here && table_matches(k.table, path) && k.name == name) return std::string(k.meaning);
         continue;
       }
+      const std::vector<std::string_view> row = row_path(k);
       if (here) {
         // The keys and tables this section holds: the next segment after its path.
-        std::vector<std::string_view> row = segments(k.table);
-        row.push_back(k.name);
-        const std::vector<std::string_view> got = segments(path);
-        bool under = row.size() > got.size();
-        for (std::size_t i = 0; under && i < got.size(); ++i)
-          under = segment_matches(row[i], got[i]);
+        const bool under = row.size() > got.size() && leads_into(row, got);
         if (under && std::find(held.begin(), held.end(), row[got.size()]) == held.end())
           held.push_back(row[got.size()]);
         continue;
       }
-      if (!names_row(k, dotted)) continue;
+      if (!leads_into(row, got_key)) continue;
       elsewhere[static_cast<std::size_t>(k.file)] = true;
       if (table_matches(k.table, path) && k.name == name) meaning = k.meaning;
     }

@@ -113,6 +113,12 @@ struct KeyTables {
   std::span<const std::span<const ConfigKey>> rows;
 };
 
+// A row's figure as messages and the reference print it (the shortest of printf's %g forms).
+std::string number_text(double v);
+// A row's bound or default as an integer: doubles hold integers exactly to 2^53, and the int64
+// ends (a seed's range) saturate instead of overflowing.
+std::int64_t row_integer(double v);
+
 // "table.name" ("can.bitrate"), as messages name a key.
 inline std::string dotted_name(const ConfigKey& k) {
   return k.table.empty() ? std::string(k.name) : std::string(k.table) + "." + std::string(k.name);

@@ -4,28 +4,12 @@
 
 #include <cmath>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "config/input_file.h"
 #include "config/toml_bounds.h"
 
 namespace planter::config {
-namespace {
-// A row's bound as an integer: doubles hold integers exactly to 2^53, and the int64 ends
-// (a seed's range) saturate instead of overflowing.
-std::int64_t integer_bound(double v) {
-  if (v >= 9.2233720368547758e18) return INT64_MAX;
-  if (v <= -9.2233720368547758e18) return INT64_MIN;
-  return static_cast<std::int64_t>(v);
-}
-
-std::string format_number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-}  // namespace
 
 TomlSection::TomlSection(const toml::table& table, std::string path, std::string file,
                          KeyTables keys)
@@ -68,8 +52,8 @@ double TomlSection::number(const std::string& key, double fallback, double min, 
     fail(key, "must be a number");
   }
   if (!std::isfinite(v) || v < min || v > max) {
-    fail(key, format_number(v) + " is out of range; allowed [" + format_number(min) + ", " +
-                  format_number(max) + "]" +
+    fail(key, number_text(v) + " is out of range; allowed [" + number_text(min) + ", " +
+                  number_text(max) + "]" +
                   (unit[0] != 0 ? std::string(" ") + unit : std::string()));
   }
   return v;
@@ -80,7 +64,7 @@ double TomlSection::required_number(const std::string& key, double min, double m
   if (!has(key))
     throw ConfigError(
         file_, line(), dotted(key),
-        "is required (a number in [" + format_number(min) + ", " + format_number(max) + "])");
+        "is required (a number in [" + number_text(min) + ", " + number_text(max) + "])");
   return number(key, 0.0, min, max, unit);
 }
 
@@ -215,14 +199,14 @@ double TomlSection::number(const ConfigKey& k, double fallback) {
 std::int64_t TomlSection::integer(const ConfigKey& k) {
   own(k);
   if (k.required)
-    return required_integer(std::string(k.name), integer_bound(k.min), integer_bound(k.max));
+    return required_integer(std::string(k.name), row_integer(k.min), row_integer(k.max));
   no_default_needs_key(k);
-  return integer(k, std::isnan(k.fallback) ? 0 : integer_bound(k.fallback));
+  return integer(k, std::isnan(k.fallback) ? 0 : row_integer(k.fallback));
 }
 
 std::int64_t TomlSection::integer(const ConfigKey& k, std::int64_t fallback) {
   own(k);
-  return integer(std::string(k.name), fallback, integer_bound(k.min), integer_bound(k.max));
+  return integer(std::string(k.name), fallback, row_integer(k.min), row_integer(k.max));
 }
 
 bool TomlSection::boolean(const ConfigKey& k) {

@@ -57,16 +57,8 @@ std::vector<double> command_at_drive(const Recording& r, const std::vector<doubl
   const std::size_t n = command.size();
   if (sync_s <= 0.0 || n < 2) return command;
   const double sample_s = (r.t[n - 1] - r.t[0]) / static_cast<double>(n - 1);
-  const double shift_s = 1.5 * sync_s - 0.5 * sample_s;
-  std::vector<double> out(n);
-  std::size_t j = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double when = std::clamp(r.t[k] - shift_s, r.t[0], r.t[n - 1]);
-    while (j + 2 < n && r.t[j + 1] <= when) ++j;
-    while (j > 0 && r.t[j] > when) --j;
-    const double a = (when - r.t[j]) / (r.t[j + 1] - r.t[j]);
-    out[k] = command[j] + a * (command[j + 1] - command[j]);
-  }
+  std::vector<double> out = command;
+  shift_in_time(r, 1.5 * sync_s - 0.5 * sample_s, out);
   return out;
 }
 

@@ -8,6 +8,27 @@
 #include "analysis/tones.h"
 
 namespace planter::analysis {
+
+void shift_in_time(const Recording& r, double shift_s, std::vector<double>& u) {
+  const std::vector<double> in = u;
+  const std::size_t n = in.size();
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double when = r.t[k] - shift_s;  // rises with k, so j only moves forward
+    if (when <= r.t[0]) {
+      u[k] = in[0];
+      continue;
+    }
+    if (when >= r.t[n - 1]) {
+      u[k] = in[n - 1];
+      continue;
+    }
+    while (j + 1 < n && r.t[j + 1] < when) ++j;
+    const double a = (when - r.t[j]) / (r.t[j + 1] - r.t[j]);
+    u[k] = in[j] + a * (in[j + 1] - in[j]);
+  }
+}
+
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
@@ -17,21 +38,7 @@ constexpr double kTwoPi = 6.283185307179586;
 // Maxwell branch after Findley, "Creep and Relaxation of Nonlinear Viscoelastic Materials").
 
 void delay(const Recording& r, const std::vector<double>& p, std::vector<double>& u) {
-  const double tau = p[0];
-  if (tau <= 0.0) return;
-  const std::vector<double> in = u;
-  const std::size_t n = in.size();
-  std::size_t j = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double when = r.t[k] - tau;
-    if (when <= r.t[0]) {
-      u[k] = in[0];
-      continue;
-    }
-    while (j + 1 < n && r.t[j + 1] < when) ++j;
-    const double a = (when - r.t[j]) / (r.t[j + 1] - r.t[j]);
-    u[k] = in[j] + a * (in[j + 1] - in[j]);
-  }
+  if (p[0] > 0.0) shift_in_time(r, p[0], u);
 }
 
 // The control-textbook dead zone (Tao & Kokotovic, "Adaptive Control of Systems with Actuator

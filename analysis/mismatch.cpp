@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <mutex>
+#include <optional>
+#include <optional>
 #include <thread>
 
 #include "analysis/at_rest.h"
@@ -420,28 +422,24 @@ std::string rejection(const Candidate& c, const FitOptions& o) {
   return "";
 }
 
-// The recording up to where the supervisor faulted or the e-stop was pressed: from there the
-// drives are disabled and a silent node's values are stale, which no nominal structure
-// describes (a fault is the supervisor's to report, not a missing physical effect).
-Recording until_stopped(const Recording& r, FitReport& rep) {
+// The first row where the supervisor faulted or the e-stop was pressed (the recording's size if
+// none): from there the drives are disabled and a silent node's values are stale, which no
+// nominal structure describes (a fault is the supervisor's to report, not a missing effect).
+std::size_t first_stopped_row(const Recording& r) {
   const std::string fault = supervisor_state_name(SupervisorState::kFault);
   const std::string estop = supervisor_state_name(SupervisorState::kEStop);
-  for (std::size_t k = 0; k < r.state.size(); ++k) {
-    if (r.state[k] != fault && r.state[k] != estop) continue;
-    if (k < 2) return r;  // nothing before it to analyse; the usual messages follow
-    rep.stopped_state = r.state[k];
-    rep.stopped_at_s = r.t[k];
-    rep.stopped_rows = r.size() - k;
-    Recording cut;
-    cut.file = r.file;
-    cut.metadata = r.metadata;
-    cut.t.assign(r.t.begin(), r.t.begin() + static_cast<std::ptrdiff_t>(k));
-    cut.state.assign(r.state.begin(), r.state.begin() + static_cast<std::ptrdiff_t>(k));
-    for (const auto& [name, v] : r.signals)
-      cut.signals[name].assign(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k));
-    return cut;
-  }
-  return r;
+  for (std::size_t k = 0; k < r.state.size(); ++k)
+    if (r.state[k] == fault || r.state[k] == estop) return k;
+  return r.size();
+}
+
+// The first `rows` rows of a recording, everything else about it kept.
+Recording first_rows(const Recording& r, std::size_t rows) {
+  Recording out = r;
+  out.t.resize(rows);
+  out.state.resize(std::min(rows, out.state.size()));
+  for (auto& [name, v] : out.signals) v.resize(rows);
+  return out;
 }
 
 // A transport delay found on decimated rows is a time-resolution parameter: the decimation's
@@ -515,7 +513,16 @@ void refine_delay_at_full_rate(ChannelReport& c, const Recording& r, std::size_t
 FitReport analyse(const Recording& whole, const FitOptions& o) {
   FitReport rep;
   rep.options = o;
-  const Recording full = until_stopped(whole, rep);
+  // Rows from a fault on are left out; with nothing before it, the usual messages follow.
+  const std::size_t stopped = first_stopped_row(whole);
+  std::optional<Recording> until_stopped;
+  if (stopped >= 2 && stopped < whole.size()) {
+    rep.stopped_state = whole.state[stopped];
+    rep.stopped_at_s = whole.t[stopped];
+    rep.stopped_rows = whole.size() - stopped;
+    until_stopped = first_rows(whole, stopped);
+  }
+  const Recording& full = until_stopped ? *until_stopped : whole;
   rep.glitches = find_glitches(full, channel_columns());
   const Recording r = analysed_recording(full, o, rep.glitches);
   rep.rate_hz = sample_rate_hz(full);

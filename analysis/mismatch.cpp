@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <mutex>
 #include <optional>
-#include <optional>
 #include <thread>
 
 #include "analysis/at_rest.h"

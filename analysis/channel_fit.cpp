@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "analysis/parameter_covariance.h"
 #include "analysis/residual_stats.h"
 
 namespace planter::analysis {
@@ -104,7 +105,8 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
   double rss = 0;
   for (std::size_t i : at) rss += (pred[i] - y[i]) * (pred[i] - y[i]);
   if (sd) {
-    // Standard deviations from the Jacobian at the solution: sigma^2 (J'J)^-1.
+    // Standard deviations from the Jacobian at the solution, allowing for residuals correlated
+    // from row to row (parameter_covariance.h).
     sd->assign(x.size(), 0.0);
     if (!x.empty() && at.size() > x.size()) {
       Eigen::MatrixXd jac(at.size(), x.size());
@@ -119,9 +121,10 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
           jac(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) =
               (p2[at[i]] - pred[at[i]]) / h;
       }
-      const double s2 = rss / static_cast<double>(at.size() - x.size());
-      const Eigen::MatrixXd cov =
-          s2 * (jac.transpose() * jac).completeOrthogonalDecomposition().pseudoInverse();
+      Eigen::VectorXd e(static_cast<Eigen::Index>(at.size()));
+      for (std::size_t i = 0; i < at.size(); ++i)
+        e(static_cast<Eigen::Index>(i)) = pred[at[i]] - y[at[i]];
+      const Eigen::MatrixXd cov = hac_covariance(jac, e).covariance;
       for (std::size_t c = 0; c < x.size(); ++c)
         (*sd)[c] = std::sqrt(
             std::max(0.0, cov(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c))));

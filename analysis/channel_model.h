@@ -23,24 +23,25 @@ struct ParamSpec {
 };
 
 enum class EffectKind {
-  kWheelRadius,    // v_wheel = (1 + g) v
-  kSlipWithDraft,  // v_wheel = v (1 - s * depth_force / 1 kN)
-  kDelay,          // input delayed by tau
-  kDeadZone,       // zero for |u| <= w, u - w sign(u) beyond
-  kBacklash,       // play of width gap between input and model
-  kRateLimit,      // the state moves at most r per second
-  kCoulomb,        // + F_c tanh(omega / 0.005)
-  kStribeck,       // + [F_c + (F_s - F_c) exp(-(omega/omega_s)^2)] sign(omega)
-  kOffset,         // + a
-  kGain,           // * (1 + g)
-  kDrift,          // + d * t
-  kPeriodic,       // + A sin(2 pi f t + phi)
-  kQuantisation,   // round to q
-  kRelaxation,     // a Maxwell branch takes share `frac` of the output with time constant tau
-  kRelaxation2,    // a second branch beside it: a two-term Prony series
-  kHysteresis,     // + H z, z the Bouc-Wen state of the input's displacement
-  kSag,            // - c * load / 1 kN (compliance under the channel's load)
-  kStiction,       // at standstill: the drive's effort K * command, held up to F_s
+  kWheelRadius,     // v_wheel = (1 + g) v
+  kSlipWithDraft,   // v_wheel = v (1 - s * depth_force / 1 kN)
+  kDelay,           // input delayed by tau
+  kDeadZone,        // zero for |u| <= w, u - w sign(u) beyond
+  kBacklash,        // play of width gap between input and model
+  kBacklashOutput,  // play of width gap between the model's output and what is measured
+  kRateLimit,       // the state moves at most r per second
+  kCoulomb,         // + F_c tanh(omega / 0.005)
+  kStribeck,        // + [F_c + (F_s - F_c) exp(-(omega/omega_s)^2)] sign(omega)
+  kOffset,          // + a
+  kGain,            // * (1 + g)
+  kDrift,           // + d * t
+  kPeriodic,        // + A sin(2 pi f t + phi)
+  kQuantisation,    // round to q
+  kRelaxation,      // a Maxwell branch takes share `frac` of the output with time constant tau
+  kRelaxation2,     // a second branch beside it: a two-term Prony series
+  kHysteresis,      // + H z, z the Bouc-Wen state of the input's displacement
+  kSag,             // - c * load / 1 kN (compliance under the channel's load)
+  kStiction,        // at standstill: the drive's effort K * command, held up to F_s
 };
 
 struct Effect;
@@ -130,6 +131,11 @@ class ChannelModel {
     return std::nullopt;
   }
 };
+
+// The rows before `end` where the nominal, with the values given, predicts no load: under 1 %
+// of the recorded output's largest size. There a constant added to the output is seen alone.
+std::size_t rows_at_zero_load(const ChannelModel& ch, const Recording& r,
+                              const std::vector<double>& nominal, std::size_t end);
 
 // Every channel of the nominal structures; the caller keeps those the recording observes.
 std::vector<const ChannelModel*> all_channels();

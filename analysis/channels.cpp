@@ -173,9 +173,9 @@ class DiscSpeedChannel : public ChannelModel {
     return {0.1, std::max(0.02, 1.5 * m)};
   }
   std::vector<const EffectSpec*> candidates(const Recording&) const override {
-    return specs({EffectKind::kDelay, EffectKind::kBacklash, EffectKind::kDeadZone,
-                  EffectKind::kRateLimit, EffectKind::kGain, EffectKind::kOffset,
-                  EffectKind::kPeriodic});
+    return specs({EffectKind::kDelay, EffectKind::kBacklash, EffectKind::kBacklashOutput,
+                  EffectKind::kDeadZone, EffectKind::kRateLimit, EffectKind::kGain,
+                  EffectKind::kOffset, EffectKind::kPeriodic});
   }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
@@ -200,6 +200,12 @@ class DiscTorqueChannel : public ChannelModel {
                  {EffectKind::kCoulomb, EffectKind::kStribeck, EffectKind::kOffset,
                   EffectKind::kPeriodic, EffectKind::kDelay},
                  "omega_cmd", EffectKind::kStiction);
+  }
+  // At one steady speed the viscous term b omega is a constant: an offset trades with it unless
+  // the disc is also recorded at rest.
+  std::optional<std::size_t> zero_load_rows(const Recording& r, const std::vector<double>& p,
+                                            std::size_t end) const override {
+    return rows_at_zero_load(*this, r, p, end);
   }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
@@ -276,10 +282,7 @@ class ClampChannel : public ChannelModel {
   // there, the force sensor reads its offset alone.
   std::optional<std::size_t> zero_load_rows(const Recording& r, const std::vector<double>& p,
                                             std::size_t end) const override {
-    const auto& x = r.at("clamp_pos_mm");
-    std::size_t n = 0;
-    for (std::size_t k = 0; k < std::min(end, x.size()); ++k) n += x[k] <= p[1];
-    return n;
+    return rows_at_zero_load(*this, r, p, end);
   }
   // n within 0.9-2.5: the format gives 1-1.5 from the DEM; a law much softer than linear
   // would be the fit bending to mimic creep. A sensor gain error is the same as a different
@@ -321,7 +324,8 @@ class DepthChannel : public ChannelModel {
   std::vector<const EffectSpec*> candidates(const Recording& r) const override {
     return specs(r,
                  {EffectKind::kDelay, EffectKind::kDeadZone, EffectKind::kBacklash,
-                  EffectKind::kOffset, EffectKind::kGain, EffectKind::kPeriodic},
+                  EffectKind::kBacklashOutput, EffectKind::kOffset, EffectKind::kGain,
+                  EffectKind::kPeriodic},
                  "depth_force", EffectKind::kSag);
   }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
@@ -386,6 +390,12 @@ class DraftChannel : public ChannelModel {
     return specs({EffectKind::kOffset, EffectKind::kPeriodic, EffectKind::kDelay,
                   EffectKind::kQuantisation});
   }
+  // At one depth and speed the draft is a constant: an offset trades with draft_100mm unless the
+  // recording holds the draft released at rest (or the opener raised).
+  std::optional<std::size_t> zero_load_rows(const Recording& r, const std::vector<double>& p,
+                                            std::size_t end) const override {
+    return rows_at_zero_load(*this, r, p, end);
+  }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
     const std::vector<double> d = transform_input(r, r.at("depth_mm"), fx);
@@ -434,6 +444,17 @@ std::vector<double> ChannelModel::initial_guess(const Recording&) const {
   std::vector<double> out;
   for (const auto& p : nominal_params()) out.push_back(p.initial);
   return out;
+}
+
+std::size_t rows_at_zero_load(const ChannelModel& ch, const Recording& r,
+                              const std::vector<double>& nominal, std::size_t end) {
+  std::vector<double> y;
+  ch.simulate(r, nominal, {}, y);
+  double size = 0.0;
+  for (double v : r.at(ch.output())) size = std::max(size, std::abs(v));
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < std::min(end, y.size()); ++k) n += std::abs(y[k]) <= 0.01 * size;
+  return n;
 }
 
 std::vector<const ChannelModel*> all_channels() {

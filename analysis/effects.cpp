@@ -50,14 +50,29 @@ void dead_zone(const Recording&, const std::vector<double>& p, std::vector<doubl
   for (auto& v : u) v = std::abs(v) <= p[0] ? 0.0 : v - std::copysign(p[0], v);
 }
 
-void backlash(const Recording&, const std::vector<double>& p, std::vector<double>& u) {
-  if (p[0] <= 0.0) return;
-  const double half = 0.5 * p[0];
+// The play operator (Krasnosel'skii & Pokrovskii, "Systems with Hysteresis", 1989, ch. 1): the
+// follower moves only when the driver has taken up half the gap either side of it.
+void play(double gap, std::vector<double>& u) {
+  if (gap <= 0.0) return;
+  const double half = 0.5 * gap;
   double y = u[0];
   for (auto& v : u) {
     y = std::clamp(y, v - half, v + half);
     v = y;
   }
+}
+
+// Between the command and the drive (a coupling on the command side)...
+void backlash(const Recording&, const std::vector<double>& p, std::vector<double>& u) {
+  play(p[0], u);
+}
+
+// ... or between the drive and what the sensor sees (a gear or linkage after the actuator:
+// the opener behind the depth actuator, the disc behind its motor). The brief does not fix
+// which; both are tried and the fit says which side fits (issue 32, item 4).
+void backlash_on_output(const OutputContext&, const std::vector<double>& p,
+                        std::vector<double>& y) {
+  play(p[0], y);
 }
 
 // A generalized Maxwell model (a Prony series; Findley, "Creep and Relaxation of Nonlinear
@@ -69,16 +84,30 @@ void relaxation(const OutputContext& c, const std::vector<double>& p, std::vecto
   if (c.effects != nullptr)
     if (const Effect* second = find_effect(*c.effects, EffectKind::kRelaxation2))
       branches.emplace_back(second->values[0], second->values[1]);
-  std::vector<double> relaxed;
+  // Each branch r' = (frac u - r) / tau is stepped exactly for an input linear between rows
+  // (the first-order-hold equivalent: Franklin, Powell & Workman, "Digital Control of Dynamic
+  // Systems", 3rd ed., sec. 6.3.2). An explicit Euler step read tau half a row long: 3.015 s
+  // for 3 s at 33 Hz, outside the stated interval.
+  std::vector<double> relaxed, decay(branches.size(), 1.0), ramp(branches.size(), 0.0);
   for (const auto& [frac, tau] : branches) relaxed.push_back(frac * y[0]);
+  double decay_dt = -1.0, u_prev = y[0];
   for (std::size_t k = 0; k < y.size(); ++k) {
     const double dt = k > 0 ? c.r.t[k] - c.r.t[k - 1] : 0.0;
-    double carried = y[k];
+    if (dt != decay_dt) {  // rows are mostly evenly spaced: exp once per distinct step
+      decay_dt = dt;
+      for (std::size_t b = 0; b < branches.size(); ++b) {
+        decay[b] = std::exp(-dt / branches[b].second);
+        ramp[b] = dt > 0.0 ? branches[b].second / dt * (1.0 - decay[b]) : 1.0;
+      }
+    }
+    const double u = y[k];
+    double carried = u;
     for (std::size_t b = 0; b < branches.size(); ++b) {
-      const auto [frac, tau] = branches[b];
-      relaxed[b] += (frac * y[k] - relaxed[b]) * std::min(1.0, dt / tau);
+      const double frac = branches[b].first;
+      relaxed[b] = decay[b] * relaxed[b] + frac * (u - decay[b] * u_prev - ramp[b] * (u - u_prev));
       carried -= relaxed[b];
     }
+    u_prev = u;
     // A contact force cannot pull: the relaxed branches lower the output towards zero, never
     // past it (an opened clamp reads nothing while the branches recover).
     y[k] = y[k] >= 0.0 ? std::max(0.0, carried) : std::min(0.0, carried);
@@ -232,6 +261,16 @@ const std::vector<EffectSpec>& library() {
                           const std::vector<double>&) { return 0.2 * in_span; },
          .separating_experiment =
              "a command that reverses slowly: play shows only just after each reversal"});
+    add({.kind = EffectKind::kBacklashOutput,
+         .name = "backlash (play) after the drive",
+         .signature = "the output holds still after every reversal of the drive",
+         .params = {{"gap", "output units", 0.0, 0.0, 0.0, true}},
+         .on_output = backlash_on_output,
+         .grid_upper = [](double, double out_span,
+                          const std::vector<double>&) { return 0.2 * out_span; },
+         .separating_experiment = "a command that reverses slowly, recorded at the drive and at "
+                                  "the load: play on the command side delays the drive too, play "
+                                  "after it only the load"});
     add({.kind = EffectKind::kRelaxation,
          .name = "viscoelastic relaxation (creep) of the clamp",
          .signature = "output decays towards a lower level after each load change",
@@ -313,8 +352,9 @@ const std::vector<EffectSpec>& library() {
          .signature = "a constant residual",
          .params = {{"offset", "output units", 0.0, -2.0, 2.0, false, true}},
          .on_output = offset,
-         .separating_experiment = "readings at zero load (the clamp open, the disc at rest): an "
-                                  "offset reads there too"});
+         .separating_experiment = "readings at zero load (the clamp open, the disc at rest, the "
+                                  "machine stopped long enough for the draft to ease): an offset "
+                                  "reads there too"});
     add({.kind = EffectKind::kDrift,
          .name = "sensor drift",
          .signature = "a residual growing linearly with time",

@@ -78,16 +78,16 @@ nlohmann::json effects_json(const ChannelFit& f, const ChannelModel& c) {
 // A tone found at the recording's rate, as an effect entry (the periodic effect's parameters).
 nlohmann::json fast_tone_json(const FastTone& f, const ChannelModel& c, double above_hz) {
   const EffectSpec& spec = effect_spec(EffectKind::kPeriodic);
-  return {
-      {"effect", spec.name},
-      {"signature", spec.signature},
-      {"parameters",
-       params_json(spec.params, {f.tone.amplitude, f.tone.frequency_hz, f.tone.phase_rad}, {}, c)},
-      {"found_at",
-       "the recording's own rate, above the analysed " + std::to_string(above_hz) + " Hz"},
-      {"order", f.order},
-      {"fundamental_hz", f.fundamental_hz},
-      {"held_out_rms", {{"before", f.held_out_rms_before}, {"after", f.held_out_rms_after}}}};
+  return {{"effect", spec.name},
+          {"signature", spec.signature},
+          {"parameters",
+           params_json(spec.params, {f.tone.amplitude, f.tone.frequency_hz, f.tone.phase_rad},
+                       {f.amplitude_sd, f.frequency_sd_hz, f.phase_sd_rad}, c)},
+          {"found_at",
+           "the recording's own rate, above the analysed " + std::to_string(above_hz) + " Hz"},
+          {"order", f.order},
+          {"fundamental_hz", f.fundamental_hz},
+          {"held_out_rms", {{"before", f.held_out_rms_before}, {"after", f.held_out_rms_after}}}};
 }
 
 }  // namespace
@@ -179,12 +179,19 @@ std::string fit_json(const FitReport& r, double wall_s) {
                             {"alternative", tie.alternative},
                             {"delta_bic", tie.delta_bic},
                             {"experiment", tie.experiment}});
-    for (const auto& cand : c.ranked) {
-      ch["ranked"].push_back({{"effect", cand.effect},
-                              {"delta_bic", cand.delta_bic},
-                              {"held_out_improvement", cand.held_out_improvement},
-                              {"cv_improvement", cand.cv_improvement},
-                              {"explained", cand.explained}});
+    auto figures = [](const Candidate& cand) {
+      return nlohmann::json{{"effect", cand.effect},
+                            {"delta_bic", cand.delta_bic},
+                            {"held_out_improvement", cand.held_out_improvement},
+                            {"cv_improvement", cand.cv_improvement},
+                            {"explained", cand.explained}};
+    };
+    for (const auto& cand : c.ranked) ch["ranked"].push_back(figures(cand));
+    // Second effects tried beside a first that explained only part (each judged, with it,
+    // against the nominal).
+    if (!c.pairs.empty()) {
+      ch["pairs_beside"] = c.pairs_beside;
+      for (const auto& cand : c.pairs) ch["pairs"].push_back(figures(cand));
     }
     const Location& l = c.location;
     nlohmann::json loc{{"whiteness_violations", l.whiteness_violations},
@@ -289,8 +296,11 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
     << " % of the residual beyond the measurement noise, improves a cross-validation fold or the "
        "held-out part by "
     << 100.0 * r.options.min_improvement
-    << " %, and does not worsen the held-out part. Each channel's table below says which "
-       "criterion each other candidate failed.</p>";
+    << " %, and does not worsen the held-out part. Of the candidates kept, the one with the "
+       "lowest held-out RMS is named; those within "
+    << 100.0 * r.options.held_out_tie
+    << " % of it tie on that, and the lowest BIC among them is named. Each channel's table "
+       "below says which criterion each other candidate failed.</p>";
   const std::size_t n = rec.size();
   const std::size_t stride = std::max<std::size_t>(1, n / 3000);
   std::vector<double> t;

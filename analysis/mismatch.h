@@ -61,7 +61,11 @@ struct ChannelReport {
   Location location;
   std::vector<Candidate> ranked;  // single effects, best BIC first
   std::vector<Candidate> chosen;  // accepted (one or two)
-  std::vector<Tie> ties;          // near ties with what was chosen
+  // When no single effect earns its place but one fails only on the share it explains: the
+  // second effects tried beside it, each judged as a pair against the nominal.
+  std::vector<Candidate> pairs;
+  std::string pairs_beside;  // that first effect
+  std::vector<Tie> ties;     // near ties with what was chosen
   // Vibration above the analysed rate, found in the final residual at the recording's own rate.
   std::vector<FastTone> fast_tones;
   // A parameter that changed once, when the fit without it leaves a structured residual and the
@@ -90,6 +94,9 @@ struct FitOptions {
   // is named. (Residuals of a closed-loop record are not white, so BIC alone overstates the
   // evidence: the extra parameters must also buy a share of the residual.)
   double tie_delta_bic = 6.0;
+  // Candidates are chosen by held-out RMS; within this share of the lowest they tie on it and
+  // BIC decides (about the RMS's own sampling error over a few hundred independent rows).
+  double held_out_tie = 0.05;
   double nested_delta_bic = 10.0;
   double nested_min_explained = 0.05;
   double min_unexplained_share = 0.005;  // of the output's held-out RMS, to call a residual

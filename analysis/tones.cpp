@@ -64,6 +64,7 @@ std::vector<FastTone> find_fast_tones(const std::vector<double>& t,
     // On an even grid, interpolated: jittered sampling wanders in phase (a 1 ms walk at
     // 30 Hz turns a tone into a smear); the refinement below uses the true times.
     std::vector<double> x(nfft, 0.0);
+    double window_power = 0.0;  // sum of the Hann window's squares: a bin's noise power / s^2
     const double step = (t[end - 1] - t[0]) / static_cast<double>(end - 1);
     std::size_t j = 0;
     for (std::size_t k = 0; k < end; ++k) {
@@ -71,8 +72,10 @@ std::vector<FastTone> find_fast_tones(const std::vector<double>& t,
       while (j + 2 < end && t[j + 1] < at) ++j;
       const double share = std::clamp((at - t[j]) / (t[j + 1] - t[j]), 0.0, 1.0);
       const double v = e[j] + share * (e[j + 1] - e[j]);
-      x[k] = (v - mean) *
-             (0.5 - 0.5 * std::cos(kTwoPi * static_cast<double>(k) / static_cast<double>(end - 1)));
+      const double w =
+          0.5 - 0.5 * std::cos(kTwoPi * static_cast<double>(k) / static_cast<double>(end - 1));
+      x[k] = (v - mean) * w;
+      window_power += w * w;
     }
     std::vector<std::complex<double>> spectrum;
     Eigen::FFT<double> fft;
@@ -110,6 +113,13 @@ std::vector<FastTone> find_fast_tones(const std::vector<double>& t,
     const double f = static_cast<double>(best + lo) * bin_hz;
     FastTone ft;
     ft.tone = refine_tone(t, e, end, f - 3.0 * bin_hz, f + 3.0 * bin_hz);
+    // The floor is a median; an exponential's mean is its median / ln 2.
+    const double noise_var = floor_of[best] / (std::log(2.0) * window_power);
+    const double n = static_cast<double>(end);
+    const double a2 = std::max(ft.tone.amplitude * ft.tone.amplitude, 1e-300);
+    ft.amplitude_sd = std::sqrt(2.0 * noise_var / n);
+    ft.frequency_sd_hz = std::sqrt(24.0 * noise_var / (a2 * n * (n * n - 1.0))) / (kTwoPi * step);
+    ft.phase_sd_rad = std::sqrt(8.0 * noise_var / (a2 * n));
     ft.held_out_rms_before = rms_between(e, end, e.size());
     subtract(t, ft.tone, e);
     ft.held_out_rms_after = rms_between(e, end, e.size());

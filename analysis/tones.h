@@ -28,6 +28,10 @@ struct FastTone {
   double fundamental_hz = 0.0;  // that lowest tone
   double held_out_rms_before = 0.0;  // the residual's RMS on the held-out part, without it ...
   double held_out_rms_after = 0.0;   // ... and with it subtracted
+  // Standard deviations of amplitude, frequency and phase: the Cramer-Rao bounds for a sinusoid
+  // in white noise (Rife & Boorstyn 1974, IEEE Trans. Inf. Theory 20(5)), with the noise's
+  // density taken from the spectrum's floor around the tone (coloured noise counts as it is).
+  double amplitude_sd = 0.0, frequency_sd_hz = 0.0, phase_sd_rad = 0.0;
 };
 
 // Tones of a residual between from_hz and 0.45 times the sample rate, at most max_tones,

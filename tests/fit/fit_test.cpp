@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <random>
 #include <sstream>
 
@@ -147,9 +148,11 @@ TEST(Analysis, HiddenClampRelaxationIsNamedAndFitted) {
   for (std::size_t k = 0; k < y.size(); k += 97) EXPECT_NEAR(y[k], c.final_fit.prediction[k], 1e-6);
 }
 
-// A play between the depth actuator and the opener that starts at one end of its gap, as a
-// gear train's does at power-up (issue 32, item 4): named, with its gap, from either end.
-Recording depth_play_recording(double gap_mm, double start_side, unsigned seed) {
+// A play that starts at one end of its gap, as a gear train's does at power-up (issue 32, item
+// 4): named, with its gap, from either end. On the command side (the coupling before the
+// actuator) or after the actuator (between it and the opener): the fit says which.
+Recording depth_play_recording(double gap_mm, double start_side, unsigned seed,
+                               bool after_drive = false, double offset_mm = 0.0) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, 0.05);
   std::uniform_real_distribution<double> level(80.0, 120.0);
@@ -158,14 +161,20 @@ Recording depth_play_recording(double gap_mm, double start_side, unsigned seed) 
   auto& cmd = r.signals["depth_cmd_mm"];
   auto& depth = r.signals["depth_mm"];
   double target = 100.0, played = 100.0 + start_side * 0.5 * gap_mm, state = played;
+  if (after_drive) state = 100.0;
   for (int k = 0; k < 12000; ++k) {  // 120 s at 100 Hz
     if (k % 600 == 0) target = level(rng);
-    played = std::clamp(played, target - 0.5 * gap_mm, target + 0.5 * gap_mm);
     // First order, 0.3 s, with a rate limit of 60 mm/s: the depth channel's nominal structure.
-    state += std::clamp((1.0 - std::exp(-0.01 / 0.3)) * (played - state), -0.6, 0.6);
+    if (after_drive) {
+      state += std::clamp((1.0 - std::exp(-0.01 / 0.3)) * (target - state), -0.6, 0.6);
+      played = std::clamp(played, state - 0.5 * gap_mm, state + 0.5 * gap_mm);
+    } else {
+      played = std::clamp(played, target - 0.5 * gap_mm, target + 0.5 * gap_mm);
+      state += std::clamp((1.0 - std::exp(-0.01 / 0.3)) * (played - state), -0.6, 0.6);
+    }
     r.t.push_back(0.01 * k);
     cmd.push_back(target);
-    depth.push_back(state + noise(rng));
+    depth.push_back((after_drive ? played : state) + offset_mm + noise(rng));
   }
   return r;
 }
@@ -181,6 +190,41 @@ TEST(Analysis, APlayThatStartsAtOneEndIsNamedWithItsGap) {
     ASSERT_FALSE(c.chosen.empty()) << "start side " << side << ": " << c.verdict;
     EXPECT_EQ(c.chosen[0].effect, "backlash (play)") << "start side " << side;
     EXPECT_NEAR(c.chosen[0].fit.effects.back().values[0], 6.0, 1.2) << "start side " << side;
+  }
+}
+
+// A play with a sensor offset, each too small to explain half of the residual alone: the one
+// that explains most is tried with a second, and the pair is judged against the nominal as one
+// candidate (issue 32, item 4).
+TEST(Analysis, APlayWithAnOffsetIsNamedAsAPairWhenNeitherEarnsAlone) {
+  for (const auto& [offset, gap] : {std::pair{0.5, 1.0}, std::pair{1.0, 2.0}}) {
+    FitOptions o = quick();
+    o.max_rows = 3000;
+    const FitReport rep = analyse(depth_play_recording(gap, 1.0, 21, false, offset), o);
+    ASSERT_EQ(rep.channels.size(), 1u);
+    const ChannelReport& c = rep.channels[0];
+    // Neither alone earns: the pair came through the partial path.
+    for (const auto& single : c.ranked) EXPECT_FALSE(rejection(single, o).empty()) << single.effect;
+    ASSERT_EQ(c.chosen.size(), 2u) << "offset " << offset << ", gap " << gap << ": " << c.verdict;
+    std::map<std::string, double> got;
+    for (const auto& e : c.final_fit.effects) got[e.spec->name] = e.values[0];
+    ASSERT_TRUE(got.count("sensor offset") && got.count("backlash (play)"))
+        << c.chosen[0].effect << " + " << c.chosen[1].effect;
+    EXPECT_NEAR(got["sensor offset"], offset, 0.2 * offset);
+    EXPECT_NEAR(got["backlash (play)"], gap, 0.2 * gap);
+  }
+}
+
+TEST(Analysis, APlayAfterTheDriveIsToldFromOneBeforeIt) {
+  for (bool after : {false, true}) {
+    FitOptions o = quick();
+    o.max_rows = 3000;
+    const FitReport rep = analyse(depth_play_recording(6.0, 1.0, 21, after), o);
+    ASSERT_EQ(rep.channels.size(), 1u);
+    const ChannelReport& c = rep.channels[0];
+    ASSERT_FALSE(c.chosen.empty()) << "after the drive " << after << ": " << c.verdict;
+    EXPECT_EQ(c.chosen[0].effect, after ? "backlash (play) after the drive" : "backlash (play)");
+    EXPECT_NEAR(c.chosen[0].fit.effects.back().values[0], 6.0, 1.2) << "after the drive " << after;
   }
 }
 
@@ -371,6 +415,46 @@ Recording torque_recording(double coulomb_Nm, double stribeck_Nm, unsigned seed)
   return r;
 }
 }  // namespace
+
+// A torque offset on a disc that never stops trades with the viscous term b omega: it is not
+// named, and the rejection says what to record. With the disc at rest for a while, it is.
+TEST(Analysis, ATorqueOffsetIsNamedOnlyWithTheDiscAtRest) {
+  for (bool rests : {false, true}) {
+    std::mt19937 rng(5);
+    std::normal_distribution<double> noise(0.0, 0.02);
+    Recording r;
+    r.file = "synthetic";
+    auto& w = r.signals["omega"];
+    auto& q = r.signals["disc_torque"];
+    for (int k = 0; k < 12000; ++k) {  // 120 s at 100 Hz
+      const double t = 0.01 * k;
+      const double phase = 2.0 * M_PI * t / 12.0;
+      // At rest for the first 4 s of every 12 (the speed's own low half clipped to zero).
+      double omega = 0.5 + 0.2 * std::sin(phase), accel = 0.2 * 2.0 * M_PI / 12.0 * std::cos(phase);
+      if (rests && std::fmod(t, 12.0) > 8.0) omega = accel = 0.0;
+      r.t.push_back(t);
+      w.push_back(omega);
+      q.push_back(0.2 * accel + 1.5 * omega + 0.3 + noise(rng));
+    }
+    FitOptions o = quick();
+    o.max_rows = 3000;
+    const FitReport rep = analyse(r, o);
+    ASSERT_EQ(rep.channels.size(), 1u);
+    const ChannelReport& c = rep.channels[0];
+    bool named = false;
+    for (const Candidate& chosen : c.chosen) named = named || chosen.effect == "sensor offset";
+    EXPECT_EQ(named, rests) << c.verdict;
+    if (rests) {
+      EXPECT_NEAR(c.final_fit.effects[0].values[0], 0.3, 0.06);
+      continue;
+    }
+    for (const Candidate& cand : c.ranked) {
+      if (cand.effect != "sensor offset") continue;
+      EXPECT_NE(rejection(cand, o).find("rows at zero load"), std::string::npos)
+          << rejection(cand, o);
+    }
+  }
+}
 
 // Parsimony: Coulomb friction alone is named Coulomb friction, not Stribeck friction (which
 // holds it and would fit as well); a real Stribeck extra is named Stribeck.

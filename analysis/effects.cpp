@@ -1,6 +1,7 @@
 // The library of named candidate effects: one entry each, holding how it acts, its bounds and
 // its starts.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -80,37 +81,44 @@ void backlash_on_output(const OutputContext&, const std::vector<double>& p,
 // is no longer carried, so a step in load gives the full force, which then decays towards
 // (1 - sum frac_i) of it. The second branch, when the fit has one, acts here with the first.
 void relaxation(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
-  std::vector<std::pair<double, double>> branches{{p[0], p[1]}};
+  // At most two branches (fraction, tau): the first, and a second Prony term beside it.
+  std::array<std::pair<double, double>, 2> branches{{{p[0], p[1]}, {0.0, 1.0}}};
+  std::size_t count = 1;
   if (c.effects != nullptr)
     if (const Effect* second = find_effect(*c.effects, EffectKind::kRelaxation2))
-      branches.emplace_back(second->values[0], second->values[1]);
+      branches[count++] = {second->values[0], second->values[1]};
   // Each branch r' = (frac u - r) / tau is stepped exactly for an input linear between rows
   // (the first-order-hold equivalent: Franklin, Powell & Workman, "Digital Control of Dynamic
-  // Systems", 3rd ed., sec. 6.3.2). An explicit Euler step read tau half a row long: 3.015 s
-  // for 3 s at 33 Hz, outside the stated interval.
-  std::vector<double> relaxed, decay(branches.size(), 1.0), ramp(branches.size(), 0.0);
-  for (const auto& [frac, tau] : branches) relaxed.push_back(frac * y[0]);
-  double decay_dt = -1.0, u_prev = y[0];
+  // Systems", 3rd ed., sec. 6.3.2): r_k = d r_(k-1) + a u_k + b u_(k-1), with d = exp(-dt/tau),
+  // a = frac (1 - g), b = frac (g - d), g = tau/dt (1 - d). An explicit Euler step read tau half
+  // a row long: 3.015 s for 3 s at 33 Hz, outside the stated interval.
+  std::array<double, 2> relaxed{}, d{}, a{}, b{};
+  for (std::size_t n = 0; n < count; ++n) relaxed[n] = branches[n].first * y[0];
+  double step_dt = -1.0, u_prev = y[0];
   for (std::size_t k = 0; k < y.size(); ++k) {
     const double dt = k > 0 ? c.r.t[k] - c.r.t[k - 1] : 0.0;
-    if (dt != decay_dt) {  // rows are mostly evenly spaced: exp once per distinct step
-      decay_dt = dt;
-      for (std::size_t b = 0; b < branches.size(); ++b) {
-        decay[b] = std::exp(-dt / branches[b].second);
-        ramp[b] = dt > 0.0 ? branches[b].second / dt * (1.0 - decay[b]) : 1.0;
+    // Rows are mostly evenly spaced, their times rounded: exp once per distinct step (to a
+    // part in 1e9, far below what the fit resolves).
+    if (std::abs(dt - step_dt) > 1e-9 * dt) {
+      step_dt = dt;
+      for (std::size_t n = 0; n < count; ++n) {
+        const auto [frac, tau] = branches[n];
+        d[n] = std::exp(-dt / tau);
+        const double g = dt > 0.0 ? tau / dt * (1.0 - d[n]) : 1.0;
+        a[n] = frac * (1.0 - g);
+        b[n] = frac * (g - d[n]);
       }
     }
     const double u = y[k];
     double carried = u;
-    for (std::size_t b = 0; b < branches.size(); ++b) {
-      const double frac = branches[b].first;
-      relaxed[b] = decay[b] * relaxed[b] + frac * (u - decay[b] * u_prev - ramp[b] * (u - u_prev));
-      carried -= relaxed[b];
+    for (std::size_t n = 0; n < count; ++n) {
+      relaxed[n] = d[n] * relaxed[n] + a[n] * u + b[n] * u_prev;
+      carried -= relaxed[n];
     }
     u_prev = u;
     // A contact force cannot pull: the relaxed branches lower the output towards zero, never
     // past it (an opened clamp reads nothing while the branches recover).
-    y[k] = y[k] >= 0.0 ? std::max(0.0, carried) : std::min(0.0, carried);
+    y[k] = u >= 0.0 ? std::max(0.0, carried) : std::min(0.0, carried);
   }
 }
 

@@ -395,8 +395,18 @@ TEST(Analysis, AVibrationAboveTheAnalysedRateIsNamedAtItsTrueFrequency) {
 
 namespace {
 // A disc drive's torque: inertia, viscous damping and dry friction (Coulomb, plus a Stribeck
-// extra near standstill), over a speed that sweeps through zero.
-Recording torque_recording(double coulomb_Nm, double stribeck_Nm, unsigned seed) {
+// extra near standstill) and a sensor offset, over a motion given as (omega, its derivative) at
+// time t; by default a speed that sweeps through zero.
+struct DiscMotion {
+  double omega = 0.0, accel = 0.0;
+};
+DiscMotion sweep_through_zero(double t) {
+  return {0.5 * std::sin(2.0 * M_PI * t / 12.0),
+          0.5 * 2.0 * M_PI / 12.0 * std::cos(2.0 * M_PI * t / 12.0)};
+}
+Recording torque_recording(double coulomb_Nm, double stribeck_Nm, unsigned seed,
+                           DiscMotion (*motion)(double) = sweep_through_zero,
+                           double offset_Nm = 0.0) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, 0.02);
   Recording r;
@@ -405,14 +415,21 @@ Recording torque_recording(double coulomb_Nm, double stribeck_Nm, unsigned seed)
   auto& q = r.signals["disc_torque"];
   for (int k = 0; k < 12000; ++k) {  // 120 s at 100 Hz
     const double t = 0.01 * k;
-    const double omega = 0.5 * std::sin(2.0 * M_PI * t / 12.0);
-    const double accel = 0.5 * 2.0 * M_PI / 12.0 * std::cos(2.0 * M_PI * t / 12.0);
+    const auto [omega, accel] = motion(t);
     const double dry = coulomb_Nm + stribeck_Nm * std::exp(-std::pow(omega / 0.05, 2));
     r.t.push_back(t);
     w.push_back(omega);
-    q.push_back(0.2 * accel + 1.5 * omega + dry * std::tanh(omega / 1e-4) + noise(rng));
+    q.push_back(0.2 * accel + 1.5 * omega + dry * std::tanh(omega / 1e-4) + offset_Nm + noise(rng));
   }
   return r;
+}
+// Always turning, 0.3-0.7 rad/s; or the same with the disc at rest for 4 s of every 12.
+DiscMotion always_turning(double t) {
+  const double phase = 2.0 * M_PI * t / 12.0;
+  return {0.5 + 0.2 * std::sin(phase), 0.2 * 2.0 * M_PI / 12.0 * std::cos(phase)};
+}
+DiscMotion turning_and_resting(double t) {
+  return std::fmod(t, 12.0) > 8.0 ? DiscMotion{} : always_turning(t);
 }
 }  // namespace
 
@@ -420,22 +437,8 @@ Recording torque_recording(double coulomb_Nm, double stribeck_Nm, unsigned seed)
 // named, and the rejection says what to record. With the disc at rest for a while, it is.
 TEST(Analysis, ATorqueOffsetIsNamedOnlyWithTheDiscAtRest) {
   for (bool rests : {false, true}) {
-    std::mt19937 rng(5);
-    std::normal_distribution<double> noise(0.0, 0.02);
-    Recording r;
-    r.file = "synthetic";
-    auto& w = r.signals["omega"];
-    auto& q = r.signals["disc_torque"];
-    for (int k = 0; k < 12000; ++k) {  // 120 s at 100 Hz
-      const double t = 0.01 * k;
-      const double phase = 2.0 * M_PI * t / 12.0;
-      // At rest for the first 4 s of every 12 (the speed's own low half clipped to zero).
-      double omega = 0.5 + 0.2 * std::sin(phase), accel = 0.2 * 2.0 * M_PI / 12.0 * std::cos(phase);
-      if (rests && std::fmod(t, 12.0) > 8.0) omega = accel = 0.0;
-      r.t.push_back(t);
-      w.push_back(omega);
-      q.push_back(0.2 * accel + 1.5 * omega + 0.3 + noise(rng));
-    }
+    const Recording r =
+        torque_recording(0.0, 0.0, 5, rests ? turning_and_resting : always_turning, 0.3);
     FitOptions o = quick();
     o.max_rows = 3000;
     const FitReport rep = analyse(r, o);

@@ -416,6 +416,21 @@ std::vector<std::string> channel_columns() {
   return read;
 }
 
+// The columns a glitch is looked for in: the sensors'. Not what the controller computed and
+// acted on (a command; the ground speed it estimated from the recorded wheel edges, whose
+// dips as the edges thin out at a stop are real and modelled), nor the disturbances the
+// simulator declares (its own truth).
+std::vector<std::string> glitch_columns(const Recording& r) {
+  std::vector<std::string> out;
+  for (const std::string& c : channel_columns()) {
+    const bool command = c.find("_cmd") != std::string::npos;
+    const bool declared = c.starts_with("known_");
+    const bool estimated = c == "v_wheel" && r.has("wheel_counts");
+    if (!command && !declared && !estimated) out.push_back(c);
+  }
+  return out;
+}
+
 Recording analysed_recording(const Recording& full, const FitOptions& o,
                              const std::vector<Glitch>& glitches) {
   // At most max_rows rows: the fits simulate the whole record for each evaluation. The
@@ -564,7 +579,7 @@ FitReport analyse(const Recording& whole, const FitOptions& o) {
     until_stopped = first_rows(whole, stopped);
   }
   const Recording& full = until_stopped ? *until_stopped : whole;
-  rep.glitches = find_glitches(full, channel_columns());
+  rep.glitches = find_glitches(full, glitch_columns(full));
   const Recording r = analysed_recording(full, o, rep.glitches);
   rep.rate_hz = sample_rate_hz(full);
   const bool decimated = r.size() < full.size();

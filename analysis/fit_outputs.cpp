@@ -367,18 +367,24 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
     auto share = [](double v) {
       return v < -1.0 ? std::string("worse") : report::fixed(100.0 * v, 1) + " %";
     };
-    for (const auto& cand : c.ranked) {
-      bool kept = false;
-      for (const auto& e : c.final_fit.effects) kept = kept || e.spec == cand.spec;
-      const std::string why = rejection(cand, r.options);
-      h << "<tr><td>" << cand.effect << "</td><td>" << report::fixed(cand.delta_bic, 1)
-        << "</td><td>" << share(cand.explained) << "</td><td>" << share(cand.cv_improvement)
-        << "</td><td>" << share(cand.held_out_improvement) << "</td><td>"
-        << (kept          ? "<b>kept</b>"
-            : why.empty() ? "earns its place; another explains the same better or is simpler"
-                          : "no: " + report::html_escape(why))
-        << "</td></tr>";
-    }
+    auto rows = [&](const std::vector<Candidate>& cands, const std::string& beside) {
+      for (const auto& cand : cands) {
+        bool kept = false;
+        for (const auto& e : c.final_fit.effects) kept = kept || e.spec == cand.spec;
+        const std::string why = rejection(cand, r.options);
+        h << "<tr><td>" << (beside.empty() ? "" : report::html_escape(beside) + " with ")
+          << cand.effect << "</td><td>" << report::fixed(cand.delta_bic, 1) << "</td><td>"
+          << share(cand.explained) << "</td><td>" << share(cand.cv_improvement) << "</td><td>"
+          << share(cand.held_out_improvement) << "</td><td>"
+          << (kept          ? "<b>kept</b>"
+              : why.empty() ? "earns its place; another explains the same better or is simpler"
+                            : "no: " + report::html_escape(why))
+          << "</td></tr>";
+      }
+    };
+    rows(c.ranked, "");
+    // No effect earned alone, one explained part: the pairs beside it, each against the nominal.
+    rows(c.pairs, c.pairs_beside);
     h << "</table><p>Where the nominal residual is: whiteness violations "
       << 100.0 * c.location.whiteness_violations << " % of lags; input correlation "
       << c.location.input_correlation << "; worst window at " << c.location.worst_window_start_s

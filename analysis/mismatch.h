@@ -42,6 +42,9 @@ struct Candidate {
   // Non-empty when the recording cannot tell this effect from the nominal's own parameters:
   // why, and the experiment that would (rejection() returns it first).
   std::string not_separable;
+  // Non-empty when tried as the second of a pair and a cross-validation fold lost: two effects
+  // together bend to the calibration part more freely than one (rejection() returns it next).
+  std::string loses_as_pair;
   ChannelFit fit;
 };
 

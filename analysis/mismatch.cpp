@@ -211,13 +211,26 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     const double after2 = c.fit.rms_calibration * c.fit.rms_calibration;
     c.explained = before2 > noise2 ? (before2 - after2) / (before2 - noise2) : 0.0;
   };
-  auto try_effects = [&](const ChannelFit& base, std::vector<Effect> start) {
+  // What a candidate is judged against: the noise under a base fit (from its residual, so that
+  // an effect already modelled, a vibration near the thinned Nyquist rate, no longer counts as
+  // noise) and the base's blocked cross-validation errors.
+  struct BaseFigures {
+    double noise = 0.0;
+    std::vector<double> fold_errors;
+  };
+  auto figures_of = [&](const ChannelFit& base) {
+    BaseFigures f;
+    f.noise = std::min(rep.noise_rms,
+                       white_noise_rms(residual_of(base.prediction, y), split.calibration_end));
+    f.fold_errors = fold_errors(base, f.noise);
+    return f;
+  };
+  auto try_effects = [&](const ChannelFit& base, const BaseFigures& figures,
+                         std::vector<Effect> start) {
     std::vector<Candidate> out;
     const std::vector<double> base_e = residual_of(base.prediction, y);
-    // The noise under this base: from its residual, so that an effect already modelled (a
-    // vibration near the thinned Nyquist rate) no longer counts as noise.
-    const double noise = std::min(rep.noise_rms, white_noise_rms(base_e, split.calibration_end));
-    const std::vector<double> base_fold_errors = fold_errors(base, noise);
+    const double noise = figures.noise;
+    const std::vector<double>& base_fold_errors = figures.fold_errors;
     for (const EffectSpec* spec : ch.candidates(r)) {
       // Not twice, and not beside an effect it holds or that holds it (Stribeck and Coulomb).
       bool used = false;
@@ -309,12 +322,14 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     }
     return nullptr;
   };
-  rep.ranked = try_effects(rep.nominal, known);
+  const BaseFigures nominal_figures = figures_of(rep.nominal);
+  rep.ranked = try_effects(rep.nominal, nominal_figures, known);
   rep.final_fit = rep.nominal;
   if (const Candidate* best = choose(rep.ranked)) {
     rep.chosen.push_back(*best);
     rep.final_fit = best->fit;
-    const std::vector<Candidate> pairs = try_effects(best->fit, best->fit.effects);
+    const std::vector<Candidate> pairs =
+        try_effects(best->fit, figures_of(best->fit), best->fit.effects);
     if (const Candidate* second = choose(pairs)) {
       rep.chosen.push_back(*second);
       rep.final_fit = second->fit;
@@ -324,13 +339,10 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     // One effect explains part of the residual and fails only on that share: a second one may
     // explain the rest (a play with an offset). The pair is judged against the nominal as
     // one candidate, by the same rules (issue 32, item 4).
-    const double noise =
-        std::min(rep.noise_rms, white_noise_rms(residual_of(rep.nominal.prediction, y), end));
-    const std::vector<double> nominal_folds = fold_errors(rep.nominal, noise);
-    rep.pairs = try_effects(part->fit, part->fit.effects);
+    rep.pairs = try_effects(part->fit, figures_of(part->fit), part->fit.effects);
     rep.pairs_beside = part->effect;
     for (Candidate& second : rep.pairs) {
-      judge(rep.nominal, nominal_folds, noise, second);
+      judge(rep.nominal, nominal_figures.fold_errors, nominal_figures.noise, second);
       // A pair must not lose on any left-out block (a single effect may, where the held-out
       // part shows its gain): with a changed parameter left unmodelled, a drift and an offset
       // together fitted half of the residual and lost 46 % on a fold.

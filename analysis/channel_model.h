@@ -130,6 +130,13 @@ class ChannelModel {
       const Recording&, const std::vector<double>& /*nominal*/, std::size_t /*end*/) const {
     return std::nullopt;
   }
+  // The residual's RMS that the recorded input's own measurement noise makes through the
+  // nominal with these values (rows before `end`): an errors-in-variables floor. 0 where the
+  // structure smooths its input; the disc torque differentiates its measured speed.
+  [[nodiscard]] virtual double input_noise_rms(const Recording&, const std::vector<double>&,
+                                               std::size_t /*end*/) const {
+    return 0.0;
+  }
 };
 
 // The rows before `end` where the nominal, with the values given, predicts no load: under 1 %

@@ -4,11 +4,13 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <random>
 
 #include "analysis/at_rest.h"
 #include "analysis/channel_model.h"
 #include "analysis/decimation.h"
 #include "analysis/effect_hooks.h"
+#include "analysis/residual_stats.h"
 #include "sim/soil/opener_draft.h"
 
 namespace planter::analysis {
@@ -207,6 +209,37 @@ class DiscTorqueChannel : public ChannelModel {
   std::optional<std::size_t> zero_load_rows(const Recording& r, const std::vector<double>& p,
                                             std::size_t end) const override {
     return rows_at_zero_load(*this, r, p, end);
+  }
+  // The torque is computed from the measured speed: its noise n enters as
+  // J (n[k+1] - n[k-1]) / (t[k+1] - t[k-1]) + b n[k] (a heavy disc on a quick drive makes this
+  // several times the torque sensor's own noise). The speed's noise is measured at the
+  // recording's own rate; white noise of that size is passed through the same anti-alias filter
+  // and thinning as the recording, then through that map (a fixed seed: the same figure each run).
+  double input_noise_rms(const Recording& r, const std::vector<double>& p,
+                         std::size_t end) const override {
+    const auto measured = r.full_rate_noise.find("omega");
+    const double sigma = measured != r.full_rate_noise.end()
+                             ? measured->second
+                             : white_noise_rms(r.at("omega"), std::min(end, r.size()));
+    const std::size_t stride = r.decimation_stride;
+    const std::size_t rows = std::min<std::size_t>(std::min(end, r.size()), 20000);
+    if (rows < 9 || sigma <= 0.0) return 0.0;
+    const double dt = (r.t[rows - 1] - r.t[0]) / static_cast<double>(rows - 1);
+    std::mt19937 rng(1);
+    std::normal_distribution<double> white(0.0, sigma);
+    std::vector<double> n(rows * stride);
+    for (double& v : n) v = white(rng);
+    if (stride > 1) {
+      const double rate = static_cast<double>(stride) / dt;
+      zero_phase_lowpass(n, kAntiAliasCutoffShare * 0.5 / dt, rate);
+    }
+    double sum = 0.0;
+    for (std::size_t k = 1; k + 1 < rows; ++k) {
+      const double e =
+          p[0] * (n[(k + 1) * stride] - n[(k - 1) * stride]) / (2.0 * dt) + p[1] * n[k * stride];
+      sum += e * e;
+    }
+    return std::sqrt(sum / static_cast<double>(rows - 2));
   }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {

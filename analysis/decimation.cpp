@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "analysis/residual_stats.h"
 #include "firmware/io/signal_table.h"
 
 namespace planter::analysis {
@@ -66,6 +67,7 @@ Recording decimated(const Recording& r, std::size_t stride,
   out.file = r.file;
   out.metadata = r.metadata;
   out.decimation_stride = r.decimation_stride * stride;
+  out.full_rate_noise = r.full_rate_noise;
   const double rate = sample_rate_hz(r);
   const double cutoff = kAntiAliasCutoffShare * 0.5 * rate / static_cast<double>(stride);
   for (std::size_t k = 0; k < r.size(); k += stride) out.t.push_back(r.t[k]);
@@ -96,6 +98,7 @@ Recording decimated(const Recording& r, std::size_t stride,
         o.push_back(sum / weight);
       }
     } else {
+      out.full_rate_noise.emplace(name, white_noise_rms(v, v.size()));
       std::vector<double> smooth = v;
       zero_phase_lowpass(smooth, cutoff, rate);
       for (std::size_t k = 0; k < smooth.size(); k += stride) o.push_back(smooth[k]);

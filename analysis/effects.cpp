@@ -34,6 +34,16 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
+// Where the play's follower starts in its gap, as a share of half the gap (see play()).
+const ParamSpec kPlayStart{"start", "1 (-1 low end, +1 high end)", 0.0, -1.0, 1.0};
+// The largest play searched: half the larger of the command's and the output's spans (a play
+// wider than that would leave most moves unanswered). Both spans, so that the play before the
+// drive and the one after it are searched over the same gaps: a 6 mm play on an opener that
+// travelled 24 mm was out of reach of a fifth of the output's span (issue 32, item 6).
+double play_upper(double in_span, double out_span, const std::vector<double>&) {
+  return 0.5 * std::max(in_span, out_span);
+}
+
 // ---- How each effect acts (forms: control-engineering textbook nonlinearities, e.g.
 // Slotine & Li, "Applied Nonlinear Control", ch. 5; friction after Armstrong-Helouvry; the
 // Maxwell branch after Findley, "Creep and Relaxation of Nonlinear Viscoelastic Materials").
@@ -52,11 +62,14 @@ void dead_zone(const Recording&, const std::vector<double>& p, std::vector<doubl
 }
 
 // The play operator (Krasnosel'skii & Pokrovskii, "Systems with Hysteresis", 1989, ch. 1): the
-// follower moves only when the driver has taken up half the gap either side of it.
-void play(double gap, std::vector<double>& u) {
-  if (gap <= 0.0) return;
+// follower moves only when the driver has taken up half the gap either side of it. Its initial
+// state is fitted: `start` places the follower at -1 (against the low end of the gap), 0
+// (centred) or +1 (the high end). A gear train powers up against one end, and until the driver
+// first crosses the gap the output sits half the gap off (issue 32, item 4).
+void play(double gap, double start, std::vector<double>& u) {
+  if (gap <= 0.0 || u.empty()) return;
   const double half = 0.5 * gap;
-  double y = u[0];
+  double y = u[0] + std::clamp(start, -1.0, 1.0) * half;
   for (auto& v : u) {
     y = std::clamp(y, v - half, v + half);
     v = y;
@@ -65,7 +78,7 @@ void play(double gap, std::vector<double>& u) {
 
 // Between the command and the drive (a coupling on the command side)...
 void backlash(const Recording&, const std::vector<double>& p, std::vector<double>& u) {
-  play(p[0], u);
+  play(p[0], p[1], u);
 }
 
 // ... or between the drive and what the sensor sees (a gear or linkage after the actuator:
@@ -73,7 +86,7 @@ void backlash(const Recording&, const std::vector<double>& p, std::vector<double
 // which; both are tried and the fit says which side fits (issue 32, item 4).
 void backlash_on_output(const OutputContext&, const std::vector<double>& p,
                         std::vector<double>& y) {
-  play(p[0], y);
+  play(p[0], p[1], y);
 }
 
 // A generalized Maxwell model (a Prony series; Findley, "Creep and Relaxation of Nonlinear
@@ -263,19 +276,17 @@ const std::vector<EffectSpec>& library() {
     add({.kind = EffectKind::kBacklash,
          .name = "backlash (play)",
          .signature = "lag at every reversal of the input",
-         .params = {{"gap", "input units", 0.0, 0.0, 0.0, true}},
+         .params = {{"gap", "input units", 0.0, 0.0, 0.0, true}, kPlayStart},
          .on_input = backlash,
-         .grid_upper = [](double in_span, double,
-                          const std::vector<double>&) { return 0.2 * in_span; },
+         .grid_upper = play_upper,
          .separating_experiment =
              "a command that reverses slowly: play shows only just after each reversal"});
     add({.kind = EffectKind::kBacklashOutput,
          .name = "backlash (play) after the drive",
          .signature = "the output holds still after every reversal of the drive",
-         .params = {{"gap", "output units", 0.0, 0.0, 0.0, true}},
+         .params = {{"gap", "output units", 0.0, 0.0, 0.0, true}, kPlayStart},
          .on_output = backlash_on_output,
-         .grid_upper = [](double, double out_span,
-                          const std::vector<double>&) { return 0.2 * out_span; },
+         .grid_upper = play_upper,
          .separating_experiment = "a command that reverses slowly, recorded at the drive and at "
                                   "the load: play on the command side delays the drive too, play "
                                   "after it only the load"});

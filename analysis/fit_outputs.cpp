@@ -131,6 +131,7 @@ std::string fit_json(const FitReport& r, double wall_s) {
     ch["nominal"] = params_json(c.channel->nominal_params(), c.nominal.nominal,
                                 c.nominal.nominal_sd, *c.channel);
     ch["noise_rms"] = c.noise_rms;
+    ch["input_noise_rms"] = c.input_noise_rms;
     ch["held_out_rms"] = {{"nominal", c.nominal.rms_held_out},
                           {"augmented", c.final_fit.rms_held_out}};
     ch["calibration_rms"] = {{"nominal", c.nominal.rms_calibration},
@@ -320,7 +321,10 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
     for (double v : e0) emax = std::max(emax, std::abs(v));
     h << "<h2>" << c.channel->subsystem() << ": " << c.channel->output() << " &mdash; " << c.verdict
       << "</h2><p>Held-out RMS error: nominal " << c.nominal.rms_held_out << ", augmented <b>"
-      << c.final_fit.rms_held_out << "</b>; measurement noise about " << c.noise_rms << ".</p>";
+      << c.final_fit.rms_held_out << "</b>; measurement noise about " << c.noise_rms;
+    if (c.input_noise_rms > 0.0)
+      h << ", and " << c.input_noise_rms << " from the measured input's noise through the model";
+    h << ".</p>";
     for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
       h << "<p><b>" << report::html_escape(effect_text(c.final_fit, e, *c.channel)) << "</b> ("
         << c.final_fit.effects[e].spec->signature << ")</p>";

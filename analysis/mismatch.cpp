@@ -371,9 +371,11 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   double mean_square = 0;
   const std::size_t from = split.calibration_end, n = y.size() - from;
   for (std::size_t k = from; k < y.size(); ++k) mean_square += y[k] * y[k] / static_cast<double>(n);
+  rep.input_noise_rms = ch.input_noise_rms(r, rep.final_fit.nominal, split.calibration_end);
   auto unexplained = [&] {
     const double left = rep.final_fit.rms_held_out;
-    return left > 3.0 * std::max(rep.noise_rms, 1e-12) && rep.location.whiteness_violations > 0.5 &&
+    const double floor = std::hypot(rep.noise_rms, rep.input_noise_rms);
+    return left > 3.0 * std::max(floor, 1e-12) && rep.location.whiteness_violations > 0.5 &&
            left > o.min_unexplained_share * std::sqrt(mean_square);
   };
   rep.unexplained = unexplained();

@@ -61,6 +61,9 @@ struct ChannelReport {
   const ChannelModel* channel = nullptr;
   ChannelFit nominal;
   double noise_rms = 0.0;  // white measurement noise: second differences of the final residual
+  // What the measured input's noise makes in the residual through the final fit's nominal
+  // (ChannelModel::input_noise_rms); "unexplained" must stand above both.
+  double input_noise_rms = 0.0;
   Location location;
   std::vector<Candidate> ranked;  // single effects, best BIC first
   std::vector<Candidate> chosen;  // accepted (one or two)

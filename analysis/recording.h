@@ -33,6 +33,9 @@ struct Recording {
   std::map<std::string, std::vector<double>> signals;  // numeric columns by name
   std::vector<std::string> state;                      // empty when there is no state column
   std::size_t decimation_stride = 1;  // rows of the recording per row here (decimation.h)
+  // Each low-pass filtered column's white noise, measured at the recording's own rate before
+  // decimation (after it, the filter has coloured the noise and second differences miss most).
+  std::map<std::string, double> full_rate_noise;
   [[nodiscard]] bool has(const std::string& name) const { return signals.count(name) != 0; }
   [[nodiscard]] const std::vector<double>& at(const std::string& name) const {
     return signals.at(name);

@@ -152,6 +152,20 @@ run_outside outside-force-offset "clamp_force:sensor offset:offset=5" --seed 15 
 run_outside outside-vibration-fast \
   "clamp_force:periodic disturbance (vibration):amplitude=3,frequency_hz=30" \
   --seed 16 --vibration 30 3
+# Wider (issue 32, item 6): machines drawn across the generator's ranges (DRAWN in
+# outside_machine.py), one with a draft that is there in full while moving and gone at rest; a
+# play of 6 mm behind the depth actuator, powered up against either end of its gap; a clamp
+# hysteresis of 1 N on a quiet load cell and of 20 kN on a press 200 times stiffer.
+run_outside outside-drawn-1-instant-draft clean --seed 22 --draw-nominal 1 --instant-draft
+run_outside outside-drawn-2 clean --seed 26 --draw-nominal 2
+for end in low high; do
+  run_outside "outside-play-from-$end" "depth_mm:backlash (play) after the drive:gap=6" \
+    --seed 21 --depth-play 6 $end
+done
+run_outside outside-hysteresis-1N "clamp_force:hysteresis of the clamp (Bouc-Wen):height=1" \
+  --seed 24 --noise 0.25 --hysteresis 1 0.5
+run_outside outside-hysteresis-20kN "clamp_force:hysteresis of the clamp (Bouc-Wen):height=20000" \
+  --seed 23 --clamp-scale 200 --hysteresis 20000 0.5
 wait
 passed=0
 exact=0

@@ -12,8 +12,17 @@ with options.
 
 Usage: outside_machine.py OUT.csv [--noise K] [--seed N] [--relaxation FRAC TAU_S]
        [--command-delay S] [--coulomb NM] [--force-offset N] [--vibration HZ AMP_N]
-       [--hysteresis H_N DELTA_MM]
+       [--hysteresis H_N DELTA_MM] [--draw-nominal SEED] [--instant-draft]
+       [--depth-play GAP_MM low|high] [--clamp-scale S]
 --noise scales every channel's measurement noise (1: the reference levels).
+--draw-nominal draws every nominal value uniformly across a range around this file's own (the
+  ranges are in DRAWN below; the depth exponent across the 1-2 a soil's D497 exponent spans).
+--instant-draft: the draft is there in full while the ground moves and gone at rest (no
+  build-up over travel, no relaxation): the limit the nominal draft structure must reach.
+--depth-play: a play of GAP_MM between the depth actuator and the opener (the recorded depth is
+  the opener's), powered up against one end of the gap, as a gear train is.
+--clamp-scale multiplies the clamp's stiffness and its load cell's noise (a larger press), so a
+  hysteresis of kilonewtons keeps its share of the channel's range.
 """
 import argparse
 import math
@@ -29,6 +38,10 @@ p.add_argument("--coulomb", type=float, default=0.0)
 p.add_argument("--force-offset", type=float, default=0.0)
 p.add_argument("--vibration", type=float, nargs=2, default=[0.0, 0.0])
 p.add_argument("--hysteresis", type=float, nargs=2, default=[0.0, 1.0])
+p.add_argument("--draw-nominal", type=int, default=None)
+p.add_argument("--instant-draft", action="store_true")
+p.add_argument("--depth-play", nargs=2, default=None)
+p.add_argument("--clamp-scale", type=float, default=1.0)
 a = p.parse_args()
 rng = random.Random(a.seed)
 
@@ -44,6 +57,22 @@ K_MOB, TAU_REST = 0.015, 20.0      # m, s: a longer build-up and a quicker relax
 LAG = 0.06                         # s, the wheel's speed estimate
 DURATION, DT = 300.0, 0.001
 NOISE = {"v": 2e-4, "w": 1e-3, "q": 5e-3, "f": 0.5, "d": 0.05, "df": 0.3}
+
+# --draw-nominal: each value drawn uniformly from (low, high). The ranges are this generator's
+# own guesses at what machines of this kind span ("assumed"), not fitted to anything.
+DRAWN = {"T_D": (0.04, 0.16), "J": (0.2, 0.6), "B": (1.0, 3.0), "K_C": (8.0, 30.0),
+         "X0": (0.6, 1.8), "N_EXP": (1.0, 1.6), "T_A": (0.2, 0.8), "R_MAX": (15.0, 45.0),
+         "F_TEX": (0.45, 1.0), "A_D": (40.0, 90.0), "B_D": (2.0, 6.0), "M_D": (1.0, 2.0),
+         "K_MOB": (0.005, 0.04), "TAU_REST": (5.0, 60.0), "LAG": (0.03, 0.12)}
+if a.draw_nominal is not None:
+    drawn_rng = random.Random(a.draw_nominal)
+    for name, (low, high) in DRAWN.items():
+        globals()[name] = drawn_rng.uniform(low, high)
+K_C *= a.clamp_scale
+NOISE["f"] *= a.clamp_scale
+PLAY = float(a.depth_play[0]) if a.depth_play else 0.0
+if a.depth_play and a.depth_play[1] not in ("low", "high"):
+    p.error("--depth-play END must be low or high")
 
 
 def wheel_speed(t):
@@ -108,13 +137,23 @@ def derivatives(t, y):
     dr = (frac * elastic - relaxed) / tau if frac > 0 else 0.0
     delta = a.hysteresis[1]
     dz = (dx - 0.5 * abs(dx) * z - 0.5 * dx * abs(z)) / delta
-    dshare = ground_speed(t) * (1.0 - share) / K_MOB - share / TAU_REST
+    dshare = 0.0 if a.instant_draft else ground_speed(t) * (1.0 - share) / K_MOB - share / TAU_REST
     return [dw, dd, dr, dx, dz, dshare]
+
+
+def opener(d):
+    """The opener behind a play of PLAY (mm): the play operator, its state kept between rows.
+    It starts against one end: 'low' leaves the opener half the gap below the actuator."""
+    global opener_at
+    half = 0.5 * PLAY
+    opener_at = min(max(opener_at, d - half), d + half)
+    return opener_at
 
 
 columns = ["t", "v_ground", "v_wheel", "omega_cmd", "omega", "disc_torque", "clamp_pos_mm",
            "clamp_force", "depth_cmd_mm", "depth_mm", "depth_force"]
 t, y = 0.0, [0.0, 60.0, 0.0, 0.0, 0.0, 0.0]
+opener_at = 60.0 + (0.5 * PLAY if a.depth_play and a.depth_play[1] == "high" else -0.5 * PLAY)
 next_sample = 0.0
 noise = {k: v * a.noise for k, v in NOISE.items()}
 with open(a.out, "w") as out:
@@ -130,6 +169,9 @@ with open(a.out, "w") as out:
             force = max(0.0, elastic - relaxed) + a.hysteresis[0] * z + a.force_offset + \
                 a.vibration[1] * math.sin(2 * math.pi * a.vibration[0] * t)
             s_kmh = 3.6 * max(0.0, v)
+            if a.instant_draft:
+                share = 1.0 if v > 0.0 else 0.0
+            d = opener(d)
             draft = F_TEX * (A_D + B_D * s_kmh) * 10.0 * (max(0.0, d) / 100.0) ** M_D * share
             row = [t, v + rng.gauss(0, noise["v"]), wheel_speed(t),
                    omega_command(t), w + rng.gauss(0, noise["w"]),

@@ -152,7 +152,8 @@ TEST(Analysis, HiddenClampRelaxationIsNamedAndFitted) {
 // 4): named, with its gap, from either end. On the command side (the coupling before the
 // actuator) or after the actuator (between it and the opener): the fit says which.
 Recording depth_play_recording(double gap_mm, double start_side, unsigned seed,
-                               bool after_drive = false, double offset_mm = 0.0) {
+                               bool after_drive = false, double offset_mm = 0.0,
+                               int first_hold_rows = 0) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, 0.05);
   std::uniform_real_distribution<double> level(80.0, 120.0);
@@ -163,7 +164,7 @@ Recording depth_play_recording(double gap_mm, double start_side, unsigned seed,
   double target = 100.0, played = 100.0 + start_side * 0.5 * gap_mm, state = played;
   if (after_drive) state = 100.0;
   for (int k = 0; k < 12000; ++k) {  // 120 s at 100 Hz
-    if (k % 600 == 0) target = level(rng);
+    if (k >= first_hold_rows && k % 600 == 0) target = level(rng);
     // First order, 0.3 s, with a rate limit of 60 mm/s: the depth channel's nominal structure.
     if (after_drive) {
       state += std::clamp((1.0 - std::exp(-0.01 / 0.3)) * (target - state), -0.6, 0.6);
@@ -190,6 +191,24 @@ TEST(Analysis, APlayThatStartsAtOneEndIsNamedWithItsGap) {
     ASSERT_FALSE(c.chosen.empty()) << "start side " << side << ": " << c.verdict;
     EXPECT_EQ(c.chosen[0].effect, "backlash (play)") << "start side " << side;
     EXPECT_NEAR(c.chosen[0].fit.effects.back().values[0], 6.0, 1.2) << "start side " << side;
+  }
+}
+
+// Held at its power-up command for 40 s, the follower stays half the gap off until the command
+// first moves: the play's starting state is fitted, not assumed centred.
+TEST(Analysis, APlayHeldAtPowerUpIsFittedWithItsStartingEnd) {
+  for (double side : {-1.0, 1.0}) {
+    FitOptions o = quick();
+    o.max_rows = 3000;
+    const FitReport rep = analyse(depth_play_recording(6.0, side, 21, false, 0.0, 4000), o);
+    ASSERT_EQ(rep.channels.size(), 1u);
+    const ChannelReport& c = rep.channels[0];
+    ASSERT_FALSE(c.chosen.empty()) << "start side " << side << ": " << c.verdict;
+    EXPECT_EQ(c.chosen[0].effect, "backlash (play)") << "start side " << side;
+    const Effect& play = c.chosen[0].fit.effects.back();
+    EXPECT_NEAR(play.values[0], 6.0, 1.2) << "start side " << side;
+    EXPECT_NEAR(play.values[1], side, 0.2) << "start side " << side;
+    EXPECT_EQ(c.chosen.size(), 1u) << "start side " << side << ": " << c.chosen.back().effect;
   }
 }
 
@@ -406,9 +425,10 @@ DiscMotion sweep_through_zero(double t) {
 }
 Recording torque_recording(double coulomb_Nm, double stribeck_Nm, unsigned seed,
                            DiscMotion (*motion)(double) = sweep_through_zero,
-                           double offset_Nm = 0.0) {
+                           double offset_Nm = 0.0, double inertia_kgm2 = 0.2,
+                           double omega_noise_radps = 0.0) {
   std::mt19937 rng(seed);
-  std::normal_distribution<double> noise(0.0, 0.02);
+  std::normal_distribution<double> noise(0.0, 0.02), speed_noise(0.0, omega_noise_radps);
   Recording r;
   r.file = "synthetic";
   auto& w = r.signals["omega"];
@@ -418,8 +438,9 @@ Recording torque_recording(double coulomb_Nm, double stribeck_Nm, unsigned seed,
     const auto [omega, accel] = motion(t);
     const double dry = coulomb_Nm + stribeck_Nm * std::exp(-std::pow(omega / 0.05, 2));
     r.t.push_back(t);
-    w.push_back(omega);
-    q.push_back(0.2 * accel + 1.5 * omega + dry * std::tanh(omega / 1e-4) + offset_Nm + noise(rng));
+    w.push_back(omega + (omega_noise_radps > 0.0 ? speed_noise(rng) : 0.0));
+    q.push_back(inertia_kgm2 * accel + 1.5 * omega + dry * std::tanh(omega / 1e-4) + offset_Nm +
+                noise(rng));
   }
   return r;
 }
@@ -457,6 +478,21 @@ TEST(Analysis, ATorqueOffsetIsNamedOnlyWithTheDiscAtRest) {
           << rejection(cand, o);
     }
   }
+}
+
+// A heavy disc whose speed is measured with noise: the torque computed from that speed carries
+// the speed's noise, differentiated, several times the torque sensor's own. Clean, it is no
+// mismatch (an errors-in-variables floor, ChannelModel::input_noise_rms).
+TEST(Analysis, TheMeasuredSpeedsNoiseInTheTorqueIsNoMismatch) {
+  const FitReport rep =
+      analyse(torque_recording(0.0, 0.0, 7, always_turning, 0.0, 0.6, 0.005), quick());
+  ASSERT_EQ(rep.channels.size(), 1u);
+  const ChannelReport& c = rep.channels[0];
+  EXPECT_EQ(c.verdict, "no significant mismatch") << c.final_fit.rms_held_out;
+  EXPECT_GT(c.input_noise_rms, 2.0 * c.noise_rms);
+  // The floor is the residual the speed's noise makes, not a licence: within a factor of 2.
+  EXPECT_LT(c.final_fit.rms_held_out, 2.0 * std::hypot(c.noise_rms, c.input_noise_rms));
+  EXPECT_GT(c.final_fit.rms_held_out, 0.5 * std::hypot(c.noise_rms, c.input_noise_rms));
 }
 
 // Parsimony: Coulomb friction alone is named Coulomb friction, not Stribeck friction (which

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "analysis/parameter_covariance.h"
@@ -66,7 +67,7 @@ struct SimulationError {
 // Solves the smooth parameters with the grid ones fixed; returns the calibration RSS.
 double solve(const ChannelModel& ch, const Recording& r, const Split& split,
              std::vector<double>& nominal, std::vector<Effect>& effects, double huber,
-             std::vector<double>* sd) {
+             std::vector<double>* sd, ChannelFit* spread = nullptr) {
   const std::vector<double>& y = r.at(ch.output());
   const std::vector<std::size_t> at = rows(split);
   auto* functor = new SimulationError{&ch, &r, &y, &at, nominal, effects, nullptr};
@@ -110,6 +111,10 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
     sd->assign(x.size(), 0.0);
     if (!x.empty() && at.size() > x.size()) {
       Eigen::MatrixXd jac(at.size(), x.size());
+      // The same sensitivities on the held-out rows (the simulation runs over all rows).
+      const std::size_t held = y.size() - std::min(y.size(), split.calibration_end);
+      Eigen::MatrixXd held_jac(static_cast<Eigen::Index>(held),
+                               static_cast<Eigen::Index>(x.size()));
       for (std::size_t c = 0; c < x.size(); ++c) {
         const double h = std::max(1e-7, 1e-4 * std::abs(x[c]));
         const double keep = *out.slots[c];
@@ -120,6 +125,11 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
         for (std::size_t i = 0; i < at.size(); ++i)
           jac(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) =
               (p2[at[i]] - pred[at[i]]) / h;
+        for (std::size_t i = 0; i < held; ++i) {
+          const std::size_t k = split.calibration_end + i;
+          held_jac(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) =
+              (p2[k] - pred[k]) / h;
+        }
       }
       Eigen::VectorXd e(static_cast<Eigen::Index>(at.size()));
       for (std::size_t i = 0; i < at.size(); ++i)
@@ -128,6 +138,26 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
       for (std::size_t c = 0; c < x.size(); ++c)
         (*sd)[c] = std::sqrt(
             std::max(0.0, cov(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c))));
+      if (spread != nullptr && held > 0) {
+        // The first-order (delta-method) variance of the held-out prediction, row by row, and
+        // each parameter's own share of it (its variance alone, correlations left out).
+        const Eigen::MatrixXd jc = held_jac * cov;
+        const double variance =
+            std::max(0.0, (jc.cwiseProduct(held_jac)).sum() / static_cast<double>(held));
+        spread->held_out_prediction_sd = std::sqrt(variance);
+        Eigen::Index top = 0;
+        double top_share = -1.0;
+        for (Eigen::Index c = 0; c < held_jac.cols(); ++c) {
+          const double share = held_jac.col(c).squaredNorm() * cov(c, c);
+          if (share > top_share) top_share = share, top = c;
+        }
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "%s = %.4g +- %.2g %s",
+                      lay.specs[static_cast<std::size_t>(top)].name.c_str(),
+                      x[static_cast<std::size_t>(top)], (*sd)[static_cast<std::size_t>(top)],
+                      lay.specs[static_cast<std::size_t>(top)].unit.c_str());
+        spread->least_determined = buf;
+      }
     }
   }
   return rss;
@@ -196,7 +226,7 @@ ChannelFit refit(const ChannelModel& ch, const Recording& r, const Split& split,
   out.effects = fit.effects;
   const double huber = 3.0 * robust_scale(fit.prediction, r.at(ch.output()), split.calibration_end);
   std::vector<double> sd;
-  const double sum = solve(ch, r, split, out.nominal, out.effects, huber, &sd);
+  const double sum = solve(ch, r, split, out.nominal, out.effects, huber, &sd, &out);
   if (rss) *rss = sum;
   // A grid parameter keeps the resolution the original fit reached.
   double resolution = 0.0;
@@ -322,7 +352,7 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
   fit.nominal = best_nominal;
   fit.effects = best_effects;
   std::vector<double> sd;
-  const double rss = solve(ch, r, split, fit.nominal, fit.effects, huber, &sd);
+  const double rss = solve(ch, r, split, fit.nominal, fit.effects, huber, &sd, &fit);
   finish(ch, r, split, sd, resolution, fit);
   const double n = static_cast<double>(rows(split).size());
   fit.bic = n * std::log(std::max(rss, 1e-300) / n) + fit.parameters * std::log(n);

@@ -26,6 +26,11 @@ struct ChannelFit {
   double bic = 0.0;  // on the calibration part, residuals thinned to about one per 0.1 s
   int parameters = 0;
   std::vector<double> prediction;  // over all samples
+  // How far the parameters' uncertainty moves the held-out prediction: the RMS over the
+  // held-out rows of the prediction's SD (J cov J', J the prediction's sensitivity there), and
+  // the parameter that contributes most to it ("name = value +- sd unit").
+  double held_out_prediction_sd = 0.0;
+  std::string least_determined;
 };
 
 ChannelFit fit_channel(const ChannelModel& channel, const Recording& r, const Split& split,

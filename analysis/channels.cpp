@@ -450,6 +450,21 @@ class DraftChannel : public ChannelModel {
     return specs({EffectKind::kOffset, EffectKind::kPeriodic, EffectKind::kDelay,
                   EffectKind::kQuantisation});
   }
+  // The mobilisation travel and the relaxation time trade against each other and against the
+  // draft's size (at a steady speed only K / (v tau) shows): starts a decade either side of
+  // the standard row's, so that no effect takes credit for a valley the nominal did not reach.
+  std::vector<std::vector<double>> nominal_starts(const Recording& r) const override {
+    const std::vector<double> guess = initial_guess(r);
+    std::vector<std::vector<double>> out;
+    for (const auto& [k_factor, tau_factor] :
+         {std::pair{1.0, 0.1}, std::pair{1.0, 10.0}, std::pair{0.1, 1.0}, std::pair{10.0, 1.0}}) {
+      std::vector<double> start = guess;
+      start[3] *= k_factor;
+      start[4] *= tau_factor;
+      out.push_back(start);
+    }
+    return out;
+  }
   // At one depth and speed the draft is a constant: an offset trades with draft_100mm unless the
   // recording holds the draft released at rest (or the opener raised).
   std::optional<std::size_t> zero_load_rows(const Recording& r, const std::vector<double>& p,

@@ -132,6 +132,8 @@ std::string fit_json(const FitReport& r, double wall_s) {
                                 c.nominal.nominal_sd, *c.channel);
     ch["noise_rms"] = c.noise_rms;
     ch["input_noise_rms"] = c.input_noise_rms;
+    ch["held_out_prediction_sd"] = c.final_fit.held_out_prediction_sd;
+    if (!c.undetermined.empty()) ch["undetermined"] = c.undetermined;
     ch["held_out_rms"] = {{"nominal", c.nominal.rms_held_out},
                           {"augmented", c.final_fit.rms_held_out}};
     ch["calibration_rms"] = {{"nominal", c.nominal.rms_calibration},

@@ -204,6 +204,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     c.held_out_improvement =
         base.rms_held_out > 0 ? 1.0 - c.fit.rms_held_out / base.rms_held_out : 0.0;
     c.cv_improvement = blocked_cv(base_fold_errors, c.fit, noise);
+    c.held_out_telling = base.rms_held_out > 3.0 * std::hypot(noise, base.held_out_prediction_sd);
     // The share of the residual beyond the noise that the effect accounts for: a real
     // mechanism explains the shape of what is left, a wrong name only bends it a little.
     const double noise2 = noise * noise;
@@ -372,11 +373,26 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   const std::size_t from = split.calibration_end, n = y.size() - from;
   for (std::size_t k = from; k < y.size(); ++k) mean_square += y[k] * y[k] / static_cast<double>(n);
   rep.input_noise_rms = ch.input_noise_rms(r, rep.final_fit.nominal, split.calibration_end);
-  auto unexplained = [&] {
+  // What the held-out residual is compared with: the noise, the input's noise through the model,
+  // and how far the parameters' own uncertainty moves the held-out prediction. A parameter the
+  // calibration part leaves undetermined (the draft's relaxation at rest, in a recording whose
+  // only stop is in the held-out part) is then said to be undetermined, not a residual to name.
+  auto beyond = [&](bool with_parameters) {
     const double left = rep.final_fit.rms_held_out;
-    const double floor = std::hypot(rep.noise_rms, rep.input_noise_rms);
+    const double spread = with_parameters ? rep.final_fit.held_out_prediction_sd : 0.0;
+    const double floor = std::hypot(std::hypot(rep.noise_rms, rep.input_noise_rms), spread);
     return left > 3.0 * std::max(floor, 1e-12) && rep.location.whiteness_violations > 0.5 &&
            left > o.min_unexplained_share * std::sqrt(mean_square);
+  };
+  auto unexplained = [&] {
+    const bool result = beyond(true);
+    rep.undetermined.clear();
+    if (!result && beyond(false))
+      rep.undetermined = rep.final_fit.least_determined + " (the held-out prediction's SD from " +
+                         "the parameters' uncertainty, " +
+                         std::to_string(rep.final_fit.held_out_prediction_sd) + ", covers the " +
+                         "held-out residual)";
+    return result;
   };
   rep.unexplained = unexplained();
   // What is left may be one parameter that changed during the recording.
@@ -488,11 +504,15 @@ std::string rejection(const Candidate& c, const FitOptions& o) {
                   100.0 * c.explained, 100.0 * o.min_explained);
     return buf;
   }
-  if (c.cv_improvement < o.min_improvement && c.held_out_improvement < o.min_improvement) {
+  if (c.cv_improvement < o.min_improvement &&
+      (!c.held_out_telling || c.held_out_improvement < o.min_improvement)) {
     std::snprintf(buf, sizeof buf,
-                  "improves the best fold by %.1f %% and the held-out part by %.1f %%; %.0f %% "
+                  "improves the best fold by %.1f %% and the held-out part by %.1f %%%s; %.0f %% "
                   "is required of one",
                   100.0 * c.cv_improvement, 100.0 * c.held_out_improvement,
+                  c.held_out_telling ? ""
+                                     : " (which cannot vouch: the fit without it is there "
+                                       "within its own parameters' uncertainty)",
                   100.0 * o.min_improvement);
     return buf;
   }

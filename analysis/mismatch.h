@@ -39,6 +39,10 @@ struct Candidate {
   double held_out_improvement = 0.0;  // 1 - rms_after / rms_before on the held-out part
   double cv_improvement = 0.0;        // blocked cross-validation: the best of 3 folds (or a loss)
   double explained = 0.0;  // share of the calibration residual beyond noise it accounts for
+  // Whether the held-out part can vouch for a candidate: false when the base's held-out error is
+  // within what its own parameters' uncertainty allows there (a regime the calibration part
+  // never saw), so a candidate's held-out gain is no evidence for it.
+  bool held_out_telling = true;
   // Non-empty when the recording cannot tell this effect from the nominal's own parameters:
   // why, and the experiment that would (rejection() returns it first).
   std::string not_separable;
@@ -64,6 +68,10 @@ struct ChannelReport {
   // What the measured input's noise makes in the residual through the final fit's nominal
   // (ChannelModel::input_noise_rms); "unexplained" must stand above both.
   double input_noise_rms = 0.0;
+  // Set when the held-out residual stands out from the noise but not from the spread the
+  // parameters' uncertainty gives the held-out prediction: the parameter that contributes most,
+  // which this recording's calibration part does not determine.
+  std::string undetermined;
   Location location;
   std::vector<Candidate> ranked;  // single effects, best BIC first
   std::vector<Candidate> chosen;  // accepted (one or two)

@@ -110,6 +110,11 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
       std::printf("    across %zu windows of %.0f s: %s\n", r.day->windows, r.day->window_s,
                   d.verdict.c_str());
     }
+    if (!c.undetermined.empty())
+      std::printf(
+          "    not determined by the calibration part: %s; record the regime the held-out "
+          "part shows within the calibration part to determine it\n",
+          c.undetermined.c_str());
     for (const std::string& edge : c.at_range_edge)
       std::printf("    at the edge of its range: %s: the nominal structure may be wrong here\n",
                   edge.c_str());

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
@@ -221,6 +222,41 @@ std::size_t tasks_alive(const std::string& job) {
   return alive;
 }
 
+// Each array task's state by its index: from sacct where the cluster keeps accounting, else
+// from squeue, which lists ended jobs for MinJobAge (scripts/slurm-cluster.sh keeps them an
+// hour). A state such as "CANCELLED by 0" is kept to its first word.
+std::map<std::size_t, std::string> task_states(const std::string& job) {
+  std::map<std::size_t, std::string> out;
+  auto parse = [&](const std::string& text, char separator) {
+    std::istringstream lines(text);
+    std::string line;
+    while (std::getline(lines, line)) {
+      const std::size_t bar = line.find(separator), under = line.find('_');
+      if (bar == std::string::npos || under == std::string::npos || under > bar) continue;
+      if (line.compare(0, under, job) != 0) continue;
+      const std::string index = line.substr(under + 1, bar - under - 1);
+      if (index.empty() || index.find_first_not_of("0123456789") != std::string::npos) continue;
+      std::string state = line.substr(bar + 1);
+      state = state.substr(0, state.find_first_of(" |"));
+      out[std::stoul(index)] = state;
+    }
+  };
+  const auto [accounted, rc] = capture("sacct -n -P -X -j " + job + " -o JobID,State 2>/dev/null");
+  if (rc == 0) parse(accounted, '|');
+  if (out.empty()) {
+    const auto [queued, qrc] = capture("squeue -h -r -t all -j " + job + " -o '%i %T' 2>/dev/null");
+    if (qrc == 0) parse(queued, ' ');
+  }
+  return out;
+}
+
+bool task_failed(const std::string& state) {
+  for (const char* s : {"FAILED", "TIMEOUT", "CANCELLED", "NODE_FAIL", "OUT_OF_MEMORY", "BOOT_FAIL",
+                        "DEADLINE", "PREEMPTED"})
+    if (state == s) return true;
+  return false;
+}
+
 void run_slurm(const std::string& dir, const RunPlan& plan, std::vector<std::size_t> todo,
                const ExecutorOptions& o, const std::string& label, Progress& progress,
                std::size_t done_before) {
@@ -262,17 +298,28 @@ void run_slurm(const std::string& dir, const RunPlan& plan, std::vector<std::siz
     std::size_t done = done_before;
     for (std::size_t i : todo) done += run_complete(dir, i);
     const std::size_t alive = tasks_alive(job);
-    progress.update(done, alive, 0);
+    std::size_t failed = 0;
+    for (const auto& [task, state] : task_states(job)) failed += task_failed(state);
+    progress.update(done, alive, failed);
     if (alive == 0) break;
     std::this_thread::sleep_for(std::chrono::duration<double>(o.poll_s));
   }
+  const std::map<std::size_t, std::string> states = task_states(job);
   std::vector<Failure> failures;
-  for (std::size_t t = 0; t < tasks.size(); ++t)
+  for (std::size_t t = 0; t < tasks.size(); ++t) {
+    const auto state = states.find(t);
+    // A task cancelled while still pending leaves no record: Slurm shrinks the array.
+    const std::string ended =
+        state == states.end()
+            ? "has no record left in Slurm (cancelled before it started, or its record expired)"
+            : "ended " + state->second +
+                  (state->second == "TIMEOUT" ? " (raise --time-limit)" : "");
     for (std::size_t i : tasks[t])
       if (!run_complete(dir, i))
-        failures.push_back({i,
-                            "task " + job + "_" + std::to_string(t) + " ended without its result",
-                            task_log(dir, t)});
+        failures.push_back(
+            {i, "task " + job + "_" + std::to_string(t) + " " + ended + " without its result",
+             task_log(dir, t)});
+  }
   if (!failures.empty()) throw_failures(failures, todo.size() + done_before, dir);
 }
 

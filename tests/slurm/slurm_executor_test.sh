@@ -2,7 +2,9 @@
 # The sweep through a real one-node Slurm cluster (scripts/slurm-cluster.sh; issue 31):
 # 1. --executor slurm gives the same sweep.json as --executor local;
 # 2. a task cancelled with scancel leaves no result, and running the command again submits
-#    only the missing runs (the complete ones untouched) and completes the same sweep.
+#    only the missing runs (the complete ones untouched) and completes the same sweep;
+# 3. a task cancelled while it runs, the executor following the job, is reported by its index
+#    and its state (squeue's, or sacct's where the cluster keeps accounting); nothing gathered.
 # Usage: slurm_executor_test.sh PLANTER_SIM SOURCE_DIR
 set -euo pipefail
 sim=$1 src=$2
@@ -61,3 +63,26 @@ done
 same_sweep "$work/local" "$work/killed" || fail "the resumed sweep differs from the local one"
 echo "slurm: a cancelled task, then the command again: $missing missing run(s) submitted," \
   "$((15 - missing)) kept, and the same sweep.json"
+
+# A task cancelled while it runs and the executor follows its job (one task at a time; 300 m
+# runs, about 4 s each, so the cancel lands before the run ends).
+"$sim" sweep "$src/scenarios/zhangqiu-field.toml" --distance 300 --replicates 1 --max-replicates 1 \
+  --out "$work/followed" --executor slurm --throttle 1 --time-limit 5 \
+  --poll 0.3 >"$work/followed.out" 2>"$work/followed.err" &
+follower=$!
+task=""
+for _ in $(seq 600); do
+  job=$(sed -n 's/.*submitted [0-9]* runs as Slurm job \([0-9]*\).*/\1/p' "$work/followed.err")
+  [ -n "$job" ] && task=$(squeue -h -r -j "$job" -t RUNNING -o %i | head -1)
+  [ -n "$task" ] && break
+  sleep 0.1
+done
+[ -n "$task" ] || { kill "$follower"; fail "no task of the followed sweep was seen running"; }
+scancel "$task"
+status=0
+wait "$follower" || status=$?
+[ "$status" -ne 0 ] || fail "a sweep with a cancelled task exited 0"
+grep -q "task $task ended CANCELLED without its result" "$work/followed.err" ||
+  fail "the cancelled task $task was not reported with its state: $(tail -5 "$work/followed.err")"
+[ ! -e "$work/followed/sweep.json" ] || fail "a sweep was gathered from incomplete runs"
+echo "slurm: task $task cancelled while it ran is reported as CANCELLED; nothing gathered"

@@ -60,6 +60,16 @@ double sample_rate_hz(const Recording& r) {
   return static_cast<double>(r.size() - 1) / (r.t.back() - r.t.front());
 }
 
+double anti_alias_gain(const Recording& r, double f_hz) {
+  const double stride = static_cast<double>(r.decimation_stride);
+  const double rate = sample_rate_hz(r) * stride;  // the recording's own rate
+  if (r.decimation_stride <= 1 || rate <= 0.0) return 1.0;
+  const double cutoff = kAntiAliasCutoffShare * 0.5 * rate / stride;
+  const double f = std::min(std::abs(f_hz), 0.4999 * rate);
+  const double ratio = std::tan(kPi * f / rate) / std::tan(kPi * cutoff / rate);
+  return 1.0 / (1.0 + std::pow(ratio, 8));
+}
+
 Recording decimated(const Recording& r, std::size_t stride,
                     const std::vector<std::string>& filter) {
   if (stride <= 1) return r;

@@ -25,6 +25,13 @@ void zero_phase_lowpass(std::vector<double>& x, double cutoff_hz, double rate_hz
 // state are only thinned (a flag has no spectrum).
 Recording decimated(const Recording& r, std::size_t stride, const std::vector<std::string>& filter);
 
+// What the anti-alias filter leaves of a sinusoid of `f_hz` in a recording thinned by
+// decimated() (1 when it was not thinned): the zero-phase filter's magnitude, the Butterworth's
+// squared, 1 / (1 + (tan(pi f / fs) / tan(pi fc / fs))^8) at the recording's own rate fs. A
+// fitted vibration passes through it as the recorded one did: at 7 Hz under a 13.3 Hz cut-off it
+// is 0.994, and an amplitude fitted without it read 0.6 % low.
+double anti_alias_gain(const Recording& r, double f_hz);
+
 // The mean sample rate of a recording, Hz.
 double sample_rate_hz(const Recording& r);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "analysis/decimation.h"
 #include "analysis/effect_hooks.h"
 #include "analysis/tones.h"
 
@@ -209,9 +210,12 @@ void drift(const OutputContext& c, const std::vector<double>& p, std::vector<dou
   for (std::size_t k = 0; k < y.size(); ++k) y[k] += p[0] * (c.r.t[k] - c.r.t[0]);
 }
 
+// A sinusoid as the recorded one reached these rows: through the anti-alias filter when the
+// recording was thinned (decimation.h), so the amplitude stated is the machine's.
 void periodic(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  const double amplitude = p[0] * anti_alias_gain(c.r, p[1]);
   for (std::size_t k = 0; k < y.size(); ++k)
-    y[k] += p[0] * std::sin(kTwoPi * p[1] * c.r.t[k] + p[2]);
+    y[k] += amplitude * std::sin(kTwoPi * p[1] * c.r.t[k] + p[2]);
 }
 
 // The spacing of the grid a signal's values lie on: the median gap between its distinct values

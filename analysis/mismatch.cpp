@@ -204,7 +204,6 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     c.held_out_improvement =
         base.rms_held_out > 0 ? 1.0 - c.fit.rms_held_out / base.rms_held_out : 0.0;
     c.cv_improvement = blocked_cv(base_fold_errors, c.fit, noise);
-    c.held_out_telling = base.rms_held_out > 3.0 * std::hypot(noise, base.held_out_prediction_sd);
     // The share of the residual beyond the noise that the effect accounts for: a real
     // mechanism explains the shape of what is left, a wrong name only bends it a little.
     const double noise2 = noise * noise;
@@ -504,15 +503,11 @@ std::string rejection(const Candidate& c, const FitOptions& o) {
                   100.0 * c.explained, 100.0 * o.min_explained);
     return buf;
   }
-  if (c.cv_improvement < o.min_improvement &&
-      (!c.held_out_telling || c.held_out_improvement < o.min_improvement)) {
+  if (c.cv_improvement < o.min_improvement && c.held_out_improvement < o.min_improvement) {
     std::snprintf(buf, sizeof buf,
-                  "improves the best fold by %.1f %% and the held-out part by %.1f %%%s; %.0f %% "
+                  "improves the best fold by %.1f %% and the held-out part by %.1f %%; %.0f %% "
                   "is required of one",
                   100.0 * c.cv_improvement, 100.0 * c.held_out_improvement,
-                  c.held_out_telling ? ""
-                                     : " (which cannot vouch: the fit without it is there "
-                                       "within its own parameters' uncertainty)",
                   100.0 * o.min_improvement);
     return buf;
   }

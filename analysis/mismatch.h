@@ -39,10 +39,6 @@ struct Candidate {
   double held_out_improvement = 0.0;  // 1 - rms_after / rms_before on the held-out part
   double cv_improvement = 0.0;        // blocked cross-validation: the best of 3 folds (or a loss)
   double explained = 0.0;  // share of the calibration residual beyond noise it accounts for
-  // Whether the held-out part can vouch for a candidate: false when the base's held-out error is
-  // within what its own parameters' uncertainty allows there (a regime the calibration part
-  // never saw), so a candidate's held-out gain is no evidence for it.
-  bool held_out_telling = true;
   // Non-empty when the recording cannot tell this effect from the nominal's own parameters:
   // why, and the experiment that would (rejection() returns it first).
   std::string not_separable;

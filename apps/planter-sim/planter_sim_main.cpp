@@ -20,6 +20,7 @@
 #ifdef PLANTER_WITH_CONSOLE
 #include "apps/planter-sim/live.h"
 #endif
+#include "apps/planter-sim/monte_carlo.h"
 #include "apps/planter-sim/sensitivity.h"
 #include "apps/planter-sim/sweep.h"
 #include "sim/hil/realtime_devices.h"
@@ -284,6 +285,25 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(planter::config::finite_range(0, 256));
   add_executor_options(*sensitivity, sensitivity_options.executor);
+  MonteCarloOptions monte_carlo_options;
+  auto* monte_carlo = app.add_subcommand(
+      "montecarlo",
+      "what the figures may be given what is not known: every model value drawn across its "
+      "range (Latin hypercube), a seed a run");
+  monte_carlo->add_option("scenario", scenario, "base scenario file (TOML)")->required();
+  monte_carlo->add_option("--out", out, "output directory")->capture_default_str();
+  monte_carlo->add_flag("--force", monte_carlo_options.force,
+                        "replace --out even if it holds something other than an analysis");
+  monte_carlo->add_option("--runs", monte_carlo_options.runs, "runs (seasons) to draw")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(2, 100000));
+  monte_carlo->add_option("--distance", monte_carlo_options.distance_m, "metres per run")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0.5, 1000.0));
+  monte_carlo->add_option("--jobs", monte_carlo_options.jobs, "runs at a time (0: one per core)")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0, 256));
+  add_executor_options(*monte_carlo, monte_carlo_options.executor);
 #endif
   std::string plan_path;
   std::size_t plan_index = 0;
@@ -360,6 +380,7 @@ int main(int argc, char** argv) {
       return run_sweep(scenario, out, sweep_options);
     }
     if (*sensitivity) return run_sensitivity(scenario, out, sensitivity_options);
+    if (*monte_carlo) return run_monte_carlo(scenario, out, monte_carlo_options);
 #endif
     if (*plan_run) {
       execute_planned_run(plan_path, plan_index, planter::apps::version());

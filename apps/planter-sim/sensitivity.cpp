@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "apps/planter-sim/run_figures.h"
 #include "apps/planter-sim/sweep.h"
 #include "apps/version/version.h"
 #include "config/output_set.h"
@@ -54,9 +55,8 @@ using Figures = std::array<double, kResponseCount>;
 
 Figures figures_of(const Summary& s) {
   Figures f{};
-  f[0] = s.uprightness_pct;
-  f[1] = s.damage_pct;
-  f[2] = s.seedlings_planted > 0 ? 100.0 * s.seedlings_turned_in_clamp / s.seedlings_planted : 0.0;
+  const auto at_point = run_figures(s);
+  std::copy(at_point.begin(), at_point.end(), f.begin());
   return f;
 }
 

@@ -67,6 +67,25 @@ void add_executor_options(CLI::App& cmd, ExecutorOptions& ex) {
       ->capture_default_str()
       ->check(planter::config::finite_range(0.1, 600.0));
 }
+
+// A study over many runs of one scenario (sensitivity, montecarlo): the options they share.
+CLI::App* add_study(CLI::App& app, const std::string& name, const std::string& description,
+                    std::string& scenario, std::string& out, bool& force, double& distance_m,
+                    int& jobs, ExecutorOptions& ex) {
+  auto* cmd = app.add_subcommand(name, description);
+  cmd->add_option("scenario", scenario, "base scenario file (TOML)")->required();
+  cmd->add_option("--out", out, "output directory")->capture_default_str();
+  cmd->add_flag("--force", force,
+                "replace --out even if it holds something other than an analysis");
+  cmd->add_option("--distance", distance_m, "metres per run")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0.5, 1000.0));
+  cmd->add_option("--jobs", jobs, "runs at a time (0: one per core)")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0, 256));
+  add_executor_options(*cmd, ex);
+  return cmd;
+}
 #endif
 
 void print_summary(const Summary& s) {
@@ -265,45 +284,27 @@ int main(int argc, char** argv) {
       ->check(planter::config::finite_range(0, 256));
   add_executor_options(*sweep, sweep_options.executor);
   SensitivityOptions sensitivity_options;
-  auto* sensitivity = app.add_subcommand(
-      "sensitivity",
-      "which model values the figures rest on: Morris elementary effects over their ranges");
-  sensitivity->add_option("scenario", scenario, "base scenario file (TOML)")->required();
-  sensitivity->add_option("--out", out, "output directory")->capture_default_str();
-  sensitivity->add_flag("--force", sensitivity_options.force,
-                        "replace --out even if it holds something other than an analysis");
+  auto* sensitivity = add_study(
+      app, "sensitivity",
+      "which model values the figures rest on: Morris elementary effects over their ranges",
+      scenario, out, sensitivity_options.force, sensitivity_options.distance_m,
+      sensitivity_options.jobs, sensitivity_options.executor);
   sensitivity->add_option("--trajectories", sensitivity_options.trajectories, "Morris's r")
       ->capture_default_str()
       ->check(planter::config::finite_range(2, 100));
-  sensitivity->add_option("--distance", sensitivity_options.distance_m, "metres per run")
-      ->capture_default_str()
-      ->check(planter::config::finite_range(0.5, 1000.0));
   sensitivity->add_flag(
       "--optimum", sensitivity_options.optimum,
       "also run the paper's design (15 runs) at each point: the optimum's spread");
-  sensitivity->add_option("--jobs", sensitivity_options.jobs, "runs at a time (0: one per core)")
-      ->capture_default_str()
-      ->check(planter::config::finite_range(0, 256));
-  add_executor_options(*sensitivity, sensitivity_options.executor);
   MonteCarloOptions monte_carlo_options;
-  auto* monte_carlo = app.add_subcommand(
-      "montecarlo",
+  auto* monte_carlo = add_study(
+      app, "montecarlo",
       "what the figures may be given what is not known: every model value drawn across its "
-      "range (Latin hypercube), a seed a run");
-  monte_carlo->add_option("scenario", scenario, "base scenario file (TOML)")->required();
-  monte_carlo->add_option("--out", out, "output directory")->capture_default_str();
-  monte_carlo->add_flag("--force", monte_carlo_options.force,
-                        "replace --out even if it holds something other than an analysis");
+      "range (Latin hypercube), a seed a run",
+      scenario, out, monte_carlo_options.force, monte_carlo_options.distance_m,
+      monte_carlo_options.jobs, monte_carlo_options.executor);
   monte_carlo->add_option("--runs", monte_carlo_options.runs, "runs (seasons) to draw")
       ->capture_default_str()
       ->check(planter::config::finite_range(2, 100000));
-  monte_carlo->add_option("--distance", monte_carlo_options.distance_m, "metres per run")
-      ->capture_default_str()
-      ->check(planter::config::finite_range(0.5, 1000.0));
-  monte_carlo->add_option("--jobs", monte_carlo_options.jobs, "runs at a time (0: one per core)")
-      ->capture_default_str()
-      ->check(planter::config::finite_range(0, 256));
-  add_executor_options(*monte_carlo, monte_carlo_options.executor);
 #endif
   std::string plan_path;
   std::size_t plan_index = 0;

@@ -5,7 +5,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "analysis/parameter_covariance.h"
@@ -145,18 +144,11 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
         const double variance =
             std::max(0.0, (jc.cwiseProduct(held_jac)).sum() / static_cast<double>(held));
         spread->held_out_prediction_sd = std::sqrt(variance);
-        Eigen::Index top = 0;
         double top_share = -1.0;
         for (Eigen::Index c = 0; c < held_jac.cols(); ++c) {
           const double share = held_jac.col(c).squaredNorm() * cov(c, c);
-          if (share > top_share) top_share = share, top = c;
+          if (share > top_share) top_share = share, spread->least_determined = static_cast<int>(c);
         }
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "%s = %.4g +- %.2g %s",
-                      lay.specs[static_cast<std::size_t>(top)].name.c_str(),
-                      x[static_cast<std::size_t>(top)], (*sd)[static_cast<std::size_t>(top)],
-                      lay.specs[static_cast<std::size_t>(top)].unit.c_str());
-        spread->least_determined = buf;
       }
     }
   }

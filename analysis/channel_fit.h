@@ -28,9 +28,9 @@ struct ChannelFit {
   std::vector<double> prediction;  // over all samples
   // How far the parameters' uncertainty moves the held-out prediction: the RMS over the
   // held-out rows of the prediction's SD (J cov J', J the prediction's sensitivity there), and
-  // the parameter that contributes most to it ("name = value +- sd unit").
+  // the parameter that contributes most to it (an index into fitted_values(); -1: none).
   double held_out_prediction_sd = 0.0;
-  std::string least_determined;
+  int least_determined = -1;
 };
 
 ChannelFit fit_channel(const ChannelModel& channel, const Recording& r, const Split& split,

@@ -231,7 +231,7 @@ class DiscTorqueChannel : public ChannelModel {
     for (double& v : n) v = white(rng);
     if (stride > 1) {
       const double rate = static_cast<double>(stride) / dt;
-      zero_phase_lowpass(n, kAntiAliasCutoffShare * 0.5 / dt, rate);
+      zero_phase_lowpass(n, anti_alias_cutoff_hz(1.0 / dt), rate);
     }
     double sum = 0.0;
     for (std::size_t k = 1; k + 1 < rows; ++k) {

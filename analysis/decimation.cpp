@@ -64,7 +64,7 @@ double anti_alias_gain(const Recording& r, double f_hz) {
   const double stride = static_cast<double>(r.decimation_stride);
   const double rate = sample_rate_hz(r) * stride;  // the recording's own rate
   if (r.decimation_stride <= 1 || rate <= 0.0) return 1.0;
-  const double cutoff = kAntiAliasCutoffShare * 0.5 * rate / stride;
+  const double cutoff = anti_alias_cutoff_hz(rate / stride);
   const double f = std::min(std::abs(f_hz), 0.4999 * rate);
   const double ratio = std::tan(kPi * f / rate) / std::tan(kPi * cutoff / rate);
   return 1.0 / (1.0 + std::pow(ratio, 8));
@@ -79,7 +79,7 @@ Recording decimated(const Recording& r, std::size_t stride,
   out.decimation_stride = r.decimation_stride * stride;
   out.full_rate_noise = r.full_rate_noise;
   const double rate = sample_rate_hz(r);
-  const double cutoff = kAntiAliasCutoffShare * 0.5 * rate / static_cast<double>(stride);
+  const double cutoff = anti_alias_cutoff_hz(rate / static_cast<double>(stride));
   for (std::size_t k = 0; k < r.size(); k += stride) out.t.push_back(r.t[k]);
   for (const auto& [name, v] : r.signals) {
     auto& o = out.signals[name];

@@ -11,6 +11,10 @@ namespace planter::analysis {
 
 // The low-pass cut-off as a share of the decimated Nyquist frequency.
 inline constexpr double kAntiAliasCutoffShare = 0.8;
+// The low-pass cut-off for rows thinned to `thinned_rate_hz`.
+inline double anti_alias_cutoff_hz(double thinned_rate_hz) {
+  return kAntiAliasCutoffShare * 0.5 * thinned_rate_hz;
+}
 
 // A fourth-order Butterworth low-pass run forwards and backwards (zero phase, eighth-order
 // magnitude; Oppenheim & Schafer, "Discrete-Time Signal Processing", 3rd ed., sec. 7.3 for the

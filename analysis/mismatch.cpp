@@ -386,11 +386,17 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   auto unexplained = [&] {
     const bool result = beyond(true);
     rep.undetermined.clear();
-    if (!result && beyond(false))
-      rep.undetermined = rep.final_fit.least_determined + " (the held-out prediction's SD from " +
-                         "the parameters' uncertainty, " +
-                         std::to_string(rep.final_fit.held_out_prediction_sd) + ", covers the " +
-                         "held-out residual)";
+    if (!result && beyond(false) && rep.final_fit.least_determined >= 0) {
+      const FittedValue v = fitted_values(
+          ch, rep.final_fit)[static_cast<std::size_t>(rep.final_fit.least_determined)];
+      char buf[240];
+      std::snprintf(buf, sizeof buf,
+                    "%s = %.4g +- %.2g %s (the held-out prediction's SD from the parameters' "
+                    "uncertainty, %g, covers the held-out residual)",
+                    v.name.c_str(), v.value, v.sd, v.unit.c_str(),
+                    rep.final_fit.held_out_prediction_sd);
+      rep.undetermined = buf;
+    }
     return result;
   };
   rep.unexplained = unexplained();
@@ -624,8 +630,7 @@ FitReport analyse(const Recording& whole, const FitOptions& o) {
   const Recording r = analysed_recording(full, o, rep.glitches);
   rep.rate_hz = sample_rate_hz(full);
   const bool decimated = r.size() < full.size();
-  rep.analysed_up_to_hz =
-      decimated ? kAntiAliasCutoffShare * 0.5 * sample_rate_hz(r) : 0.5 * rep.rate_hz;
+  rep.analysed_up_to_hz = decimated ? anti_alias_cutoff_hz(sample_rate_hz(r)) : 0.5 * rep.rate_hz;
   rep.analysed_rows = r.size();
   rep.file = r.file;
   rep.rows = full.size();

@@ -208,46 +208,48 @@ std::string sbatch_script(const std::string& dir, std::size_t tasks, const Execu
   return s.str();
 }
 
-// Tasks of the job not yet ended (PENDING, RUNNING, ...), from squeue.
-std::size_t tasks_alive(const std::string& job) {
-  const auto [out, rc] = capture("squeue -h -r -j " + job + " -o %T 2>/dev/null");
-  if (rc != 0) return 0;  // the job is gone from the controller
-  std::istringstream lines(out);
-  std::string state;
-  std::size_t alive = 0;
-  while (lines >> state)
-    alive += state == "PENDING" || state == "RUNNING" || state == "CONFIGURING" ||
-             state == "COMPLETING" || state == "SUSPENDED" || state == "REQUEUED" ||
-             state == "RESIZING" || state == "SIGNALING" || state == "STAGE_OUT";
-  return alive;
-}
-
-// Each array task's state by its index: from sacct where the cluster keeps accounting, else
-// from squeue, which lists ended jobs for MinJobAge (scripts/slurm-cluster.sh keeps them an
-// hour). A state such as "CANCELLED by 0" is kept to its first word.
-std::map<std::size_t, std::string> task_states(const std::string& job) {
+// Each array task's state by its index, from "JOB_INDEX<separator>STATE" lines; a state such as
+// "CANCELLED by 0" is kept to its first word, and a line for a range of pending tasks
+// ("JOB_[5-14%1]") is skipped.
+std::map<std::size_t, std::string> parse_task_states(const std::string& job,
+                                                     const std::string& text, char separator) {
   std::map<std::size_t, std::string> out;
-  auto parse = [&](const std::string& text, char separator) {
-    std::istringstream lines(text);
-    std::string line;
-    while (std::getline(lines, line)) {
-      const std::size_t bar = line.find(separator), under = line.find('_');
-      if (bar == std::string::npos || under == std::string::npos || under > bar) continue;
-      if (line.compare(0, under, job) != 0) continue;
-      const std::string index = line.substr(under + 1, bar - under - 1);
-      if (index.empty() || index.find_first_not_of("0123456789") != std::string::npos) continue;
-      std::string state = line.substr(bar + 1);
-      state = state.substr(0, state.find_first_of(" |"));
-      out[std::stoul(index)] = state;
-    }
-  };
-  const auto [accounted, rc] = capture("sacct -n -P -X -j " + job + " -o JobID,State 2>/dev/null");
-  if (rc == 0) parse(accounted, '|');
-  if (out.empty()) {
-    const auto [queued, qrc] = capture("squeue -h -r -t all -j " + job + " -o '%i %T' 2>/dev/null");
-    if (qrc == 0) parse(queued, ' ');
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    const std::size_t bar = line.find(separator), under = line.find('_');
+    if (bar == std::string::npos || under == std::string::npos || under > bar) continue;
+    if (line.compare(0, under, job) != 0) continue;
+    const std::string index = line.substr(under + 1, bar - under - 1);
+    if (index.empty() || index.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string state = line.substr(bar + 1);
+    state = state.substr(0, state.find_first_of(" |"));
+    out[std::stoul(index)] = state;
   }
   return out;
+}
+
+// Every task's state from squeue, one line a task (-r), ended ones included (-t all): squeue
+// keeps them for the cluster's MinJobAge (scripts/slurm-cluster.sh keeps them an hour). Empty
+// when the job is gone from the controller.
+std::map<std::size_t, std::string> queued_states(const std::string& job) {
+  const auto [out, rc] = capture("squeue -h -r -t all -j " + job + " -o '%i %T' 2>/dev/null");
+  return rc == 0 ? parse_task_states(job, out, ' ') : std::map<std::size_t, std::string>{};
+}
+
+// The tasks' final states: from sacct where the cluster keeps accounting, else from squeue.
+std::map<std::size_t, std::string> final_states(const std::string& job) {
+  const auto [accounted, rc] = capture("sacct -n -P -X -j " + job + " -o JobID,State 2>/dev/null");
+  std::map<std::size_t, std::string> out;
+  if (rc == 0) out = parse_task_states(job, accounted, '|');
+  return out.empty() ? queued_states(job) : out;
+}
+
+bool task_alive(const std::string& state) {
+  for (const char* s : {"PENDING", "RUNNING", "CONFIGURING", "COMPLETING", "SUSPENDED", "REQUEUED",
+                        "RESIZING", "SIGNALING", "STAGE_OUT"})
+    if (state == s) return true;
+  return false;
 }
 
 bool task_failed(const std::string& state) {
@@ -297,28 +299,32 @@ void run_slurm(const std::string& dir, const RunPlan& plan, std::vector<std::siz
   for (;;) {
     std::size_t done = done_before;
     for (std::size_t i : todo) done += run_complete(dir, i);
-    const std::size_t alive = tasks_alive(job);
-    std::size_t failed = 0;
-    for (const auto& [task, state] : task_states(job)) failed += task_failed(state);
+    // One look at the queue a poll: the tasks still alive, and those that failed so far.
+    std::size_t alive = 0, failed = 0;
+    for (const auto& [task, state] : queued_states(job)) {
+      alive += task_alive(state);
+      failed += task_failed(state);
+    }
     progress.update(done, alive, failed);
     if (alive == 0) break;
     std::this_thread::sleep_for(std::chrono::duration<double>(o.poll_s));
   }
-  const std::map<std::size_t, std::string> states = task_states(job);
+  const std::map<std::size_t, std::string> states = final_states(job);
   std::vector<Failure> failures;
   for (std::size_t t = 0; t < tasks.size(); ++t) {
     const auto state = states.find(t);
     // A task cancelled while still pending leaves no record: Slurm shrinks the array.
     const std::string ended =
         state == states.end()
-            ? "has no record left in Slurm (cancelled before it started, or its record expired)"
+            ? "left no result and has no record in Slurm (cancelled before it started, or its "
+              "record expired)"
             : "ended " + state->second +
-                  (state->second == "TIMEOUT" ? " (raise --time-limit)" : "");
+                  (state->second == "TIMEOUT" ? " (raise --time-limit)" : "") +
+                  " without its result";
     for (std::size_t i : tasks[t])
       if (!run_complete(dir, i))
         failures.push_back(
-            {i, "task " + job + "_" + std::to_string(t) + " " + ended + " without its result",
-             task_log(dir, t)});
+            {i, "task " + job + "_" + std::to_string(t) + " " + ended, task_log(dir, t)});
   }
   if (!failures.empty()) throw_failures(failures, todo.size() + done_before, dir);
 }

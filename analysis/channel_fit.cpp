@@ -91,6 +91,12 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
     opt.max_num_iterations = 40;
     opt.linear_solver_type = ceres::DENSE_QR;
     opt.logging_type = ceres::SILENT;
+    // With bounds, Ceres searches along each trust-region step (a projected Armijo line search).
+    // Its default cubic interpolation asks for the gradient at every trial point: a whole
+    // numeric Jacobian, 2p+1 simulations, where the quadratic one needs the cost alone (one
+    // simulation). The clamp's fits made 2.8 Jacobians an iteration with cubic, 0.9 with
+    // quadratic; the 10-minute excerpt's verdicts and effect parameters are unchanged (issue 30).
+    opt.line_search_interpolation_type = ceres::QUADRATIC;
     ceres::Solver::Summary summary;
     ceres::Solve(opt, &problem, &summary);
   } else {

@@ -114,6 +114,9 @@ class ChannelModel {
   // Free-run prediction of the output over all samples.
   virtual void simulate(const Recording& r, const std::vector<double>& nominal,
                         const std::vector<Effect>& effects, std::vector<double>& y) const = 0;
+  // How many rows after row k the simulation of row k reads (a central difference reads one).
+  // The fits simulate the calibration rows and this many more, not the held-out rest.
+  [[nodiscard]] virtual std::size_t rows_ahead() const { return 0; }
   // Initial nominal values from the data (a rough guess for the solver).
   [[nodiscard]] virtual std::vector<double> initial_guess(const Recording& r) const;
   // Further starts of the nominal fit, across the ranges where its cost has more than one

@@ -241,14 +241,15 @@ class DiscTorqueChannel : public ChannelModel {
     }
     return std::sqrt(sum / static_cast<double>(rows - 2));
   }
+  // d(omega)/dt by central differences over +-kHalf samples: wider windows smear the fast
+  // torque transients of a drive whose loop is quicker than the thinned sampling.
+  static constexpr std::size_t kHalf = 1;
+  std::size_t rows_ahead() const override { return kHalf; }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
     const std::vector<double> w = transform_input(r, r.at("omega"), fx);
     const std::size_t n = w.size();
     y.assign(n, 0.0);
-    // d(omega)/dt by central differences over +-1 sample: wider windows smear the fast
-    // torque transients of a drive whose loop is quicker than the thinned sampling.
-    constexpr std::size_t kHalf = 1;
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t a = k >= kHalf ? k - kHalf : 0, b = std::min(n - 1, k + kHalf);
       const double dw = b > a ? (w[b] - w[a]) / (r.t[b] - r.t[a]) : 0.0;

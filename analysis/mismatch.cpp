@@ -536,15 +536,6 @@ std::size_t first_stopped_row(const Recording& r) {
   return r.size();
 }
 
-// The first `rows` rows of a recording, everything else about it kept.
-Recording first_rows(const Recording& r, std::size_t rows) {
-  Recording out = r;
-  out.t.resize(rows);
-  out.state.resize(std::min(rows, out.state.size()));
-  for (auto& [name, v] : out.signals) v.resize(rows);
-  return out;
-}
-
 // A transport delay found on decimated rows is a time-resolution parameter: the decimation's
 // own timing (a command averaged over each kept row's interval, decimation.h) can read as a
 // few milliseconds of delay. It is refined at the recording's own rate: the channel is fitted

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include "config/config_key.h"
 #include "config/input_file.h"
@@ -122,6 +123,23 @@ void RecordingReader::check_sync_period(const std::string& value) const {
 double Recording::sync_period_s() const {
   const auto it = metadata.find(std::string(config::kSyncPeriodKey));
   return it == metadata.end() ? 0.0 : std::strtod(it->second.c_str(), nullptr);
+}
+
+Recording first_rows(const Recording& r, std::size_t rows) {
+  rows = std::min(rows, r.size());
+  Recording out;
+  out.file = r.file;
+  out.metadata = r.metadata;
+  out.decimation_stride = r.decimation_stride;
+  out.full_rate_noise = r.full_rate_noise;
+  const auto first = [rows](const auto& v) {
+    using V = std::decay_t<decltype(v)>;
+    return V(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(std::min(rows, v.size())));
+  };
+  out.t = first(r.t);
+  out.state = first(r.state);
+  for (const auto& [name, v] : r.signals) out.signals.emplace(name, first(v));
+  return out;
 }
 
 void RecordingReader::read_header() {

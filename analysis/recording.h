@@ -47,6 +47,9 @@ struct Recording {
 
 // Reads a recording a block of rows at a time, so that a recording of any length can be
 // analysed in windows with bounded memory. The metadata and the header are read on opening.
+// The first `rows` rows of a recording, everything else about it kept.
+Recording first_rows(const Recording& r, std::size_t rows);
+
 class RecordingReader {
  public:
   // From a file (checked as every input: no FIFO, no directory; a byte-order mark skipped).

@@ -78,6 +78,7 @@ Recording decimated(const Recording& r, std::size_t stride,
   out.metadata = r.metadata;
   out.decimation_stride = r.decimation_stride * stride;
   out.full_rate_noise = r.full_rate_noise;
+  out.full_rate_grid = r.full_rate_grid;
   const double rate = sample_rate_hz(r);
   const double cutoff = anti_alias_cutoff_hz(rate / static_cast<double>(stride));
   for (std::size_t k = 0; k < r.size(); k += stride) out.t.push_back(r.t[k]);
@@ -109,6 +110,7 @@ Recording decimated(const Recording& r, std::size_t stride,
       }
     } else {
       out.full_rate_noise.emplace(name, white_noise_rms(v, v.size()));
+      out.full_rate_grid.emplace(name, value_grid(v));
       std::vector<double> smooth = v;
       zero_phase_lowpass(smooth, cutoff, rate);
       for (std::size_t k = 0; k < smooth.size(); k += stride) o.push_back(smooth[k]);

@@ -7,6 +7,7 @@
 
 #include "analysis/decimation.h"
 #include "analysis/effect_hooks.h"
+#include "analysis/residual_stats.h"
 #include "analysis/tones.h"
 
 namespace planter::analysis {
@@ -216,20 +217,6 @@ void periodic(const OutputContext& c, const std::vector<double>& p, std::vector<
   const double amplitude = p[0] * anti_alias_gain(c.r, p[1]);
   for (std::size_t k = 0; k < y.size(); ++k)
     y[k] += amplitude * std::sin(kTwoPi * p[1] * c.r.t[k] + p[2]);
-}
-
-// The spacing of the grid a signal's values lie on: the median gap between its distinct values
-// (a quantised sensor's step, or a tiny gap for a continuous one).
-double value_grid(const std::vector<double>& y) {
-  std::vector<double> v = y;
-  std::sort(v.begin(), v.end());
-  v.erase(std::unique(v.begin(), v.end()), v.end());
-  std::vector<double> gaps;
-  for (std::size_t k = 1; k < v.size(); ++k) gaps.push_back(v[k] - v[k - 1]);
-  if (gaps.empty()) return 0.0;
-  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2),
-                   gaps.end());
-  return gaps[gaps.size() / 2];
 }
 
 void quantisation(const OutputContext&, const std::vector<double>& p, std::vector<double>& y) {

@@ -131,6 +131,7 @@ std::string fit_json(const FitReport& r, double wall_s) {
     ch["nominal"] = params_json(c.channel->nominal_params(), c.nominal.nominal,
                                 c.nominal.nominal_sd, *c.channel);
     ch["noise_rms"] = c.noise_rms;
+    ch["resolution_rms"] = c.resolution_rms;
     ch["input_noise_rms"] = c.input_noise_rms;
     ch["held_out_prediction_sd"] = c.final_fit.held_out_prediction_sd;
     if (!c.undetermined.empty()) ch["undetermined"] = c.undetermined;

@@ -145,12 +145,23 @@ Location locate(const ChannelModel& ch, const Recording& r, const std::vector<do
 // a constant to about a quarter of the sensor's noise (1 / sqrt(20)).
 constexpr std::size_t kOffsetZeroLoadRows = 20;
 
+// The error the output's resolution alone leaves (residual_stats.h), from the grid its values
+// lie on at the recording's own rate.
+double output_resolution_rms(const Recording& r, const std::string& output) {
+  const auto it = r.full_rate_grid.find(output);
+  return resolution_rms(it != r.full_rate_grid.end() ? it->second : value_grid(r.at(output)));
+}
+
 ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const FitOptions& o,
                               const Split& split) {
   ChannelReport rep;
   rep.channel = &ch;
   const std::vector<double>& y = r.at(ch.output());
-  rep.noise_rms = white_noise_rms(y, split.calibration_end);
+  // The noise every comparison uses is at least what the output's resolution leaves: a coarse
+  // sensor's rounding is no effect to name (hil-commissioning's draft, read in 2 N steps, named
+  // a transport delay that bent the fit around a steady value's rounding; issue 32).
+  rep.resolution_rms = output_resolution_rms(r, ch.output());
+  rep.noise_rms = std::max(white_noise_rms(y, split.calibration_end), rep.resolution_rms);
   // A model given with --model: its values start the fit and its effects are already known;
   // the search is for what is missing beyond them.
   const ModelChannel* given = nullptr;
@@ -218,10 +229,16 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     double noise = 0.0;
     std::vector<double> fold_errors;
   };
+  // The noise under a prediction: what its residual's second differences show, no more than
+  // the recording's own, and no less than the output's resolution leaves.
+  auto noise_under = [&](const std::vector<double>& prediction) {
+    return std::max(
+        std::min(rep.noise_rms, white_noise_rms(residual_of(prediction, y), split.calibration_end)),
+        rep.resolution_rms);
+  };
   auto figures_of = [&](const ChannelFit& base) {
     BaseFigures f;
-    f.noise = std::min(rep.noise_rms,
-                       white_noise_rms(residual_of(base.prediction, y), split.calibration_end));
+    f.noise = noise_under(base.prediction);
     f.fold_errors = fold_errors(base, f.noise);
     return f;
   };
@@ -366,8 +383,7 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   // of its RMS (below that it is a numerical detail of the model, not physics to act on).
   // Its size, not its spread: a stop in the held-out part must not hide a residual.
   // The noise is re-estimated under the final model: what it now explains is not noise.
-  rep.noise_rms = std::min(rep.noise_rms, white_noise_rms(residual_of(rep.final_fit.prediction, y),
-                                                          split.calibration_end));
+  rep.noise_rms = noise_under(rep.final_fit.prediction);
   double mean_square = 0;
   const std::size_t from = split.calibration_end, n = y.size() - from;
   for (std::size_t k = from; k < y.size(); ++k) mean_square += y[k] * y[k] / static_cast<double>(n);

@@ -61,6 +61,8 @@ struct ChannelReport {
   const ChannelModel* channel = nullptr;
   ChannelFit nominal;
   double noise_rms = 0.0;  // white measurement noise: second differences of the final residual
+  // What the output's resolution alone leaves, step / sqrt(12): the floor of noise_rms.
+  double resolution_rms = 0.0;
   // What the measured input's noise makes in the residual through the final fit's nominal
   // (ChannelModel::input_noise_rms); "unexplained" must stand above both.
   double input_noise_rms = 0.0;

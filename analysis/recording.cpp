@@ -132,6 +132,7 @@ Recording first_rows(const Recording& r, std::size_t rows) {
   out.metadata = r.metadata;
   out.decimation_stride = r.decimation_stride;
   out.full_rate_noise = r.full_rate_noise;
+  out.full_rate_grid = r.full_rate_grid;
   const auto first = [rows](const auto& v) {
     using V = std::decay_t<decltype(v)>;
     return V(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(std::min(rows, v.size())));

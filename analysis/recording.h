@@ -36,6 +36,9 @@ struct Recording {
   // Each low-pass filtered column's white noise, measured at the recording's own rate before
   // decimation (after it, the filter has coloured the noise and second differences miss most).
   std::map<std::string, double> full_rate_noise;
+  // Each low-pass filtered column's value grid (a quantised sensor's step: value_grid()), found
+  // before decimation: the filtered averages fill the grid in.
+  std::map<std::string, double> full_rate_grid;
   [[nodiscard]] bool has(const std::string& name) const { return signals.count(name) != 0; }
   [[nodiscard]] const std::vector<double>& at(const std::string& name) const {
     return signals.at(name);

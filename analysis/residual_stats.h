@@ -1,5 +1,6 @@
 #pragma once
 // The sizes of a residual the analysis compares: RMS over a span, and white measurement noise.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -33,5 +34,26 @@ inline double white_noise_rms(const std::vector<double>& y, std::size_t end) {
   }
   return n > 0 ? std::sqrt(s / static_cast<double>(n) / 6.0) : 0.0;
 }
+
+// The spacing of the grid a signal's values lie on: the median gap between its distinct values
+// (a quantised sensor's step, or a tiny gap for a continuous one).
+inline double value_grid(const std::vector<double>& y) {
+  std::vector<double> v = y;
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  std::vector<double> gaps;
+  for (std::size_t k = 1; k < v.size(); ++k) gaps.push_back(v[k] - v[k - 1]);
+  if (gaps.empty()) return 0.0;
+  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2),
+                   gaps.end());
+  return gaps[gaps.size() / 2];
+}
+
+// The RMS error a sensor's resolution alone leaves: rounding to a step q is an error spread
+// evenly over +-q/2, of standard deviation q / sqrt(12) (the resolution of a digital
+// indication, JCGM 100:2008 "GUM", F.2.2.1). No model matches a recording closer than that,
+// however quiet the sensor: a steady force read in 2 N steps shows no noise to second
+// differences, yet its rounding is up to 1 N either way.
+inline double resolution_rms(double step) { return step / std::sqrt(12.0); }
 
 }  // namespace planter::analysis

@@ -501,9 +501,10 @@ Recording analysed_recording(const Recording& full, const FitOptions& o,
   const std::size_t stride = (full.size() + o.max_rows - 1) / o.max_rows;
   const Recording& clean = glitches.empty() ? full : without_glitches(full, glitches);
   Recording out = decimated(clean, stride, channel_columns());
-  if (stride <= 1 || !clean.has("v_wheel")) return out;
+  if (!clean.has("v_wheel")) return out;
   // The standstills at the full rate, kept row by row: the filter leaves no exact zero in the
-  // wheel's speed.
+  // wheel's speed. Carried at the full rate too: the fits simulate only up to the calibration
+  // part's end (channel_fit.cpp), and the standstill test looks half a second ahead.
   const std::vector<bool> rest = wheel_at_rest(clean);
   std::vector<double>& column = out.signals[kAtRestColumn];
   for (std::size_t k = 0; k < rest.size(); k += stride) column.push_back(rest[k] ? 1.0 : 0.0);

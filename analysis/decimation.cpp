@@ -73,12 +73,8 @@ double anti_alias_gain(const Recording& r, double f_hz) {
 Recording decimated(const Recording& r, std::size_t stride,
                     const std::vector<std::string>& filter) {
   if (stride <= 1) return r;
-  Recording out;
-  out.file = r.file;
-  out.metadata = r.metadata;
+  Recording out = without_rows(r);
   out.decimation_stride = r.decimation_stride * stride;
-  out.full_rate_noise = r.full_rate_noise;
-  out.full_rate_grid = r.full_rate_grid;
   const double rate = sample_rate_hz(r);
   const double cutoff = anti_alias_cutoff_hz(rate / static_cast<double>(stride));
   for (std::size_t k = 0; k < r.size(); k += stride) out.t.push_back(r.t[k]);

@@ -125,14 +125,19 @@ double Recording::sync_period_s() const {
   return it == metadata.end() ? 0.0 : std::strtod(it->second.c_str(), nullptr);
 }
 
-Recording first_rows(const Recording& r, std::size_t rows) {
-  rows = std::min(rows, r.size());
+Recording without_rows(const Recording& r) {
   Recording out;
   out.file = r.file;
   out.metadata = r.metadata;
   out.decimation_stride = r.decimation_stride;
   out.full_rate_noise = r.full_rate_noise;
   out.full_rate_grid = r.full_rate_grid;
+  return out;
+}
+
+Recording first_rows(const Recording& r, std::size_t rows) {
+  rows = std::min(rows, r.size());
+  Recording out = without_rows(r);
   const auto first = [rows](const auto& v) {
     using V = std::decay_t<decltype(v)>;
     return V(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(std::min(rows, v.size())));

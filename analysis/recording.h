@@ -50,6 +50,9 @@ struct Recording {
 
 // Reads a recording a block of rows at a time, so that a recording of any length can be
 // analysed in windows with bounded memory. The metadata and the header are read on opening.
+// A recording's file, metadata, stride and full-rate figures, without its rows: what every
+// derived recording (first_rows, decimated) keeps.
+Recording without_rows(const Recording& r);
 // The first `rows` rows of a recording, everything else about it kept.
 Recording first_rows(const Recording& r, std::size_t rows);
 

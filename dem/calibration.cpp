@@ -7,14 +7,12 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
-#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
-#include "config/content_hash.h"
-#include "config/durable_file.h"
-#include "dem/dem_params.h"
-#include "dem/parallel_for.h"
+#include "dem/calibration_runs.h"
+#include "dem/dem_keys.h"
+#include "plan/executor.h"
 
 namespace planter::dem {
 namespace {
@@ -29,64 +27,7 @@ using doe::solve_quadratic_3_for;
 constexpr double kAscentStep = 0.2;  // coded units per step for the steepest factor
 constexpr int kAscentSteps = 8;
 
-// The DEM's physics revision, part of every run's key: a run kept from older physics is not a
-// result of this code. Raise it whenever a law of dem/ changes what a run computes.
-// 2: the Hertz contact acts in parallel with a bond.
-constexpr int kPhysicsRevision = 2;
-
-std::string run_key(const CompressionSetup& s) {
-  // Over the parameters as written: the same text is the same run.
-  return config::content_hash("physics " + std::to_string(kPhysicsRevision) + "\n" +
-                              compression_setup_toml(s));
-}
-
-nlohmann::json result_to_json(const CompressionResult& r) {
-  nlohmann::json j;
-  j["peak_force_N"] = r.peak_force_N;
-  j["peak_displacement_m"] = r.peak_displacement_m;
-  j["first_peak_found"] = r.first_peak_found;
-  j["broken_bonds"] = r.broken_bonds;
-  j["particles"] = r.particles;
-  j["bonds"] = r.bonds;
-  j["steps"] = r.steps;
-  j["max_kinetic_to_work"] = r.max_kinetic_to_work;
-  std::vector<double> x, f;
-  std::vector<int> b;
-  for (const auto& p : r.curve) {
-    x.push_back(p.displacement_m);
-    f.push_back(p.force_N);
-    b.push_back(p.broken_bonds);
-  }
-  j["displacement_m"] = x;
-  j["force_N"] = f;
-  j["broken"] = b;
-  return j;
-}
-
-bool result_from_json(const nlohmann::json& j, CompressionResult& r) {
-  try {
-    r.peak_force_N = j.at("peak_force_N").get<double>();
-    r.peak_displacement_m = j.at("peak_displacement_m").get<double>();
-    r.first_peak_found = j.at("first_peak_found").get<bool>();
-    r.broken_bonds = j.at("broken_bonds").get<int>();
-    r.particles = j.at("particles").get<int>();
-    r.bonds = j.at("bonds").get<int>();
-    r.steps = j.at("steps").get<long>();
-    r.max_kinetic_to_work = j.at("max_kinetic_to_work").get<double>();
-    const auto x = j.at("displacement_m").get<std::vector<double>>();
-    const auto f = j.at("force_N").get<std::vector<double>>();
-    const auto b = j.at("broken").get<std::vector<int>>();
-    if (x.size() != f.size() || x.size() != b.size()) return false;
-    r.curve.clear();
-    for (std::size_t k = 0; k < x.size(); ++k) r.curve.push_back({x[k], f[k], b[k]});
-    find_collapse(r);
-    return true;
-  } catch (const nlohmann::json::exception&) {
-    return false;
-  }
-}
-
-// Runs every run of `runs` not already in the cache, `jobs` at a time.
+// Runs every run of `runs` not already kept in DIR/runs: a stage's plan, on the executor.
 class RunPool {
  public:
   RunPool(const CalibrationOptions& o, CalibrationReport& r,
@@ -99,7 +40,8 @@ class RunPool {
   bool run(std::vector<DesignRun>& runs, const char* stage) {
     std::vector<std::size_t> todo;
     for (std::size_t k = 0; k < runs.size(); ++k) {
-      if (load(runs[k])) {
+      if (auto kept = kept_result(dir_, runs[k].setup)) {
+        runs[k].result = *kept;
         runs[k].reused = true;
         ++report_.reused_runs;
       } else {
@@ -114,40 +56,48 @@ class RunPool {
         complete = false;
       }
     }
+    if (todo.empty()) return complete;
+    std::vector<std::string> keys;
+    for (std::size_t k : todo) keys.push_back(place_run(dir_, runs[k].setup));
+    std::string slug = stage;
+    std::replace(slug.begin(), slug.end(), ' ', '-');
+    const std::string plan_dir = opt_.out_dir + "/plans/" + slug;
+    const std::string plan_path = plan_dir + "/plan.json";
+    write_stage_plan(plan_path, dir_, keys);
     std::mutex mu;
-    std::string unwritten;
-    parallel_for(todo.size(), opt_.jobs, [&](std::size_t t) {
-      DesignRun& d = runs[todo[t]];
-      d.result = run_compression(d.setup);
-      const std::string path = dir_ + "/" + run_key(d.setup) + ".json";
-      nlohmann::json j = result_to_json(d.result);
-      j["params"] = compression_setup_toml(d.setup);
-      const bool written = config::write_file_atomic(path, j.dump() + "\n");
-      std::lock_guard lock(mu);
-      if (!written) {  // reported after the pool: a worker thread must not throw
-        unwritten = path;
-        return;
-      }
-      ++report_.new_runs;
+    plan::PlanRuns plan;
+    plan.dir = plan_dir;
+    plan.count = todo.size();
+    plan.complete = [&](std::size_t i) {
+      return kept_result(dir_, runs[todo[i]].setup).has_value();
+    };
+    plan.run_here = [&](std::size_t i) {
+      const CompressionResult r = run_kept(dir_, keys[i]);
+      const std::lock_guard lock(mu);
       char line[160];
-      std::snprintf(line, sizeof line, "%s run %zu/%zu: peak %.1f N at %.2f mm", stage, todo[t] + 1,
-                    runs.size(), d.result.peak_force_N, d.result.peak_displacement_m * 1e3);
+      std::snprintf(line, sizeof line, "%s run %zu/%zu: peak %.1f N at %.2f mm", stage, todo[i] + 1,
+                    runs.size(), r.peak_force_N, r.peak_displacement_m * 1e3);
       progress_(line);
-    });
-    if (!unwritten.empty()) throw std::runtime_error(unwritten + ": cannot be written");
+    };
+    plan.task_command = plan::shell_quoted(plan::task_program(opt_.executor)) + " plan-run " +
+                        plan::shell_quoted(std::filesystem::absolute(plan_path).string());
+    plan.by_hand = "planter-dem plan-run " + plan_path + " INDEX, for each INDEX from 0 to " +
+                   std::to_string(todo.size() - 1);
+    plan.what = "planter-dem calibration";
+    plan::ExecutorOptions ex = opt_.executor;
+    ex.jobs = opt_.jobs;
+    plan::execute(plan, ex, std::string("calibration: ") + stage);
+    // Every run is kept now (execute throws otherwise): the results, as they were written.
+    for (std::size_t k : todo) {
+      const auto kept = kept_result(dir_, runs[k].setup);
+      if (!kept) throw std::runtime_error(dir_ + "/" + run_key(runs[k].setup) + ".json: missing");
+      runs[k].result = *kept;
+      ++report_.new_runs;
+    }
     return complete;
   }
 
  private:
-  bool load(DesignRun& d) const {
-    std::ifstream in(dir_ + "/" + run_key(d.setup) + ".json");
-    if (!in) return false;
-    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-    if (j.is_discarded() || !j.contains("params") || j["params"] != compression_setup_toml(d.setup))
-      return false;  // torn or from other parameters: run it again
-    return result_from_json(j, d.result);
-  }
-
   const CalibrationOptions& opt_;
   CalibrationReport& report_;
   const std::function<void(const std::string&)>& progress_;
@@ -162,6 +112,25 @@ DesignRun make_run(const CalibrationOptions& o, const std::vector<Factor>& facto
   for (std::size_t k = 0; k < factors.size(); ++k)
     factors[k].apply(d.setup, factors[k].value(coded[k]));
   return d;
+}
+
+// The bond value outside the --params file's allowed range, named, or "".
+std::string outside_allowed_range(const BondParameters& b) {
+  const std::pair<const config::ConfigKey*, double> values[] = {
+      {&config::key_in(kDemBodyKeys, "bond.normal_stiffness_N_m3"), b.normal_stiffness_N_m3},
+      {&config::key_in(kDemBodyKeys, "bond.shear_stiffness_N_m3"), b.shear_stiffness_N_m3},
+      {&config::key_in(kDemBodyKeys, "bond.tensile_strength_Pa"), b.tensile_strength_Pa},
+      {&config::key_in(kDemBodyKeys, "bond.shear_strength_Pa"), b.shear_strength_Pa}};
+  for (const auto& [key, v] : values) {
+    if (v < key->min || v > key->max) {
+      char text[200];
+      std::snprintf(text, sizeof text, "bond.%s = %.4g, outside its allowed %g .. %g %s",
+                    std::string(key->name).c_str(), v, key->min, key->max,
+                    std::string(key->unit).c_str());
+      return text;
+    }
+  }
+  return "";
 }
 
 Eigen::VectorXd responses(const std::vector<DesignRun>& runs) {
@@ -352,6 +321,12 @@ CalibrationReport calibrate(const CalibrationOptions& o,
     b.shear_stiffness_N_m3 *= force_scale;
     b.tensile_strength_Pa *= force_scale * ratio_scale;
     b.shear_strength_Pa *= force_scale * ratio_scale;
+    // A step out of a parameter file's allowed range could neither run from its file nor be
+    // the calibrated file: the refinement stops there and says so.
+    if (const std::string why = outside_allowed_range(b); !why.empty()) {
+      r.refinement_stopped = "the next step would set " + why;
+      break;
+    }
     std::vector<DesignRun> one{next};
     if (!pool.run(one, "refinement")) return r;
     r.refinement.push_back(one.front());

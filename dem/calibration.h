@@ -2,8 +2,9 @@
 // The paper's calibration workflow on the compression test: Plackett-Burman screening of
 // 8 factors, steepest ascent on the significant ones towards the target peak force,
 // Box-Behnken around the best step with a quadratic response surface and its ANOVA, the
-// optimum, and a verification run there. Runs go to a pool of `jobs` threads; each finished
-// run is kept in DIR/runs/ under a hash of its parameters, so an interrupted calibration
+// optimum, and a verification run there. Each stage's runs are a plan on an executor
+// (plan/executor.h: `jobs` threads here, or a Slurm job array); each finished run is kept in
+// DIR/runs/ under a hash of its parameters (calibration_runs.h), so an interrupted calibration
 // resumes where it stopped and never runs the same simulation twice.
 #include <functional>
 #include <string>
@@ -11,6 +12,7 @@
 
 #include "dem/compression_report.h"
 #include "doe/doe.h"
+#include "plan/executor.h"
 
 namespace planter::dem {
 
@@ -40,6 +42,7 @@ struct CalibrationOptions {
   double target_displacement_mm = 0.0;  // > 0: the refinement also places the peak there
   int refinement_runs = 10;             // beyond the paper's workflow; 0 = none
   int jobs = 1;
+  plan::ExecutorOptions executor;  // where each stage's runs execute (its jobs: `jobs`)
   int max_new_runs = -1;  // stop (as if interrupted) after this many new runs; -1 = no limit
   CompressionSetup base;
   std::string out_dir;
@@ -70,7 +73,8 @@ struct CalibrationReport {
   // Refinement: the peak force scales with the bond stiffness S at a fixed sigma_c / S, and
   // the collapse point moves with sigma_c / S; secant steps on both from the verification.
   std::vector<DesignRun> refinement;
-  DesignRun calibrated;  // the best of the verification and the refinement
+  DesignRun calibrated;            // the best of the verification and the refinement
+  std::string refinement_stopped;  // why the refinement stopped early ("": it did not)
   int new_runs = 0;
   int reused_runs = 0;
   bool complete = false;  // false when max_new_runs stopped it

@@ -34,6 +34,7 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
   j["complete"] = r.complete;
   j["new_runs"] = r.new_runs;
   j["reused_runs"] = r.reused_runs;
+  if (!r.refinement_stopped.empty()) j["refinement_stopped"] = r.refinement_stopped;
   for (const auto& f : r.factors) {
     j["factors"].push_back({{"name", f.name},
                             {"unit", f.unit},

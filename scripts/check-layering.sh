@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The house's layers, from the ground up: each may include only itself and the layers below.
-#   hal/include <- hal/sim, hal/linux <- firmware <- config <- console, report <- sim
-#   <- doe, dem (the seedling's DEM), analysis (planter-fit's engine) <- apps
+#   hal/include <- hal/sim, hal/linux <- firmware <- config <- console, report, plan (the run
+#   executors) <- sim <- doe, dem (the seedling's DEM), analysis (planter-fit's engine) <- apps
 # dem and analysis see of sim only the models they share with the plant: sim/seedling (the
 # reduced force model) and sim/soil (the draft law).
 # firmware/ also sees no OS header: only the C++ standard library. The build enforces the same
@@ -19,11 +19,12 @@ rules=(
   "config|planter/hal/|firmware/|config/"
   "console|planter/hal/|firmware/|config/|console/"
   "report|report/"
-  "sim|planter/hal/|hal/sim/|hal/linux/|firmware/|config/|console/|report/|sim/"
+  "plan|config/|plan/"
+  "sim|planter/hal/|hal/sim/|hal/linux/|firmware/|config/|console/|report/|plan/|sim/"
   "doe|report/|doe/"
-  "dem|config/|report/|doe/|sim/seedling/|dem/"
+  "dem|config/|report/|plan/|doe/|sim/seedling/|dem/"
   "analysis|planter/hal/|firmware/|config/|report/|sim/soil/|analysis/"
-  "apps|planter/hal/|hal/sim/|hal/linux/|firmware/|config/|console/|report/|sim/|doe/|dem/|analysis/|apps/"
+  "apps|planter/hal/|hal/sim/|hal/linux/|firmware/|config/|console/|report/|plan/|sim/|doe/|dem/|analysis/|apps/"
 )
 for rule in "${rules[@]}"; do
   layer=${rule%%|*}

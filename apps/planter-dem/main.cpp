@@ -2,6 +2,7 @@
 //   compress   the paper's radial compression test: curve, first peak, report
 //   calibrate  Plackett-Burman, steepest ascent, Box-Behnken + ANOVA to a target peak force
 //   reduce     the reduced-order force model F(delta, delta_dot) for the plant model
+//   plan-run   one run of a calibration stage's plan (what a Slurm task executes)
 // Exit codes: 0 done, 1 the run failed (an output could not be written), 2 bad input.
 #include <unistd.h>
 
@@ -13,12 +14,14 @@
 #include <thread>
 #include <vector>
 
+#include "apps/version/executor_options.h"
 #include "apps/version/list_keys.h"
 #include "apps/version/version.h"
 #include "config/cli_range.h"
 #include "config/config_error.h"
 #include "config/durable_file.h"
 #include "dem/calibration.h"
+#include "dem/calibration_runs.h"
 #include "dem/compression_report.h"
 #include "dem/dem_keys.h"
 #include "dem/dem_params.h"
@@ -101,8 +104,11 @@ int compress(const Common& c) {
   return 0;
 }
 
-int calibrate(const Common& c, double target_N, double target_mm, int jobs, int max_new_runs) {
+int calibrate(const Common& c, double target_N, double target_mm, int jobs, int max_new_runs,
+              const plan::ExecutorOptions& executor) {
+  if (const std::string why = plan::executor_refusal(executor); !why.empty()) return fail(2, why);
   dem::CalibrationOptions o;
+  o.executor = executor;
   o.base = load_setup(c);
   o.target_N = target_N;
   o.target_displacement_mm = target_mm;
@@ -110,8 +116,17 @@ int calibrate(const Common& c, double target_N, double target_mm, int jobs, int 
   o.max_new_runs = max_new_runs;
   o.out_dir = c.out;
   const auto t0 = std::chrono::steady_clock::now();
-  const dem::CalibrationReport r = dem::calibrate(
-      o, [](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); });
+  dem::CalibrationReport r;
+  try {
+    r = dem::calibrate(
+        o, [](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); });
+  } catch (const plan::PlanWritten& w) {
+    std::printf(
+        "plan written in %s (the first stage's runs; the next stages' runs follow from "
+        "their results); run it: %s, then this command again\n",
+        w.dir.c_str(), w.how_to_run.c_str());
+    return 0;
+  }
   dem::write_calibration_outputs(o, r);
   std::printf("runs: %d new, %d reused from %s/runs, %d jobs, %.1f s wall\n", r.new_runs,
               r.reused_runs, c.out.c_str(), jobs, seconds_since(t0));
@@ -141,6 +156,8 @@ int calibrate(const Common& c, double target_N, double target_mm, int jobs, int 
       "%s\n",
       r.predicted_N, v.peak_force_N, v.peak_displacement_m * 1e3,
       100.0 * (v.peak_force_N - target_N) / target_N, dem::collapse_text(v).c_str());
+  if (!r.refinement_stopped.empty())
+    std::printf("refinement stopped: %s\n", r.refinement_stopped.c_str());
   const auto& cal = r.calibrated;
   std::printf("refined in %zu run(s): S = %.4g N/m^3, sigma_c = %.4g Pa\n", r.refinement.size(),
               cal.setup.bonds.normal_stiffness_N_m3, cal.setup.bonds.tensile_strength_Pa);
@@ -239,6 +256,14 @@ int main(int argc, char** argv) {
       ->add_option("--max-new-runs", max_new_runs,
                    "stop after this many new simulations (resume later)")
       ->check(planter::config::finite_range(0, 100000));
+  plan::ExecutorOptions executor;
+  planter::apps::add_executor_options(*calibrate_cmd, executor);
+  std::string plan_path;
+  std::size_t plan_index = 0;
+  auto* plan_run = app.add_subcommand(
+      "plan-run", "run one run of a calibration stage's plan (what each Slurm task executes)");
+  plan_run->add_option("plan", plan_path, "DIR/plans/STAGE/plan.json")->required();
+  plan_run->add_option("index", plan_index, "the run's index in the plan")->required();
   auto* reduce_cmd = app.add_subcommand("reduce", "fit the reduced-order force model");
   add_common(reduce_cmd);
   std::vector<double> diameters_mm{8.3, 9.3, 10.35, 11.4};
@@ -256,7 +281,11 @@ int main(int argc, char** argv) {
   try {
     if (*compress_cmd) return compress(common);
     if (*reduce_cmd) return reduce(common, diameters_mm, jobs);
-    return calibrate(common, target_N, target_mm, jobs, max_new_runs);
+    if (*plan_run) {
+      dem::execute_stage_run(plan_path, plan_index);
+      return 0;
+    }
+    return calibrate(common, target_N, target_mm, jobs, max_new_runs, executor);
   } catch (const config::ConfigError& e) {
     return fail(2, e.what());
   } catch (const std::exception& e) {

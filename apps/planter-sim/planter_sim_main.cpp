@@ -27,6 +27,7 @@
 #ifdef PLANTER_WITH_REPLAY
 #include "analysis/recording.h"
 #endif
+#include "apps/version/executor_options.h"
 #include "apps/version/list_keys.h"
 #include "apps/version/version.h"
 #include "sim/plant/effect_keys.h"
@@ -45,29 +46,6 @@ using namespace planter::sim;
 namespace {
 
 #ifdef PLANTER_WITH_SWEEP
-// Where a multi-run command's runs execute (sim/runner/executor.h).
-void add_executor_options(CLI::App& cmd, ExecutorOptions& ex) {
-  cmd.add_option("--executor", ex.kind, "where the runs execute: local or slurm")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"local", "slurm"}));
-  cmd.add_flag("--plan-only", ex.plan_only,
-               "write the plan (and with slurm its sbatch script) and run nothing");
-  cmd.add_option("--partition", ex.partition, "slurm: the partition");
-  cmd.add_option("--account", ex.account, "slurm: the account");
-  cmd.add_option("--time-limit", ex.time_limit,
-                 "slurm: each task's limit (sbatch --time; default ten times a run timed here)");
-  cmd.add_option("--throttle", ex.throttle, "slurm: most tasks at once (0: no limit)")
-      ->check(planter::config::finite_range(0, 100000));
-  cmd.add_option("--sbatch-args", ex.sbatch_args, "slurm: more arguments for sbatch");
-  cmd.add_option("--runs-per-task", ex.runs_per_task,
-                 "slurm: runs each array task executes in turn (short runs: several)")
-      ->capture_default_str()
-      ->check(planter::config::finite_range(1, 100000));
-  cmd.add_option("--poll", ex.poll_s, "slurm: seconds between looks at the queue")
-      ->capture_default_str()
-      ->check(planter::config::finite_range(0.1, 600.0));
-}
-
 // A study over many runs of one scenario (sensitivity, montecarlo): the options they share.
 CLI::App* add_study(CLI::App& app, const std::string& name, const std::string& description,
                     std::string& scenario, std::string& out, bool& force, double& distance_m,
@@ -83,7 +61,7 @@ CLI::App* add_study(CLI::App& app, const std::string& name, const std::string& d
   cmd->add_option("--jobs", jobs, "runs at a time (0: one per core)")
       ->capture_default_str()
       ->check(planter::config::finite_range(0, 256));
-  add_executor_options(*cmd, ex);
+  planter::apps::add_executor_options(*cmd, ex);
   return cmd;
 }
 #endif
@@ -282,7 +260,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--jobs", sweep_options.jobs, "runs at a time (0: one per core)")
       ->capture_default_str()
       ->check(planter::config::finite_range(0, 256));
-  add_executor_options(*sweep, sweep_options.executor);
+  planter::apps::add_executor_options(*sweep, sweep_options.executor);
   SensitivityOptions sensitivity_options;
   auto* sensitivity = add_study(
       app, "sensitivity",

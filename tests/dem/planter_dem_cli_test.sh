@@ -28,6 +28,16 @@ expect 2 "out" -- compress
 expect 2 "speedup" -- compress --out "$work/o" --speedup 0
 expect 2 "jobs" -- calibrate --out "$work/o" --jobs 0
 expect 2 "diameters" -- reduce --out "$work/o" --diameters-mm 8.3,abc
+# A calibration stage's plan (what a Slurm task runs): a missing plan, another file, an index
+# the plan has not.
+expect 2 "nothing.json: cannot be read" -- plan-run "$work/nothing.json" 0
+printf '{"keys": 3}\n' >"$work/other.json"
+expect 2 "other.json: not a plan of planter-dem's calibration" -- plan-run "$work/other.json" 0
+printf '{"planter-dem calibration stage": 1, "runs_dir": "%s", "keys": ["abc"]}\n' "$work" \
+  >"$work/plan.json"
+expect 2 "no run 4 (the plan has 1, from 0)" -- plan-run "$work/plan.json" 4
+expect 2 "abc.toml: no such file" -- plan-run "$work/plan.json" 0
+expect 2 "executor" -- calibrate --out "$work/o" --executor cloud
 # An empty parameter file is refused (it would run the defaults under the file's name), and a
 # run whose cost is hours is refused before it starts, with the estimate.
 : >"$work/empty.toml"

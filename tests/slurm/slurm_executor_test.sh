@@ -4,10 +4,12 @@
 # 2. a task cancelled with scancel leaves no result, and running the command again submits
 #    only the missing runs (the complete ones untouched) and completes the same sweep;
 # 3. a task cancelled while it runs, the executor following the job, is reported by its index
-#    and its state (squeue's, or sacct's where the cluster keeps accounting); nothing gathered.
-# Usage: slurm_executor_test.sh PLANTER_SIM SOURCE_DIR
+#    and its state (squeue's, or sacct's where the cluster keeps accounting); nothing gathered;
+# 4. planter-dem's calibration through the cluster, each stage's runs one job array, gives the
+#    same calibration.json as the local one.
+# Usage: slurm_executor_test.sh PLANTER_SIM SOURCE_DIR PLANTER_DEM
 set -euo pipefail
-sim=$1 src=$2
+sim=$1 src=$2 dem=$3
 work=$(mktemp -d)
 cleanup() {
   "$src/scripts/slurm-cluster.sh" stop "$work/cluster" >/dev/null 2>&1 || true
@@ -86,3 +88,22 @@ grep -q "task $task ended CANCELLED without its result" "$work/followed.err" ||
   fail "the cancelled task $task was not reported with its state: $(tail -5 "$work/followed.err")"
 [ ! -e "$work/followed/sweep.json" ] || fail "a sweep was gathered from incomplete runs"
 echo "slurm: task $task cancelled while it ran is reported as CANCELLED; nothing gathered"
+
+# planter-dem's calibration: a coarse seedling (2.5 mm particles, the platen 100 times the
+# paper's speed: a run in a fifth of a second) so every stage goes through the cluster in
+# seconds; what is compared is where the runs ran, not the seedling.
+printf '[seedling]\nparticle_radius_mm = 2.5\n[test]\nspeedup = 100\n' >"$work/coarse.toml"
+"$dem" calibrate --params "$work/coarse.toml" --out "$work/dem-local" --jobs 2 \
+  >"$work/dem-local.out" 2>/dev/null || fail "the local calibration failed"
+"$dem" calibrate --params "$work/coarse.toml" --out "$work/dem-slurm" --executor slurm \
+  --time-limit 5 --poll 0.3 >"$work/dem-slurm.out" 2>"$work/dem-slurm.err" ||
+  { cat "$work/dem-slurm.err"; fail "the calibration through Slurm failed"; }
+arrays=$(grep -c "submitted [0-9]* runs as Slurm job" "$work/dem-slurm.err" || true)
+[ "$arrays" -ge 4 ] || fail "the calibration's stages were not submitted as job arrays ($arrays)"
+python3 - "$work/dem-local/calibration.json" "$work/dem-slurm/calibration.json" <<'PY' ||
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:])
+sys.exit(0 if a == b else 1)
+PY
+  fail "calibration.json through Slurm differs from the local one"
+echo "slurm: planter-dem's calibration, $arrays job arrays, equals the local one (calibration.json)"

@@ -1,0 +1,161 @@
+#include "dem/calibration_runs.h"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "config/config_error.h"
+#include "config/content_hash.h"
+#include "config/durable_file.h"
+#include "dem/dem_params.h"
+
+namespace planter::dem {
+namespace {
+
+// The DEM's physics revision, part of every run's key: a run kept from older physics is not a
+// result of this code. Raise it whenever a law of dem/ changes what a run computes.
+// 2: the Hertz contact acts in parallel with a bond.
+constexpr int kPhysicsRevision = 2;
+
+std::string key_of_text(const std::string& toml) {
+  // Over the parameters as written: the same text is the same run.
+  return config::content_hash("physics " + std::to_string(kPhysicsRevision) + "\n" + toml);
+}
+
+nlohmann::json result_to_json(const CompressionResult& r) {
+  nlohmann::json j;
+  j["peak_force_N"] = r.peak_force_N;
+  j["peak_displacement_m"] = r.peak_displacement_m;
+  j["first_peak_found"] = r.first_peak_found;
+  j["broken_bonds"] = r.broken_bonds;
+  j["particles"] = r.particles;
+  j["bonds"] = r.bonds;
+  j["steps"] = r.steps;
+  j["max_kinetic_to_work"] = r.max_kinetic_to_work;
+  std::vector<double> x, f;
+  std::vector<int> b;
+  for (const auto& p : r.curve) {
+    x.push_back(p.displacement_m);
+    f.push_back(p.force_N);
+    b.push_back(p.broken_bonds);
+  }
+  j["displacement_m"] = x;
+  j["force_N"] = f;
+  j["broken"] = b;
+  return j;
+}
+
+bool result_from_json(const nlohmann::json& j, CompressionResult& r) {
+  try {
+    r.peak_force_N = j.at("peak_force_N").get<double>();
+    r.peak_displacement_m = j.at("peak_displacement_m").get<double>();
+    r.first_peak_found = j.at("first_peak_found").get<bool>();
+    r.broken_bonds = j.at("broken_bonds").get<int>();
+    r.particles = j.at("particles").get<int>();
+    r.bonds = j.at("bonds").get<int>();
+    r.steps = j.at("steps").get<long>();
+    r.max_kinetic_to_work = j.at("max_kinetic_to_work").get<double>();
+    const auto x = j.at("displacement_m").get<std::vector<double>>();
+    const auto f = j.at("force_N").get<std::vector<double>>();
+    const auto b = j.at("broken").get<std::vector<int>>();
+    if (x.size() != f.size() || x.size() != b.size()) return false;
+    r.curve.clear();
+    for (std::size_t k = 0; k < x.size(); ++k) r.curve.push_back({x[k], f[k], b[k]});
+    find_collapse(r);
+    return true;
+  } catch (const nlohmann::json::exception&) {
+    return false;
+  }
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return in ? text.str() : std::string();
+}
+
+}  // namespace
+
+std::string run_key(const CompressionSetup& s) { return key_of_text(compression_setup_toml(s)); }
+
+std::optional<CompressionResult> kept_result(const std::string& runs_dir,
+                                             const CompressionSetup& s) {
+  const std::string toml = compression_setup_toml(s);
+  std::ifstream in(runs_dir + "/" + key_of_text(toml) + ".json");
+  if (!in) return std::nullopt;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.contains("params") || j["params"] != toml)
+    return std::nullopt;  // torn or from other parameters: run it again
+  CompressionResult r;
+  if (!result_from_json(j, r)) return std::nullopt;
+  return r;
+}
+
+std::string place_run(const std::string& runs_dir, const CompressionSetup& s) {
+  const std::string toml = compression_setup_toml(s), key = key_of_text(toml);
+  const std::string path = runs_dir + "/" + key + ".toml";
+  if (read_text(path) != toml && !config::write_file_atomic(path, toml))
+    throw std::runtime_error(path + ": cannot be written");
+  return key;
+}
+
+CompressionResult run_kept(const std::string& runs_dir, const std::string& key) {
+  const std::string path = runs_dir + "/" + key + ".toml";
+  const CompressionSetup setup = load_compression_setup(path);
+  // The parameters as read must write back to the same text, or the run is not the key's.
+  const std::string toml = compression_setup_toml(setup);
+  if (key_of_text(toml) != key)
+    throw std::runtime_error(path + ": its parameters are not those of the run " + key +
+                             " (edited, or written by another version of planter-dem)");
+  const CompressionResult r = run_compression(setup);
+  nlohmann::json j = result_to_json(r);
+  j["params"] = toml;
+  const std::string out = runs_dir + "/" + key + ".json";
+  if (!config::write_file_atomic(out, j.dump() + "\n"))
+    throw std::runtime_error(out + ": cannot be written");
+  return r;
+}
+
+void write_stage_plan(const std::string& path, const std::string& runs_dir,
+                      const std::vector<std::string>& keys) {
+  nlohmann::json j;
+  j["planter-dem calibration stage"] = 1;
+  j["runs_dir"] = std::filesystem::absolute(runs_dir).lexically_normal().string();
+  j["keys"] = keys;
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  config::write_output_file(path, j.dump(2) + "\n");
+}
+
+void execute_stage_run(const std::string& plan_path, std::size_t index) {
+  std::ifstream in(plan_path);
+  if (!in) throw config::ConfigError(plan_path, 0, "", "cannot be read");
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.contains("planter-dem calibration stage") || !j.contains("runs_dir") ||
+      !j["runs_dir"].is_string() || !j.contains("keys") || !j["keys"].is_array())
+    throw config::ConfigError(plan_path, 0, "", "not a plan of planter-dem's calibration");
+  const auto& keys = j["keys"];
+  if (index >= keys.size())
+    throw config::ConfigError(plan_path, 0, "keys",
+                              "no run " + std::to_string(index) + " (the plan has " +
+                                  std::to_string(keys.size()) + ", from 0)");
+  if (!keys[index].is_string())
+    throw config::ConfigError(plan_path, 0, "keys", "run " + std::to_string(index) + " has no key");
+  const std::string runs_dir = j["runs_dir"].get<std::string>();
+  const std::string key = keys[index].get<std::string>();
+  if (key.empty() || key.find_first_of("/.") != std::string::npos)
+    throw config::ConfigError(plan_path, 0, "keys",
+                              "run " + std::to_string(index) + "'s key '" + key + "' is not a key");
+  std::ifstream kept(runs_dir + "/" + key + ".json");
+  if (kept) {
+    const nlohmann::json r = nlohmann::json::parse(kept, nullptr, false);
+    if (!r.is_discarded() && r.contains("params") && r["params"].is_string() &&
+        key_of_text(r["params"].get<std::string>()) == key)
+      return;  // kept already: a resumed plan runs only what is missing
+  }
+  run_kept(runs_dir, key);
+}
+
+}  // namespace planter::dem

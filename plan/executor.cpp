@@ -274,7 +274,18 @@ void run_slurm(const PlanRuns& runs, std::vector<std::size_t> todo, const Execut
   if (o.plan_only) throw PlanWritten{dir, "sbatch " + script};
   const auto [out, rc] =
       capture("sbatch --parsable " + o.sbatch_args + " " + shell_quoted(script) + " 2>&1");
-  if (rc != 0) throw std::runtime_error("sbatch refused " + script + ": " + out);
+  if (rc != 0) {
+    // sbatch's own words, and what to fix.
+    std::string fix = "Slurm is not reachable from here: check `sinfo` (and SLURM_CONF)";
+    if (out.find("partition") != std::string::npos) {
+      const auto [partitions, listed] = capture("sinfo -h -o %P 2>/dev/null");
+      fix =
+          "the partitions here: " +
+          (listed == 0 && !partitions.empty() ? partitions : std::string("(sinfo answered none)"));
+      std::replace(fix.begin(), fix.end(), '\n', ' ');
+    }
+    throw std::runtime_error("sbatch refused " + script + ": " + out + fix);
+  }
   const std::string job = out.substr(0, out.find_first_of(";\n"));
   if (job.empty() || job.find_first_not_of("0123456789") != std::string::npos)
     throw std::runtime_error("sbatch answered '" + out + "', not a job id");
@@ -306,10 +317,18 @@ void run_slurm(const PlanRuns& runs, std::vector<std::size_t> todo, const Execut
             : "ended " + state->second +
                   (state->second == "TIMEOUT" ? " (raise --time-limit)" : "") +
                   " without its result";
+    // A task Slurm ran that left no log never saw the plan's folder.
+    const std::string log = task_log(dir, t);
+    const bool unseen = state != states.end() && !fs::exists(log);
     for (std::size_t i : tasks[t])
       if (!runs.complete(i))
-        failures.push_back(
-            {i, "task " + job + "_" + std::to_string(t) + " " + ended, task_log(dir, t)});
+        failures.push_back({i,
+                            "task " + job + "_" + std::to_string(t) + " " + ended +
+                                (unseen ? " and wrote no log at " + log +
+                                              ": the plan's folder and the program must be on "
+                                              "a filesystem the nodes see"
+                                        : ""),
+                            unseen ? "" : log});
   }
   if (!failures.empty()) throw_failures(failures, todo.size() + done_before, dir);
 }

@@ -5,7 +5,9 @@
 #    only the missing runs (the complete ones untouched) and completes the same sweep;
 # 3. a task cancelled while it runs, the executor following the job, is reported by its index
 #    and its state (squeue's, or sacct's where the cluster keeps accounting); nothing gathered;
-# 4. planter-dem's calibration through the cluster, each stage's runs one job array, gives the
+# 4. an unknown partition and a Slurm that cannot be reached are each one message that says what
+#    to fix (the partitions there; sinfo and SLURM_CONF), exit 1, and nothing gathered;
+# 5. planter-dem's calibration through the cluster, each stage's runs one job array, gives the
 #    same calibration.json as the local one.
 # Usage: slurm_executor_test.sh PLANTER_SIM SOURCE_DIR PLANTER_DEM
 set -euo pipefail
@@ -88,6 +90,23 @@ grep -q "task $task ended CANCELLED without its result" "$work/followed.err" ||
   fail "the cancelled task $task was not reported with its state: $(tail -5 "$work/followed.err")"
 [ ! -e "$work/followed/sweep.json" ] || fail "a sweep was gathered from incomplete runs"
 echo "slurm: task $task cancelled while it ran is reported as CANCELLED; nothing gathered"
+
+# Bad input: a partition the cluster has not, and a Slurm that cannot be reached.
+refused() {  # refused NAME PATTERN SLURM_CONF [ARGS...]: exit 1, the pattern said, nothing gathered
+  local name=$1 pattern=$2 conf=$3 rc=0
+  shift 3
+  SLURM_CONF=$conf "$sim" "${args[@]}" --out "$work/$name" --executor slurm --time-limit 5 "$@" \
+    >"$work/$name.out" 2>&1 || rc=$?
+  [ "$rc" -eq 1 ] || fail "$name: exit $rc, wanted 1: $(cat "$work/$name.out")"
+  grep -q -- "$pattern" "$work/$name.out" || fail "$name: /$pattern/ not said: $(cat "$work/$name.out")"
+  [ ! -e "$work/$name/sweep.json" ] || fail "$name: a sweep was gathered"
+}
+refused partition "the partitions here: planter" "$SLURM_CONF" --partition nosuch
+grep -q "invalid partition specified: nosuch" "$work/partition.out" ||
+  fail "sbatch's own words on the partition were not passed on: $(cat "$work/partition.out")"
+refused unreachable "Slurm is not reachable from here: check .sinfo. (and SLURM_CONF)" \
+  "$work/no-such-cluster.conf"
+echo "slurm: an unknown partition and an unreachable Slurm each say what to fix; nothing gathered"
 
 # planter-dem's calibration: a coarse seedling (2.5 mm particles, the platen 100 times the
 # paper's speed: a run in a fifth of a second) so every stage goes through the cluster in

@@ -3,8 +3,9 @@
 # 1. --executor slurm gives the same sweep.json as --executor local;
 # 2. a task cancelled with scancel leaves no result, and running the command again submits
 #    only the missing runs (the complete ones untouched) and completes the same sweep;
-# 3. a task cancelled while it runs, the executor following the job, is reported by its index
-#    and its state (squeue's, or sacct's where the cluster keeps accounting); nothing gathered;
+# 3. a task cancelled, or crashed (SIGSEGV), while it runs, the executor following the job, is
+#    reported by its index and its state (squeue's, or sacct's where the cluster keeps
+#    accounting); nothing gathered;
 # 4. an unknown partition and a Slurm that cannot be reached are each one message that says what
 #    to fix (the partitions there; sinfo and SLURM_CONF), exit 1, and nothing gathered;
 # 5. planter-dem's calibration through the cluster, each stage's runs one job array, gives the
@@ -68,28 +69,35 @@ same_sweep "$work/local" "$work/killed" || fail "the resumed sweep differs from 
 echo "slurm: a cancelled task, then the command again: $missing missing run(s) submitted," \
   "$((15 - missing)) kept, and the same sweep.json"
 
-# A task cancelled while it runs and the executor follows its job (one task at a time; 300 m
-# runs, about 4 s each, so the cancel lands before the run ends).
-"$sim" sweep "$src/scenarios/zhangqiu-field.toml" --distance 300 --replicates 1 --max-replicates 1 \
-  --out "$work/followed" --executor slurm --throttle 1 --time-limit 5 \
-  --poll 0.3 >"$work/followed.out" 2>"$work/followed.err" &
-follower=$!
-task=""
-for _ in $(seq 600); do
-  job=$(sed -n 's/.*submitted [0-9]* runs as Slurm job \([0-9]*\).*/\1/p' "$work/followed.err")
-  [ -n "$job" ] && task=$(squeue -h -r -j "$job" -t RUNNING -o %i | head -1)
-  [ -n "$task" ] && break
-  sleep 0.1
-done
-[ -n "$task" ] || { kill "$follower"; fail "no task of the followed sweep was seen running"; }
-scancel "$task"
-status=0
-wait "$follower" || status=$?
-[ "$status" -ne 0 ] || fail "a sweep with a cancelled task exited 0"
-grep -q "task $task ended CANCELLED without its result" "$work/followed.err" ||
-  fail "the cancelled task $task was not reported with its state: $(tail -5 "$work/followed.err")"
-[ ! -e "$work/followed/sweep.json" ] || fail "a sweep was gathered from incomplete runs"
-echo "slurm: task $task cancelled while it ran is reported as CANCELLED; nothing gathered"
+# A task ended while it runs, the executor following its job (one task at a time; 300 m runs,
+# about 4 s each, so the signal lands before the run ends): cancelled with scancel, and crashed
+# (SIGSEGV to the task's processes).
+signalled() {  # signalled NAME STATE [SCANCEL ARGS...]
+  local name=$1 state=$2 follower task="" job status=0
+  shift 2
+  "$sim" sweep "$src/scenarios/zhangqiu-field.toml" --distance 300 --replicates 1 \
+    --max-replicates 1 --out "$work/$name" --executor slurm --throttle 1 --time-limit 5 \
+    --poll 0.3 >"$work/$name.out" 2>"$work/$name.err" &
+  follower=$!
+  for _ in $(seq 600); do
+    job=$(sed -n 's/.*submitted [0-9]* runs as Slurm job \([0-9]*\).*/\1/p' "$work/$name.err")
+    [ -n "$job" ] && task=$(squeue -h -r -j "$job" -t RUNNING -o %i | head -1)
+    [ -n "$task" ] && break
+    sleep 0.1
+  done
+  [ -n "$task" ] || { kill "$follower"; fail "$name: no task of the followed sweep was seen running"; }
+  # scancel exits non-zero after signalling a batch task with --full (seen: 229); what counts
+  # is the task's end, checked below.
+  scancel "$@" "$task" || true
+  wait "$follower" || status=$?
+  [ "$status" -ne 0 ] || fail "$name: a sweep with a $name task exited 0"
+  grep -q "task $task ended $state without its result" "$work/$name.err" ||
+    fail "$name: task $task was not reported $state: $(tail -5 "$work/$name.err")"
+  [ ! -e "$work/$name/sweep.json" ] || fail "$name: a sweep was gathered from incomplete runs"
+  echo "slurm: task $task $name while it ran is reported as $state; nothing gathered"
+}
+signalled cancelled CANCELLED
+signalled crashed FAILED --signal=11 --full
 
 # Bad input: a partition the cluster has not, and a Slurm that cannot be reached.
 refused() {  # refused NAME PATTERN SLURM_CONF [ARGS...]: exit 1, the pattern said, nothing gathered
@@ -104,8 +112,13 @@ refused() {  # refused NAME PATTERN SLURM_CONF [ARGS...]: exit 1, the pattern sa
 refused partition "the partitions here: planter" "$SLURM_CONF" --partition nosuch
 grep -q "invalid partition specified: nosuch" "$work/partition.out" ||
   fail "sbatch's own words on the partition were not passed on: $(cat "$work/partition.out")"
+# The cluster's own configuration with its controller's port where nothing listens: sbatch gives
+# up in about 9 s (a missing configuration file takes 60 s: it looks for the controller in DNS).
+sed 's/^SlurmctldPort=.*/SlurmctldPort=16899/' "$SLURM_CONF" >"$work/down.conf"
 refused unreachable "Slurm is not reachable from here: check .sinfo. (and SLURM_CONF)" \
-  "$work/no-such-cluster.conf"
+  "$work/down.conf"
+grep -q "Unable to contact slurm controller" "$work/unreachable.out" ||
+  fail "sbatch's own words on the controller were not passed on: $(cat "$work/unreachable.out")"
 echo "slurm: an unknown partition and an unreachable Slurm each say what to fix; nothing gathered"
 
 # planter-dem's calibration: a coarse seedling (2.5 mm particles, the platen 100 times the
@@ -114,7 +127,7 @@ echo "slurm: an unknown partition and an unreachable Slurm each say what to fix;
 printf '[seedling]\nparticle_radius_mm = 2.5\n[test]\nspeedup = 100\n' >"$work/coarse.toml"
 "$dem" calibrate --params "$work/coarse.toml" --out "$work/dem-local" --jobs 2 \
   >"$work/dem-local.out" 2>/dev/null || fail "the local calibration failed"
-"$dem" calibrate --params "$work/coarse.toml" --out "$work/dem-slurm" --executor slurm \
+"$dem" calibrate --params "$work/coarse.toml" --out "$work/dem-slurm" --executor slurm --runs-per-task 4 \
   --time-limit 5 --poll 0.3 >"$work/dem-slurm.out" 2>"$work/dem-slurm.err" ||
   { cat "$work/dem-slurm.err"; fail "the calibration through Slurm failed"; }
 arrays=$(grep -c "submitted [0-9]* runs as Slurm job" "$work/dem-slurm.err" || true)

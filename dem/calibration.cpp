@@ -79,14 +79,17 @@ class RunPool {
                     runs.size(), r.peak_force_N, r.peak_displacement_m * 1e3);
       progress_(line);
     };
-    plan.task_command = plan::shell_quoted(plan::task_program(opt_.executor)) + " plan-run " +
-                        plan::shell_quoted(std::filesystem::absolute(plan_path).string());
+    if (opt_.executor.kind == "slurm")  // the program's own path, only where a task needs it
+      plan.task_command = plan::shell_quoted(plan::task_program(opt_.executor)) + " plan-run " +
+                          plan::shell_quoted(std::filesystem::absolute(plan_path).string());
     plan.by_hand = "planter-dem plan-run " + plan_path + " INDEX, for each INDEX from 0 to " +
                    std::to_string(todo.size() - 1);
     plan.what = "planter-dem calibration";
     plan::ExecutorOptions ex = opt_.executor;
     ex.jobs = opt_.jobs;
-    plan::execute(plan, ex, std::string("calibration: ") + stage);
+    // Here, each run says its peak as it ends (above); through Slurm, the executor's progress
+    // line says the runs done, running and failed.
+    plan::execute(plan, ex, ex.kind == "slurm" ? std::string("calibration: ") + stage : "");
     // Every run is kept now (execute throws otherwise): the results, as they were written.
     for (std::size_t k : todo) {
       const auto kept = kept_result(dir_, runs[k].setup);

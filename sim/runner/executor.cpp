@@ -21,7 +21,7 @@ std::vector<Summary> execute_plan(const std::string& plan_dir, const RunPlan& pl
     run_planned(plan_dir, *base, plan.runs[i], i);
   };
   runs.what = "planter-sim";
-  if (o.kind == "slurm" || o.plan_only)
+  if (o.kind == "slurm")  // the program's own path, only where a task needs it
     runs.task_command =
         plan::shell_quoted(plan::task_program(o)) + " plan-run " + plan::shell_quoted(plan_path);
   runs.by_hand = "planter-sim plan-run " + plan_path + " INDEX, for each INDEX of the plan's runs";

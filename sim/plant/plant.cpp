@@ -88,8 +88,12 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
       std::llround(raw_of(board_, known_signal("clamp_pos_mm"), roller_.position_mm())), 0, 0);
   const double nip_mm = seedlings_.nip_thickness_mm(t);
   const double compression = roller_.position_mm() + nip_mm - cfg_.drive.clamp_x0_mm;
-  const double elastic = cfg_.drive.clamp_k_N * fx.changed(fx.clamp_stiffness_change_pct, t) *
-                         std::pow(std::max(0.0, compression), cfg_.drive.clamp_n);
+  if (std::max(0.0, compression) != clamp_compression_mm_) {
+    clamp_compression_mm_ = std::max(0.0, compression);
+    clamp_power_ = std::pow(clamp_compression_mm_, cfg_.drive.clamp_n);
+  }
+  const double elastic =
+      cfg_.drive.clamp_k_N * fx.changed(fx.clamp_stiffness_change_pct, t) * clamp_power_;
   // Viscoelastic relaxation: a Maxwell branch takes a share of the load over tau.
   if (fx.clamp_relaxation_frac > 0.0) {
     relaxation_N_ +=

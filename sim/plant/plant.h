@@ -63,6 +63,9 @@ class Plant {
   std::mt19937_64 noise_rng_;
   double draft_share_ = 0.0;  // the soil draft's mobilised share (sim/soil/opener_draft.h)
   double relaxation_N_ = 0.0;
+  // The clamp law's power for the last compression: the nip holds still between seedlings, so
+  // most substeps ask for the same value again (exact: the same argument, the same result).
+  double clamp_compression_mm_ = 0.0, clamp_power_ = 0.0;
   double relaxation2_N_ = 0.0;
   double fixture_load_N_ = 0.0;
   double draft_N_ = 0.0;  // the last substep's, for the sag in the working depth

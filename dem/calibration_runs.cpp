@@ -10,6 +10,7 @@
 #include "config/content_hash.h"
 #include "config/durable_file.h"
 #include "dem/dem_params.h"
+#include "dem/result_json.h"
 
 namespace planter::dem {
 namespace {
@@ -26,14 +27,8 @@ std::string key_of_text(const std::string& toml) {
 
 nlohmann::json result_to_json(const CompressionResult& r) {
   nlohmann::json j;
-  j["peak_force_N"] = r.peak_force_N;
+  put_result_figures(j, r);
   j["peak_displacement_m"] = r.peak_displacement_m;
-  j["first_peak_found"] = r.first_peak_found;
-  j["broken_bonds"] = r.broken_bonds;
-  j["particles"] = r.particles;
-  j["bonds"] = r.bonds;
-  j["steps"] = r.steps;
-  j["max_kinetic_to_work"] = r.max_kinetic_to_work;
   std::vector<double> x, f;
   std::vector<int> b;
   for (const auto& p : r.curve) {

@@ -7,6 +7,7 @@
 
 #include "config/durable_file.h"
 #include "dem/dem_params.h"
+#include "dem/result_json.h"
 #include "report/chart.h"
 #include "report/html_text.h"
 
@@ -22,14 +23,8 @@ constexpr double kPaperPeakDisplacement_mm = 4.0;
 std::string compression_result_json(const CompressionRun& run) {
   const CompressionResult& r = run.result;
   nlohmann::json j;
-  j["peak_force_N"] = r.peak_force_N;
+  put_result_figures(j, r);
   j["peak_displacement_mm"] = r.peak_displacement_m * 1e3;
-  j["first_peak_found"] = r.first_peak_found;
-  j["broken_bonds"] = r.broken_bonds;
-  j["particles"] = r.particles;
-  j["bonds"] = r.bonds;
-  j["steps"] = r.steps;
-  j["max_kinetic_to_work"] = r.max_kinetic_to_work;
   j["platen_speed_m_min"] = run.setup.platen_speed_mps * 60.0 * run.setup.speedup;
   j["speedup"] = run.setup.speedup;
   j["wall_s"] = run.wall_s;

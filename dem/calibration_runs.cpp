@@ -72,21 +72,53 @@ std::string read_text(const std::string& path) {
   return in ? text.str() : std::string();
 }
 
+// The result kept for the parameters `toml`; none when it is not there, torn, or from other
+// parameters (then the run is run again).
+std::optional<CompressionResult> kept_for_text(const std::string& runs_dir,
+                                               const std::string& toml) {
+  std::ifstream in(runs_dir + "/" + key_of_text(toml) + ".json");
+  if (!in) return std::nullopt;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.contains("params") || j["params"] != toml) return std::nullopt;
+  CompressionResult r;
+  if (!result_from_json(j, r)) return std::nullopt;
+  return r;
+}
+
+// The run `key`'s parameters, read from its KEY.toml, and their text.
+struct KeyedRun {
+  CompressionSetup setup;
+  std::string toml;
+};
+KeyedRun read_keyed(const std::string& runs_dir, const std::string& key) {
+  const std::string path = runs_dir + "/" + key + ".toml";
+  KeyedRun run{load_compression_setup(path), ""};
+  // The parameters as read must write back to the same text, or the run is not the key's.
+  run.toml = compression_setup_toml(run.setup);
+  if (key_of_text(run.toml) != key)
+    throw std::runtime_error(path + ": its parameters are not those of the run " + key +
+                             " (edited, or written by another version of planter-dem)");
+  return run;
+}
+
+CompressionResult run_and_keep(const std::string& runs_dir, const std::string& key,
+                               const KeyedRun& run) {
+  const CompressionResult r = run_compression(run.setup);
+  nlohmann::json j = result_to_json(r);
+  j["params"] = run.toml;
+  const std::string out = runs_dir + "/" + key + ".json";
+  if (!config::write_file_atomic(out, j.dump() + "\n"))
+    throw std::runtime_error(out + ": cannot be written");
+  return r;
+}
+
 }  // namespace
 
 std::string run_key(const CompressionSetup& s) { return key_of_text(compression_setup_toml(s)); }
 
 std::optional<CompressionResult> kept_result(const std::string& runs_dir,
                                              const CompressionSetup& s) {
-  const std::string toml = compression_setup_toml(s);
-  std::ifstream in(runs_dir + "/" + key_of_text(toml) + ".json");
-  if (!in) return std::nullopt;
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-  if (j.is_discarded() || !j.contains("params") || j["params"] != toml)
-    return std::nullopt;  // torn or from other parameters: run it again
-  CompressionResult r;
-  if (!result_from_json(j, r)) return std::nullopt;
-  return r;
+  return kept_for_text(runs_dir, compression_setup_toml(s));
 }
 
 std::string place_run(const std::string& runs_dir, const CompressionSetup& s) {
@@ -98,20 +130,7 @@ std::string place_run(const std::string& runs_dir, const CompressionSetup& s) {
 }
 
 CompressionResult run_kept(const std::string& runs_dir, const std::string& key) {
-  const std::string path = runs_dir + "/" + key + ".toml";
-  const CompressionSetup setup = load_compression_setup(path);
-  // The parameters as read must write back to the same text, or the run is not the key's.
-  const std::string toml = compression_setup_toml(setup);
-  if (key_of_text(toml) != key)
-    throw std::runtime_error(path + ": its parameters are not those of the run " + key +
-                             " (edited, or written by another version of planter-dem)");
-  const CompressionResult r = run_compression(setup);
-  nlohmann::json j = result_to_json(r);
-  j["params"] = toml;
-  const std::string out = runs_dir + "/" + key + ".json";
-  if (!config::write_file_atomic(out, j.dump() + "\n"))
-    throw std::runtime_error(out + ": cannot be written");
-  return r;
+  return run_and_keep(runs_dir, key, read_keyed(runs_dir, key));
 }
 
 void write_stage_plan(const std::string& path, const std::string& runs_dir,
@@ -143,14 +162,9 @@ void execute_stage_run(const std::string& plan_path, std::size_t index) {
   if (key.empty() || key.find_first_of("/.") != std::string::npos)
     throw config::ConfigError(plan_path, 0, "keys",
                               "run " + std::to_string(index) + "'s key '" + key + "' is not a key");
-  std::ifstream kept(runs_dir + "/" + key + ".json");
-  if (kept) {
-    const nlohmann::json r = nlohmann::json::parse(kept, nullptr, false);
-    if (!r.is_discarded() && r.contains("params") && r["params"].is_string() &&
-        key_of_text(r["params"].get<std::string>()) == key)
-      return;  // kept already: a resumed plan runs only what is missing
-  }
-  run_kept(runs_dir, key);
+  const KeyedRun run = read_keyed(runs_dir, key);
+  if (kept_for_text(runs_dir, run.toml)) return;  // a resumed plan runs only what is missing
+  run_and_keep(runs_dir, key, run);
 }
 
 }  // namespace planter::dem

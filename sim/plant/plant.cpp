@@ -88,9 +88,9 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
       std::llround(raw_of(board_, known_signal("clamp_pos_mm"), roller_.position_mm())), 0, 0);
   const double nip_mm = seedlings_.nip_thickness_mm(t);
   const double compression = roller_.position_mm() + nip_mm - cfg_.drive.clamp_x0_mm;
-  if (std::max(0.0, compression) != clamp_compression_mm_) {
-    clamp_compression_mm_ = std::max(0.0, compression);
-    clamp_power_ = std::pow(clamp_compression_mm_, cfg_.drive.clamp_n);
+  if (const double squeezed_mm = std::max(0.0, compression); squeezed_mm != clamp_compression_mm_) {
+    clamp_compression_mm_ = squeezed_mm;
+    clamp_power_ = std::pow(squeezed_mm, cfg_.drive.clamp_n);
   }
   const double elastic =
       cfg_.drive.clamp_k_N * fx.changed(fx.clamp_stiffness_change_pct, t) * clamp_power_;

@@ -48,7 +48,10 @@ nlohmann::json params_json(const std::vector<ParamSpec>& specs, const std::vecto
 }
 
 // "relaxation of the clamp: fraction = 0.2987 +- 0.001, tau = 3.023 +- 0.011 s"
-std::string effect_text(const ChannelFit& f, std::size_t e, const ChannelModel& c) {
+// A stiction that is a friction's own hold says so after its values.
+std::string effect_text(const ChannelReport& report, std::size_t e) {
+  const ChannelFit& f = report.final_fit;
+  const ChannelModel& c = *report.channel;
   const Effect& eff = f.effects[e];
   std::string out = eff.spec->name + ":";
   for (std::size_t k = 0; k < eff.values.size() && k < eff.spec->params.size(); ++k) {
@@ -59,18 +62,27 @@ std::string effect_text(const ChannelFit& f, std::size_t e, const ChannelModel& 
     out += (k ? ", " : " ") + eff.spec->params[k].name + " =" + buf +
            (unit.empty() || unit == "-" || unit == "1" ? "" : " " + unit);
   }
+  if (report.friction_hold && report.friction_hold->stiction == e)
+    out += " (" + report.friction_hold->note + ")";
   return out;
 }
 
-nlohmann::json effects_json(const ChannelFit& f, const ChannelModel& c) {
+// A stiction that is a friction's own hold says whose (`hold_of`, judge_friction_hold).
+nlohmann::json effects_json(const ChannelReport& report) {
+  const ChannelFit& f = report.final_fit;
   nlohmann::json j = nlohmann::json::array();
   for (std::size_t e = 0; e < f.effects.size(); ++e) {
-    j.push_back(
-        {{"effect", f.effects[e].spec->name},
-         {"signature", f.effects[e].spec->signature},
-         {"parameters",
-          params_json(f.effects[e].spec->params, f.effects[e].values,
-                      e < f.effect_sd.size() ? f.effect_sd[e] : std::vector<double>{}, c)}});
+    nlohmann::json entry = {
+        {"effect", f.effects[e].spec->name},
+        {"signature", f.effects[e].spec->signature},
+        {"parameters", params_json(f.effects[e].spec->params, f.effects[e].values,
+                                   e < f.effect_sd.size() ? f.effect_sd[e] : std::vector<double>{},
+                                   *report.channel)}};
+    if (report.friction_hold && report.friction_hold->stiction == e) {
+      entry["hold_of"] = report.friction_hold->friction;
+      entry["hold"] = report.friction_hold->note;
+    }
+    j.push_back(entry);
   }
   return j;
 }
@@ -139,7 +151,7 @@ std::string fit_json(const FitReport& r, double wall_s) {
                           {"augmented", c.final_fit.rms_held_out}};
     ch["calibration_rms"] = {{"nominal", c.nominal.rms_calibration},
                              {"augmented", c.final_fit.rms_calibration}};
-    ch["effects"] = effects_json(c.final_fit, *c.channel);
+    ch["effects"] = effects_json(c);
     for (const auto& f : c.fast_tones)
       ch["effects"].push_back(fast_tone_json(f, *c.channel, r.analysed_up_to_hz));
     ch["augmented_nominal"] = params_json(c.channel->nominal_params(), c.final_fit.nominal,
@@ -291,7 +303,7 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
     h << "<tr><td>" << c.channel->subsystem() << ": " << c.channel->output() << "</td><td"
       << (found ? " style='color:#a40'" : "") << "><b>" << report::html_escape(c.verdict) << "</b>";
     for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
-      h << "<br>" << report::html_escape(effect_text(c.final_fit, e, *c.channel));
+      h << "<br>" << report::html_escape(effect_text(c, e));
     h << "</td><td>" << c.nominal.rms_held_out << " &rarr; " << c.final_fit.rms_held_out << " "
       << report::html_escape(unit) << "</td></tr>";
   }
@@ -329,7 +341,7 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
       h << ", and " << c.input_noise_rms << " from the measured input's noise through the model";
     h << ".</p>";
     for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
-      h << "<p><b>" << report::html_escape(effect_text(c.final_fit, e, *c.channel)) << "</b> ("
+      h << "<p><b>" << report::html_escape(effect_text(c, e)) << "</b> ("
         << c.final_fit.effects[e].spec->signature << ")</p>";
     if (r.day) {
       const ChannelDay& d = r.day->channels[static_cast<std::size_t>(&c - r.channels.data())];

@@ -87,6 +87,15 @@ struct ChannelReport {
   ChannelFit final_fit;
   // What the full rate said of a time-resolution parameter found on decimated rows.
   std::vector<std::string> refined;
+  // A stiction named beside a Coulomb or Stribeck friction whose breakaway is not above that
+  // friction's level at rest: the same friction holding the disc (a dry friction holds whatever
+  // the drive pushes below its level), not a static friction of its own. `stiction` indexes
+  // final_fit.effects; `note` says why.
+  struct FrictionHold {
+    std::size_t stiction = 0;
+    std::string friction, note;
+  };
+  std::optional<FrictionHold> friction_hold;
   std::string verdict;  // "no significant mismatch", "effect(s) found", "unexplained residual"
   bool unexplained = false;
   // The final fit's nominal parameters that ended at an edge of their range, as

@@ -18,6 +18,10 @@ def main():
     by_output = {c["output"]: c for c in fit["channels"]}
     for c in fit["channels"]:
         for e in c["effects"]:
+            # A stiction that is a dry friction's own hold at rest (its breakaway not above the
+            # friction's level, "hold_of") is that friction's, not a second name.
+            if e.get("hold_of") in [f["effect"] for f in c["effects"]]:
+                continue
             found.append("%s:%s" % (c["output"], e["effect"]))
     problems = []
     coverage = []  # (parameter, hidden value within the stated interval, grid)

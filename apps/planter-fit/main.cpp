@@ -75,6 +75,8 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
         if (sd > 0) std::printf(" +- %.2g", sd);
       }
       std::printf("\n");
+      if (c.friction_hold && c.friction_hold->stiction == e)
+        std::printf("      %s\n", c.friction_hold->note.c_str());
     }
     for (const auto& note : c.refined) std::printf("    %s\n", note.c_str());
     if (c.change) {

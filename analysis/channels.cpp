@@ -2,6 +2,7 @@
 // torque), clamp, depth (position and draft).
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <optional>
 #include <random>
@@ -83,9 +84,92 @@ double at_time(const Recording& r, const std::vector<double>& v, double when_s) 
 // stop; at most one count over the time since the last edge, so that it decays as 1/t after a
 // stop and reads 0 before the first edge. Where the recording holds wheel_counts, the rows at
 // which the count changed give the edges (to a row), and a count's length is the distance
-// v_wheel covered over the counts. Without the counts, or on decimated rows (v_wheel low-pass
-// filtered, the edges thinned: the per-edge behaviour is below what they resolve), the speed
-// `lag_s` late.
+// v_wheel covered over the counts. Each edge is placed within the interval before the row
+// that shows it by the distance the wheel rolled (edge_times below).
+// Without the counts, or on decimated rows (v_wheel low-pass filtered, the edges thinned: the
+// per-edge behaviour is below what they resolve), the speed `lag_s` late.
+
+// The largest (or, negated, smallest) of v over rows k - half to k + half, for each k: a
+// monotonic queue of candidates, each row pushed and popped once.
+std::vector<double> sliding_max(const std::vector<double>& v, std::size_t half) {
+  const std::size_t n = v.size();
+  std::vector<double> out(n);
+  std::deque<std::size_t> q;
+  for (std::size_t k = 0, next = 0; k < n; ++k) {
+    for (; next < n && next <= k + half; ++next) {
+      while (!q.empty() && v[q.back()] <= v[next]) q.pop_back();
+      q.push_back(next);
+    }
+    while (q.front() + half < k) q.pop_front();
+    out[k] = v[q.front()];
+  }
+  return out;
+}
+
+// When, within the interval before the row that shows it, each row's last edge came. The
+// recording gives edges to a row (10 ms at 100 Hz), and as a push stops, the firmware's bound
+// of one count over the time since the last edge moves by half for an edge placed at the
+// interval's start rather than its end. The rolled distance (v_ground less the known slip)
+// places it. In counts of the wheel's own length (the distance rolled over the counts
+// recorded), position p, a row's count is floor(p - phase): each row bounds the encoder's
+// phase to an interval one count wide, and the rows within kWindow_s of an edge overlap where
+// the phase is, to a fraction of a count once the edges have fallen at several places within
+// their rows (a longer reach lets the rolled distance drift from the wheel: a count over
+// hil-commissioning's 10 s of creeping). The edge is where p crosses its count plus that
+// phase. The controller's columns may be stamped later than the independent speed sensor's
+// (planter-sim stamps a row after the plant step that the controller's tick began: one row):
+// p is taken `shift` earlier, from 0 to two rows in eighths, the shift whose intervals overlap
+// best at the edges (on hil-commissioning's push, the intervals miss each other by 0.11 counts
+// at one row, 0.84 at none, 1.03 at two). Where they miss by more than kMaxGap counts (the
+// rolled distance does not follow the wheel), and at reversals, an edge stays at its row's
+// end. 0 where a row shows no edge.
+std::vector<double> edge_times(const Recording& r, const std::vector<double>& counts,
+                               const std::vector<double>& travelled) {
+  constexpr double kWindow_s = 0.25, kMaxGap = 0.5;
+  const std::size_t n = counts.size();
+  std::vector<double> edge(n, 0.0);
+  for (std::size_t k = 1; k < n; ++k)
+    if (counts[k] != counts[k - 1]) edge[k] = r.t[k];
+  const double rolled = travelled.back() - travelled.front();
+  const double moved = counts.back() - counts.front();
+  if (n < 2 || !(moved > 0.0) || !(rolled > 0.0)) return edge;
+  const double per_count = rolled / moved;
+  const double row_s = (r.t[n - 1] - r.t[0]) / static_cast<double>(n - 1);
+  const auto half = std::max<std::size_t>(2, static_cast<std::size_t>(kWindow_s / row_s));
+  struct Placing {
+    double gap = std::numeric_limits<double>::infinity();  // summed over the edges
+    std::vector<double> p, lo, hi;
+  };
+  Placing best;
+  std::vector<double> lower(n), minus_upper(n);
+  for (int eighth = 0; eighth <= 16; ++eighth) {
+    const double shift_s = 0.125 * eighth * row_s;
+    Placing c;
+    c.p.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      c.p[k] = (at_time(r, travelled, r.t[k] - shift_s) - travelled.front()) / per_count;
+      // floor(p - phase) = count: phase in (p - count - 1, p - count].
+      minus_upper[k] = -(c.p[k] - (counts[k] - counts.front()));
+      lower[k] = -minus_upper[k] - 1.0;
+    }
+    c.lo = sliding_max(lower, half);
+    c.hi = sliding_max(minus_upper, half);
+    for (double& h : c.hi) h = -h;
+    c.gap = 0.0;
+    for (std::size_t k = 1; k < n; ++k)
+      if (counts[k] != counts[k - 1]) c.gap += std::max(c.lo[k] - c.hi[k], 0.0);
+    if (c.gap < best.gap) best = std::move(c);
+  }
+  for (std::size_t k = 1; k < n; ++k) {
+    const double p0 = best.p[k - 1], p1 = best.p[k];
+    if (counts[k] <= counts[k - 1] || !(p1 > p0) || best.lo[k] - best.hi[k] > kMaxGap) continue;
+    const double crossing = (counts[k] - counts.front()) + 0.5 * (best.lo[k] + best.hi[k]);
+    edge[k] =
+        r.t[k - 1] + std::clamp((crossing - p0) / (p1 - p0), 0.0, 1.0) * (r.t[k] - r.t[k - 1]);
+  }
+  return edge;
+}
+
 void as_estimated(const Recording& r, const std::vector<double>& rolled, double lag_s,
                   std::vector<double>& y) {
   const Effect lag{&effect_spec(EffectKind::kDelay), {lag_s}};
@@ -104,22 +188,35 @@ void as_estimated(const Recording& r, const std::vector<double>& rolled, double 
   std::vector<double> travelled(rolled.size(), 0.0);  // the distance rolled, trapezoidal
   for (std::size_t k = 1; k < rolled.size(); ++k)
     travelled[k] = travelled[k - 1] + 0.5 * (rolled[k] + rolled[k - 1]) * (r.t[k] - r.t[k - 1]);
+  // The edges' places depend on the recording and the rolled distance alone, not on the lag
+  // being fitted: kept while both stay (one cache per thread; channels run on several).
+  struct EdgeCache {
+    std::vector<double> t, counts, travelled, edges;
+  };
+  thread_local EdgeCache cache;
+  if (cache.t != r.t || cache.counts != counts || cache.travelled != travelled) {
+    cache.edges = edge_times(r, counts, travelled);
+    cache.t = r.t, cache.counts = counts, cache.travelled = travelled;
+  }
+  const std::vector<double>& edges = cache.edges;
   bool edge_seen = false;
   double last_edge_s = 0.0, motion_from_s = 0.0, held = 0.0;
   y.assign(rolled.size(), 0.0);
   for (std::size_t k = 0; k < y.size(); ++k) {
     if (k > 0 && counts[k] != counts[k - 1]) {
-      const double gap_s = r.t[k] - last_edge_s;
+      const double edge_s = edges[k];
+      const double gap_s = edge_s - last_edge_s;
       if (!edge_seen || gap_s > window_s) {
         // The motion's first edge: nothing newer to time it from, one count over the gap.
         held = edge_seen ? std::copysign(m_per_count / gap_s, rolled[k]) : 0.0;
-        motion_from_s = r.t[k];
+        motion_from_s = edge_s;
       } else {
-        const double span_s = std::min(window_s, r.t[k] - motion_from_s);
-        held = (travelled[k] - at_time(r, travelled, r.t[k] - span_s)) / span_s;
+        const double span_s = std::min(window_s, edge_s - motion_from_s);
+        if (span_s > 0.0)
+          held = (at_time(r, travelled, edge_s) - at_time(r, travelled, edge_s - span_s)) / span_s;
       }
       edge_seen = true;
-      last_edge_s = r.t[k];
+      last_edge_s = edge_s;
     }
     const double since_s = r.t[k] - last_edge_s;
     if (!edge_seen) {

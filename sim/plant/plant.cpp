@@ -52,7 +52,13 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   // Ground and soil wheel.
   const double x_before = ground_.x_m();
   ground_.step(t, dt);
-  draft_share_ = soil::mobilised_share(cfg_.soil.draft, draft_share_, ground_.x_m() - x_before, dt);
+  // The draft's relaxation over a step depends on the step alone: once for the plant's fixed step.
+  if (dt != draft_decay_dt_s_) {
+    draft_decay_dt_s_ = dt;
+    draft_decay_ = soil::rest_decay(cfg_.soil.draft, dt);
+  }
+  draft_share_ = soil::mobilised_share_after(cfg_.soil.draft, draft_share_,
+                                             ground_.x_m() - x_before, draft_decay_);
   // The draft acts at the opener's working depth in the soil (ASABE D497 takes the tool's
   // depth), which the terrain under the depth wheel and the opener's sag change, as the depth
   // sensor sees it below; the sag from the last substep's draft (1 ms), so no iteration.

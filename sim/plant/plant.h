@@ -62,6 +62,7 @@ class Plant {
   SeedlingProcess seedlings_;
   std::mt19937_64 noise_rng_;
   double draft_share_ = 0.0;  // the soil draft's mobilised share (sim/soil/opener_draft.h)
+  double draft_decay_dt_s_ = -1.0, draft_decay_ = 1.0;  // rest_decay of the last step's length
   double relaxation_N_ = 0.0;
   // The clamp law's power for the last compression: the nip holds still between seedlings, so
   // most substeps ask for the same value again (exact: the same argument, the same result).

@@ -82,10 +82,13 @@ inline double draft_per_cm_N(const OpenerDraftLaw& law, double v_mps) {
   return law.a_N_per_cm + law.b_N_per_cm_kmh * s_kmh + law.c_N_per_cm_kmh2 * s_kmh * s_kmh;
 }
 
-// T_ref (d / T_ref)^m in cm.
+// T_ref (d / T_ref)^m in cm. D497's own form is linear in depth (m = 1), where pow(x, 1) is x
+// (the exact value is representable and glibc's pow is within 0.52 ULP of it): no pow a plant
+// step for it.
 inline double draft_depth_cm(double depth_mm, double depth_exponent) {
+  const double ratio = std::max(0.0, depth_mm) / kDraftReferenceDepth_mm;
   return 0.1 * kDraftReferenceDepth_mm *
-         std::pow(std::max(0.0, depth_mm) / kDraftReferenceDepth_mm, depth_exponent);
+         (depth_exponent == 1.0 ? ratio : std::pow(ratio, depth_exponent));
 }
 
 // draft_depth_cm from ln(d / T_ref) (-inf at or above the surface): a fit that varies m over

@@ -34,6 +34,7 @@
 #include "sim/plant/model_values.h"
 #include "sim/runner/lockstep_runner.h"
 #include "sim/runner/model_assumptions.h"
+#include "sim/runner/recording_thread.h"
 #include "sim/runner/recording_writer.h"
 #include "sim/runner/run_plan.h"
 #include "sim/runner/scenario_keys.h"
@@ -160,13 +161,14 @@ int run_scenario(const std::string& scenario_path, const std::string& out_dir, b
         config::sync_period_value(scenario.board.controller.can.sync_period_ns)}});
   ReportSeries series;
   std::uint64_t tick = 0;
+  RecordingThread recording_thread(recording);
   runner.set_observer([&](const TickRecord& row) {
-    recording.write(row);
+    recording_thread.write(row);
     if (tick++ % 10 == 0) series.add(row);
   });
   Summary summary = runner.run();
   summary.assumptions = model_assumptions(scenario);
-  recording.close();
+  recording_thread.close();
   out.write("summary.json", summary.to_json() + "\n");
   out.write("seedlings.csv", seedlings_csv(runner.plant().seedlings()));
   out.write("report.html", report_html(scenario, summary, series, runner.plant().seedlings()));

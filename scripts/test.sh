@@ -26,6 +26,7 @@ stage "tests under sanitizers"
   --output-on-failure)
 stage "benchmarks"
 "$root/build/bench/planter_bench_rtf" "$root/scenarios/zhangqiu-field.toml"
+bench/run_realtime_factor.sh "$root/build"
 "$root/build/bench/planter_bench_alloc" "$root/scenarios/zhangqiu-field.toml"
 "$root/build/bench/planter_bench_latency" "$root/scenarios/zhangqiu-field.toml" 60
 "$root/build/bench/planter_bench_can"

@@ -1,7 +1,11 @@
-"""What the console tests share: where `planter-sim live` says its console is."""
+"""What the console tests share: where `planter-sim live` says its console is, and one request
+to it as a phone's browser would make it."""
+import json
 import re
 import sys
 import time
+import urllib.error
+import urllib.request
 
 
 def console_address(log_path, tries=100):
@@ -16,3 +20,19 @@ def console_address(log_path, tries=100):
         time.sleep(0.1)
     print("FAIL planter-sim live did not start:\n" + open(log_path).read())
     sys.exit(1)
+
+
+def http_call(url, path, body=None, headers=None):
+    """One request to the console at url: a JSON body is POSTed, none is a GET. Returns the
+    status, the body's text and the headers, for an error status too."""
+    h = dict(headers or {})
+    data = None
+    if body is not None:
+        h["Content-Type"] = "application/json"
+        data = json.dumps(body).encode()
+    try:
+        with urllib.request.urlopen(urllib.request.Request(url + path, data=data, headers=h),
+                                    timeout=10) as r:
+            return r.status, r.read().decode(), r.headers
+    except urllib.error.HTTPError as e:
+        return e.code, e.read().decode(), e.headers

@@ -18,12 +18,10 @@ import subprocess
 import sys
 import tempfile
 import time
-import urllib.error
-import urllib.request
 
 sim, fit, src = sys.argv[1:4]
 sys.path.insert(0, os.path.join(src, "tests"))
-from live_console import console_address  # noqa: E402
+from live_console import console_address, http_call  # noqa: E402
 
 SPEED = 4.0        # simulated seconds a wall-clock second
 RECORD_S = 28.0    # simulated seconds recorded
@@ -48,17 +46,7 @@ try:
     url, secret = console_address(log_path)
 
     def call(path, body=None, headers=None):
-        h = dict(headers or {})
-        data = None
-        if body is not None:
-            h["Content-Type"] = "application/json"
-            data = json.dumps(body).encode()
-        try:
-            with urllib.request.urlopen(urllib.request.Request(url + path, data=data, headers=h),
-                                        timeout=10) as r:
-                return r.status, r.read().decode(), r.headers
-        except urllib.error.HTTPError as e:
-            return e.code, e.read().decode(), e.headers
+        return http_call(url, path, body, headers)
 
     status, body, headers = call("/api/login", {"secret": secret})
     if status != 200:

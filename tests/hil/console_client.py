@@ -9,7 +9,10 @@ With --gated FILE (the installed package, not yet commissioned): first an operat
 refused by the commissioning gate, then FILE is made and the machine awaited until it runs.
 Usage: console_client.py [--gated FILE] URL SECRET_FILE AUDIT_LOG RECORDING   (exits 1 on any failure)
 """
-import json, os, sys, time, urllib.error, urllib.request
+import json, os, sys, time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from live_console import http_call  # noqa: E402
 
 args = sys.argv[1:]
 gated = None
@@ -27,17 +30,7 @@ def say(ok, what):
 
 
 def call(path, body=None, headers=None):
-    h = dict(headers or {})
-    data = None
-    if body is not None:
-        h["Content-Type"] = "application/json"
-        data = json.dumps(body).encode()
-    try:
-        with urllib.request.urlopen(urllib.request.Request(url + path, data=data, headers=h),
-                                    timeout=10) as r:
-            return r.status, r.read().decode(), r.headers
-    except urllib.error.HTTPError as e:
-        return e.code, e.read().decode(), e.headers
+    return http_call(url, path, body, headers)
 
 
 def log_in():

@@ -124,20 +124,33 @@ std::vector<double> sliding_max(const std::vector<double>& v, std::size_t half) 
 // rolled distance does not follow the wheel), and at reversals, an edge stays at its row's
 // end. 0 where a row shows no edge.
 std::vector<double> edge_times(const Recording& r, const std::vector<double>& counts,
+                               const std::vector<double>& rolled,
                                const std::vector<double>& travelled) {
   constexpr double kWindow_s = 0.25, kMaxGap = 0.5;
   const std::size_t n = counts.size();
   std::vector<double> edge(n, 0.0);
   for (std::size_t k = 1; k < n; ++k)
     if (counts[k] != counts[k - 1]) edge[k] = r.t[k];
-  const double rolled = travelled.back() - travelled.front();
+  const double distance = travelled.back() - travelled.front();
   const double moved = counts.back() - counts.front();
-  if (n < 2 || !(moved > 0.0) || !(rolled > 0.0)) return edge;
-  const double per_count = rolled / moved;
+  if (n < 2 || !(moved > 0.0) || !(distance > 0.0)) return edge;
+  // A count's length from the rows that show an edge: the slope of distance on count (the
+  // distance over the counts recorded is off by up to a count's share of the whole, the
+  // encoder's phase at either end, and a phase that drifts by a count misplaces the shift).
+  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0, edges_seen = 0.0;
+  for (std::size_t k = 1; k < n; ++k) {
+    if (counts[k] == counts[k - 1]) continue;
+    const double c = counts[k] - counts.front(), d = travelled[k] - travelled.front();
+    sx += c, sy += d, sxx += c * c, sxy += c * d, edges_seen += 1.0;
+  }
+  const double spread = sxx - sx * sx / std::max(edges_seen, 1.0);
+  const double slope = spread > 0.0 ? (sxy - sx * sy / edges_seen) / spread : 0.0;
+  const double per_count = slope > 0.0 ? slope : distance / moved;
   const double row_s = (r.t[n - 1] - r.t[0]) / static_cast<double>(n - 1);
   const auto half = std::max<std::size_t>(2, static_cast<std::size_t>(kWindow_s / row_s));
   struct Placing {
     double gap = std::numeric_limits<double>::infinity();  // summed over the edges
+    double shift_s = 0.0;
     std::vector<double> p, lo, hi;
   };
   Placing best;
@@ -145,6 +158,7 @@ std::vector<double> edge_times(const Recording& r, const std::vector<double>& co
   for (int eighth = 0; eighth <= 16; ++eighth) {
     const double shift_s = 0.125 * eighth * row_s;
     Placing c;
+    c.shift_s = shift_s;
     c.p.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
       c.p[k] = (at_time(r, travelled, r.t[k] - shift_s) - travelled.front()) / per_count;
@@ -160,12 +174,27 @@ std::vector<double> edge_times(const Recording& r, const std::vector<double>& co
       if (counts[k] != counts[k - 1]) c.gap += std::max(c.lo[k] - c.hi[k], 0.0);
     if (c.gap < best.gap) best = std::move(c);
   }
+  // Within a row the position is the cubic through both ends' positions and speeds (Hermite):
+  // exact while the speed changes linearly, as it does through a braking row, where a straight
+  // line between the rows put the stop's last edge 3-4 ms off. The crossing by bisection.
   for (std::size_t k = 1; k < n; ++k) {
     const double p0 = best.p[k - 1], p1 = best.p[k];
     if (counts[k] <= counts[k - 1] || !(p1 > p0) || best.lo[k] - best.hi[k] > kMaxGap) continue;
     const double crossing = (counts[k] - counts.front()) + 0.5 * (best.lo[k] + best.hi[k]);
-    edge[k] =
-        r.t[k - 1] + std::clamp((crossing - p0) / (p1 - p0), 0.0, 1.0) * (r.t[k] - r.t[k - 1]);
+    const double h = r.t[k] - r.t[k - 1];
+    const double u0 = at_time(r, rolled, r.t[k - 1] - best.shift_s) / per_count * h;
+    const double u1 = at_time(r, rolled, r.t[k] - best.shift_s) / per_count * h;
+    auto position = [&](double f) {
+      const double f2 = f * f, f3 = f2 * f;
+      return (2 * f3 - 3 * f2 + 1) * p0 + (f3 - 2 * f2 + f) * u0 + (3 * f2 - 2 * f3) * p1 +
+             (f3 - f2) * u1;
+    };
+    double lo_f = 0.0, hi_f = 1.0;
+    for (int it = 0; it < 30; ++it) {
+      const double mid = 0.5 * (lo_f + hi_f);
+      (position(mid) < crossing ? lo_f : hi_f) = mid;
+    }
+    edge[k] = r.t[k - 1] + 0.5 * (lo_f + hi_f) * h;
   }
   return edge;
 }
@@ -195,7 +224,7 @@ void as_estimated(const Recording& r, const std::vector<double>& rolled, double 
   };
   thread_local EdgeCache cache;
   if (cache.t != r.t || cache.counts != counts || cache.travelled != travelled) {
-    cache.edges = edge_times(r, counts, travelled);
+    cache.edges = edge_times(r, counts, rolled, travelled);
     cache.t = r.t, cache.counts = counts, cache.travelled = travelled;
   }
   const std::vector<double>& edges = cache.edges;

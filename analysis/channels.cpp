@@ -110,8 +110,8 @@ std::vector<double> sliding_max(const std::vector<double>& v, std::size_t half) 
 // recording gives edges to a row (10 ms at 100 Hz), and as a push stops, the firmware's bound
 // of one count over the time since the last edge moves by half for an edge placed at the
 // interval's start rather than its end. The rolled distance (v_ground less the known slip)
-// places it. In counts of the wheel's own length (the distance rolled over the counts
-// recorded), position p, a row's count is floor(p - phase): each row bounds the encoder's
+// places it. In counts of the wheel's own length (the slope of distance on count over the
+// edges), position p, a row's count is floor(p - phase): each row bounds the encoder's
 // phase to an interval one count wide, and the rows within kWindow_s of an edge overlap where
 // the phase is, to a fraction of a count once the edges have fallen at several places within
 // their rows (a longer reach lets the rolled distance drift from the wheel: a count over

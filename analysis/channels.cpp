@@ -106,6 +106,23 @@ std::vector<double> sliding_max(const std::vector<double>& v, std::size_t half) 
   return out;
 }
 
+// A count's length in a cumulative distance's units: the slope of distance on count over the
+// rows that show an edge (least squares), `otherwise` where that slope is not positive. Its
+// ends do not bias it: neither the encoder's phase at either end nor a distance that keeps
+// growing after the last edge (the estimate's 1/t decay, integrated).
+double length_per_count(const std::vector<double>& counts, const std::vector<double>& distance,
+                        double otherwise) {
+  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0, edges = 0.0;
+  for (std::size_t k = 1; k < counts.size(); ++k) {
+    if (counts[k] == counts[k - 1]) continue;
+    const double c = counts[k] - counts.front(), d = distance[k] - distance.front();
+    sx += c, sy += d, sxx += c * c, sxy += c * d, edges += 1.0;
+  }
+  const double spread = sxx - sx * sx / std::max(edges, 1.0);
+  const double slope = spread > 0.0 ? (sxy - sx * sy / edges) / spread : 0.0;
+  return slope > 0.0 ? slope : otherwise;
+}
+
 // When, within the interval before the row that shows it, each row's last edge came. The
 // recording gives edges to a row (10 ms at 100 Hz), and as a push stops, the firmware's bound
 // of one count over the time since the last edge moves by half for an edge placed at the
@@ -122,30 +139,27 @@ std::vector<double> sliding_max(const std::vector<double>& v, std::size_t half) 
 // best at the edges (on hil-commissioning's push, the intervals miss each other by 0.11 counts
 // at one row, 0.84 at none, 1.03 at two). Where they miss by more than kMaxGap counts (the
 // rolled distance does not follow the wheel), and at reversals, an edge stays at its row's
-// end. 0 where a row shows no edge.
-std::vector<double> edge_times(const Recording& r, const std::vector<double>& counts,
-                               const std::vector<double>& rolled,
-                               const std::vector<double>& travelled) {
+// end. `at`: 0 where a row shows no edge; `shift_s`: the rolled distance's time is the row's
+// less this (what the firmware's window over the edges spans of the distance).
+struct EdgeTimes {
+  std::vector<double> at;
+  double shift_s = 0.0;
+};
+EdgeTimes edge_times(const Recording& r, const std::vector<double>& counts,
+                     const std::vector<double>& rolled, const std::vector<double>& travelled) {
   constexpr double kWindow_s = 0.25, kMaxGap = 0.5;
   const std::size_t n = counts.size();
-  std::vector<double> edge(n, 0.0);
+  EdgeTimes out;
+  std::vector<double>& edge = out.at;
+  edge.assign(n, 0.0);
   for (std::size_t k = 1; k < n; ++k)
     if (counts[k] != counts[k - 1]) edge[k] = r.t[k];
   const double distance = travelled.back() - travelled.front();
   const double moved = counts.back() - counts.front();
-  if (n < 2 || !(moved > 0.0) || !(distance > 0.0)) return edge;
-  // A count's length from the rows that show an edge: the slope of distance on count (the
-  // distance over the counts recorded is off by up to a count's share of the whole, the
-  // encoder's phase at either end, and a phase that drifts by a count misplaces the shift).
-  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0, edges_seen = 0.0;
-  for (std::size_t k = 1; k < n; ++k) {
-    if (counts[k] == counts[k - 1]) continue;
-    const double c = counts[k] - counts.front(), d = travelled[k] - travelled.front();
-    sx += c, sy += d, sxx += c * c, sxy += c * d, edges_seen += 1.0;
-  }
-  const double spread = sxx - sx * sx / std::max(edges_seen, 1.0);
-  const double slope = spread > 0.0 ? (sxy - sx * sy / edges_seen) / spread : 0.0;
-  const double per_count = slope > 0.0 ? slope : distance / moved;
+  if (n < 2 || !(moved > 0.0) || !(distance > 0.0)) return out;
+  // (The distance over the counts recorded is off by up to a count's share of the whole, the
+  // encoder's phase at either end, and a phase that drifts by a count misplaces the shift.)
+  const double per_count = length_per_count(counts, travelled, distance / moved);
   const double row_s = (r.t[n - 1] - r.t[0]) / static_cast<double>(n - 1);
   const auto half = std::max<std::size_t>(2, static_cast<std::size_t>(kWindow_s / row_s));
   struct Placing {
@@ -196,7 +210,8 @@ std::vector<double> edge_times(const Recording& r, const std::vector<double>& co
     }
     edge[k] = r.t[k - 1] + 0.5 * (lo_f + hi_f) * h;
   }
-  return edge;
+  out.shift_s = best.shift_s;
+  return out;
 }
 
 void as_estimated(const Recording& r, const std::vector<double>& rolled, double lag_s,
@@ -210,9 +225,12 @@ void as_estimated(const Recording& r, const std::vector<double>& rolled, double 
   }
   const auto& counts = r.at("wheel_counts");
   const auto& v = r.at("v_wheel");
-  double distance_m = 0.0;
-  for (std::size_t k = 1; k < v.size(); ++k) distance_m += std::abs(v[k]) * (r.t[k] - r.t[k - 1]);
-  const double m_per_count = distance_m / travelled_counts;
+  // The firmware's count length in v_wheel's own units, from the distance v_wheel covers.
+  std::vector<double> estimated_m(v.size(), 0.0);
+  for (std::size_t k = 1; k < v.size(); ++k)
+    estimated_m[k] = estimated_m[k - 1] + std::abs(v[k]) * (r.t[k] - r.t[k - 1]);
+  const double m_per_count =
+      length_per_count(counts, estimated_m, estimated_m.back() / travelled_counts);
   const double window_s = 2.0 * lag_s;
   std::vector<double> travelled(rolled.size(), 0.0);  // the distance rolled, trapezoidal
   for (std::size_t k = 1; k < rolled.size(); ++k)
@@ -220,14 +238,16 @@ void as_estimated(const Recording& r, const std::vector<double>& rolled, double 
   // The edges' places depend on the recording and the rolled distance alone, not on the lag
   // being fitted: kept while both stay (one cache per thread; channels run on several).
   struct EdgeCache {
-    std::vector<double> t, counts, travelled, edges;
+    std::vector<double> t, counts, travelled;
+    EdgeTimes edges;
   };
   thread_local EdgeCache cache;
   if (cache.t != r.t || cache.counts != counts || cache.travelled != travelled) {
     cache.edges = edge_times(r, counts, rolled, travelled);
     cache.t = r.t, cache.counts = counts, cache.travelled = travelled;
   }
-  const std::vector<double>& edges = cache.edges;
+  const std::vector<double>& edges = cache.edges.at;
+  const double shift_s = cache.edges.shift_s;
   bool edge_seen = false;
   double last_edge_s = 0.0, motion_from_s = 0.0, held = 0.0;
   y.assign(rolled.size(), 0.0);
@@ -242,7 +262,9 @@ void as_estimated(const Recording& r, const std::vector<double>& rolled, double 
       } else {
         const double span_s = std::min(window_s, edge_s - motion_from_s);
         if (span_s > 0.0)
-          held = (at_time(r, travelled, edge_s) - at_time(r, travelled, edge_s - span_s)) / span_s;
+          held = (at_time(r, travelled, edge_s - shift_s) -
+                  at_time(r, travelled, edge_s - shift_s - span_s)) /
+                 span_s;
       }
       edge_seen = true;
       last_edge_s = edge_s;

@@ -624,9 +624,10 @@ void refine_delay_at_full_rate(ChannelReport& c, const Recording& r, std::size_t
 
 // Stribeck's characteristic speed is a time-resolution parameter too: after a breakaway the
 // disc passes through the first few hundredths of a rad/s within milliseconds, which the thinned
-// rows smear (a hidden 0.05 rad/s read 0.039 on them, 0.049 at the full rate). The friction
-// earned its place on the decimated rows; here only its values and their SDs are taken from a
-// fit at the recording's own rate, started from the decimated fit, on the same calibration rows.
+// rows smear (the blind proof's hidden 0.05 rad/s read 0.039 on them, 0.047 at the full rate).
+// The friction earned its place on the decimated rows; here only its values and their SDs are
+// taken from a fit at the recording's own rate, started from the decimated fit, on the same
+// calibration rows.
 void refine_stribeck_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held_out) {
   auto& fx = c.final_fit.effects;
   const auto it = std::find_if(

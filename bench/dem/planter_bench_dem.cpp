@@ -142,10 +142,12 @@ int main(int argc, char** argv) {
       "largest force difference: %.1f %% over the stroke, %.1f %% after the first "
       "sixth (the seating: Yade's linear contact takes load at once, Hertz grows)\n",
       100.0 * worst, 100.0 * worst_after_seating);
-  const double ours_rate =
-      static_cast<double>(ours.particles) * static_cast<double>(steps - 1) / ours.seconds;
-  const double yade_rate =
-      static_cast<double>(yade.particles) * static_cast<double>(steps - 1) / yade.seconds;
+  // Particle-steps per second of a run (its first step untimed on both sides).
+  auto rate = [steps](const Run& run) {
+    return static_cast<double>(run.particles) * static_cast<double>(steps - 1) / run.seconds;
+  };
+  const double ours_rate = rate(ours);
+  const double yade_rate = rate(yade);
   std::printf("planter-dem: %.3g particle-steps/s (%.2f s); yade: %.3g particle-steps/s (%.2f s)\n",
               ours_rate, ours.seconds, yade_rate, yade.seconds);
   // Every core of this machine (issue 30: the one-core goal out of reach, the multi-core
@@ -159,8 +161,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "planter_bench_dem: yade -j%u did not run\n", cores);
       return 1;
     }
-    const double all_rate =
-        static_cast<double>(yade_all.particles) * static_cast<double>(steps - 1) / yade_all.seconds;
+    const double all_rate = rate(yade_all);
     std::printf(
         "on all %u cores: yade -j%u %.3g particle-steps/s (%.2f s), %s than on one; planter-dem "
         "(one thread) / yade's faster: %.2fx\n",

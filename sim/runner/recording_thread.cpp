@@ -8,12 +8,15 @@ RecordingThread::RecordingThread(RecordingWriter& writer) : writer_(writer) {
   thread_ = std::thread([this] { run(); });
 }
 
-RecordingThread::~RecordingThread() {
+RecordingThread::~RecordingThread() { stop(); }
+
+void RecordingThread::stop() {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     stopping_ = true;
   }
   cv_.notify_all();
+  // The thread writes a batch handed over before it sees stopping_ (its wait prefers the batch).
   if (thread_.joinable()) thread_.join();
 }
 
@@ -58,13 +61,7 @@ void RecordingThread::run() {
 
 void RecordingThread::close() {
   if (!filling_.empty()) hand_over();
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    stopping_ = true;
-  }
-  cv_.notify_all();
-  // The thread writes a batch handed over before it sees stopping_ (its wait prefers the batch).
-  if (thread_.joinable()) thread_.join();
+  stop();
   if (failed_) std::rethrow_exception(failed_);
   writer_.close();
 }

@@ -32,6 +32,7 @@ class RecordingThread {
   static constexpr std::size_t kBatchRows = 1024;
   void run();
   void hand_over();  // the filled batch to the writer, once it has finished the last one
+  void stop();       // the thread told to stop, and joined
 
   RecordingWriter& writer_;
   std::vector<Row> filling_, writing_;

@@ -82,7 +82,7 @@ void DemWorld::rebuild_neighbours() {
   std::vector<std::pair<std::pair<int, int>, int>> bond_keys;
   bond_keys.reserve(bonds_.size());
   for (std::size_t b = 0; b < bonds_.size(); ++b) {
-    bond_keys.push_back({{bonds_[b].i, bonds_[b].j}, static_cast<int>(b)});
+    bond_keys.push_back({{bonds_.i[b], bonds_.j[b]}, static_cast<int>(b)});
   }
   std::sort(bond_keys.begin(), bond_keys.end());
   previous_.swap(candidates_);  // ordered by (i, j) as built last time
@@ -193,11 +193,9 @@ void DemWorld::step(double dt) {
     p.f.setZero();
     p.tau.setZero();
   }
-  const BondStep bond_constants = bond_step(bond_params_, dt);
-  for (auto& b : bonds_) {
-    update_bond(b, bond_constants, particles_[static_cast<std::size_t>(b.i)],
-                particles_[static_cast<std::size_t>(b.j)]);
-  }
+  motion_.assign(particles_);
+  update_bonds(vector_path_, bonds_, motion_, bond_step(bond_params_, dt));
+  add_bond_loads(bonds_, particles_);
   particle_contacts(dt);
   platen_contacts(dt);
   integrate(dt);
@@ -205,8 +203,15 @@ void DemWorld::step(double dt) {
 }
 
 int DemWorld::broken_bonds() const {
-  return static_cast<int>(
-      std::count_if(bonds_.begin(), bonds_.end(), [](const Bond& b) { return b.broken; }));
+  return static_cast<int>(std::count_if(bonds_.broken.begin(), bonds_.broken.end(),
+                                        [](double broken) { return broken != 0.0; }));
+}
+
+std::vector<Bond> DemWorld::bonds() const {
+  std::vector<Bond> out;
+  out.reserve(bonds_.size());
+  for (std::size_t k = 0; k < bonds_.size(); ++k) out.push_back(bonds_.bond(k));
+  return out;
 }
 
 double DemWorld::kinetic_energy() const {
@@ -229,7 +234,9 @@ double DemWorld::contact_energy() const {
 
 double DemWorld::bond_energy() const {
   double e = 0.0;
-  for (const auto& b : bonds_) e += dem::bond_energy(b, bond_params_);
+  for (std::size_t k = 0; k < bonds_.size(); ++k) {
+    e += dem::bond_energy(bonds_.bond(k), bond_params_);
+  }
   return e;
 }
 

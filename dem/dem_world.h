@@ -1,10 +1,13 @@
 #pragma once
 // The bonded-particle world: particles, parallel bonds, Hertz-Mindlin contacts (between
 // particles and with rigid platens), integrated with the symplectic (leapfrog) Euler step.
-// Single-threaded and deterministic: the same input gives bit-identical results.
+// Single-threaded and deterministic: the same input gives bit-identical results, on every
+// vector path of the bond step (dem/bond_kernel.h).
 #include <utility>
 #include <vector>
 
+#include "dem/bond_arrays.h"
+#include "dem/bond_kernel.h"
 #include "dem/cell_list.h"
 #include "dem/hertz_mindlin.h"
 #include "dem/parallel_bond.h"
@@ -37,12 +40,16 @@ class DemWorld {
   // Cundall's local non-viscous damping (Yade's NewtonIntegrator damping): each force and
   // torque component is reduced by `fraction` of its size against the motion. 0 = none.
   void set_local_damping(double fraction) { local_damping_ = fraction; }
+  // The bonds' vector path: the widest this CPU has unless told (the tests run each).
+  void set_vector_path(VectorPath path) { vector_path_ = path; }
+  [[nodiscard]] VectorPath vector_path() const { return vector_path_; }
 
   void step(double dt);
 
   [[nodiscard]] std::vector<Particle>& particles() { return particles_; }
   [[nodiscard]] const std::vector<Particle>& particles() const { return particles_; }
-  [[nodiscard]] const std::vector<Bond>& bonds() const { return bonds_; }
+  // Every bond as it stands (a copy out of the bond arrays).
+  [[nodiscard]] std::vector<Bond> bonds() const;
   [[nodiscard]] std::vector<Platen>& platens() { return platens_; }
   [[nodiscard]] int broken_bonds() const;
   [[nodiscard]] double kinetic_energy() const;
@@ -63,7 +70,7 @@ class DemWorld {
   };
   void rebuild_neighbours();
   [[nodiscard]] double rest_overlap(const Candidate& c) const {
-    return c.bond >= 0 ? bonds_[static_cast<std::size_t>(c.bond)].rest_overlap_m : 0.0;
+    return c.bond >= 0 ? bonds_.rest_overlap_m[static_cast<std::size_t>(c.bond)] : 0.0;
   }
   [[nodiscard]] bool neighbours_stale() const;
   void particle_contacts(double dt);
@@ -74,7 +81,9 @@ class DemWorld {
   ContactMaterial platen_material_;
   BondParameters bond_params_;
   std::vector<Particle> particles_;
-  std::vector<Bond> bonds_;
+  BondArrays bonds_;
+  ParticleMotion motion_;  // the particles' motion as the bond step reads it
+  VectorPath vector_path_ = widest_vector_path();
   std::vector<Platen> platens_;
   double local_damping_ = 0.0;
   // Verlet list: pairs within 2 r_max + skin; rebuilt when any particle has moved skin/2.

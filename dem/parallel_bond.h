@@ -38,15 +38,16 @@ struct BondStep {
   double shear_per_m;      // S_t A dt
   double twist_per_rad;    // S_t J dt
   double bending_per_rad;  // S_n I dt
-  double area_m2;
-  double rim_per_polar;  // R_B / J
+  double per_area;         // 1 / A
+  double rim_per_polar;    // R_B / J
   double tensile_strength_Pa;
   double shear_strength_Pa;
 };
 BondStep bond_step(const BondParameters& p, double dt);
 
 // Advances the bond's loads over dt from the particles' current motion, checks breakage, and
-// adds the loads to the particles' force and torque (nothing when broken).
+// adds the loads to the particles' force and torque (nothing when broken). One bond on the
+// reference path of dem/bond_kernel.h (a world steps all its bonds at once there).
 void update_bond(Bond& b, const BondStep& s, Particle& pi, Particle& pj);
 inline void update_bond(Bond& b, const BondParameters& p, Particle& pi, Particle& pj, double dt) {
   update_bond(b, bond_step(p, dt), pi, pj);

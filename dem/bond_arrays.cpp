@@ -1,0 +1,68 @@
+#include "dem/bond_arrays.h"
+
+namespace planter::dem {
+
+void BondArrays::push_back(const Bond& b) {
+  i.push_back(b.i);
+  j.push_back(b.j);
+  rest_overlap_m.push_back(b.rest_overlap_m);
+  normal_force_N.push_back(b.normal_force_N);
+  twist_moment.push_back(b.twist_moment);
+  shear_x.push_back(b.shear_force.x());
+  shear_y.push_back(b.shear_force.y());
+  shear_z.push_back(b.shear_force.z());
+  bending_x.push_back(b.bending_moment.x());
+  bending_y.push_back(b.bending_moment.y());
+  bending_z.push_back(b.bending_moment.z());
+  broken.push_back(b.broken ? 1.0 : 0.0);
+  for (auto* out : {&force_on_j_x, &force_on_j_y, &force_on_j_z, &torque_on_i_x, &torque_on_i_y,
+                    &torque_on_i_z, &torque_on_j_x, &torque_on_j_y, &torque_on_j_z, &loaded}) {
+    out->push_back(0.0);
+  }
+}
+
+Bond BondArrays::bond(std::size_t k) const {
+  Bond b;
+  b.i = i[k];
+  b.j = j[k];
+  b.rest_overlap_m = rest_overlap_m[k];
+  b.normal_force_N = normal_force_N[k];
+  b.twist_moment = twist_moment[k];
+  b.shear_force = Vec3(shear_x[k], shear_y[k], shear_z[k]);
+  b.bending_moment = Vec3(bending_x[k], bending_y[k], bending_z[k]);
+  b.broken = broken[k] != 0.0;
+  return b;
+}
+
+void ParticleMotion::assign(const std::vector<Particle>& particles) {
+  const std::size_t n = particles.size();
+  for (auto* a : {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz, &radius_m}) a->resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Particle& p = particles[k];
+    x[k] = p.x.x();
+    y[k] = p.x.y();
+    z[k] = p.x.z();
+    vx[k] = p.v.x();
+    vy[k] = p.v.y();
+    vz[k] = p.v.z();
+    wx[k] = p.w.x();
+    wy[k] = p.w.y();
+    wz[k] = p.w.z();
+    radius_m[k] = p.radius_m;
+  }
+}
+
+void add_bond_loads(const BondArrays& b, std::vector<Particle>& particles) {
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    if (b.loaded[k] == 0.0) continue;
+    Particle& pi = particles[static_cast<std::size_t>(b.i[k])];
+    Particle& pj = particles[static_cast<std::size_t>(b.j[k])];
+    const Vec3 f(b.force_on_j_x[k], b.force_on_j_y[k], b.force_on_j_z[k]);
+    pj.f += f;
+    pi.f -= f;
+    pj.tau += Vec3(b.torque_on_j_x[k], b.torque_on_j_y[k], b.torque_on_j_z[k]);
+    pi.tau += Vec3(b.torque_on_i_x[k], b.torque_on_i_y[k], b.torque_on_i_z[k]);
+  }
+}
+
+}  // namespace planter::dem

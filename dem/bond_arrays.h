@@ -1,0 +1,42 @@
+#pragma once
+// The parallel bonds as a structure of arrays, and the particles' motion the bond step reads,
+// so that one bond per vector lane is computed (dem/bond_kernel.h). Flags are doubles (0 or 1)
+// to keep every lane one width.
+#include <cstddef>
+#include <vector>
+
+#include "dem/parallel_bond.h"
+
+namespace planter::dem {
+
+struct BondArrays {
+  // The pair and its as-built overlap.
+  std::vector<int> i, j;
+  std::vector<double> rest_overlap_m;
+  // The loads carried from step to step (Bond's fields, one array per component).
+  std::vector<double> normal_force_N, twist_moment;
+  std::vector<double> shear_x, shear_y, shear_z;
+  std::vector<double> bending_x, bending_y, bending_z;
+  std::vector<double> broken;
+  // This step's loads on the particles, and whether the bond carried any (1) or not (0).
+  std::vector<double> force_on_j_x, force_on_j_y, force_on_j_z;
+  std::vector<double> torque_on_i_x, torque_on_i_y, torque_on_i_z;
+  std::vector<double> torque_on_j_x, torque_on_j_y, torque_on_j_z;
+  std::vector<double> loaded;
+
+  [[nodiscard]] std::size_t size() const { return i.size(); }
+  void push_back(const Bond& b);
+  [[nodiscard]] Bond bond(std::size_t k) const;
+};
+
+// Position, velocity, angular velocity and radius of every particle, one array per component.
+struct ParticleMotion {
+  std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz, radius_m;
+  void assign(const std::vector<Particle>& particles);
+};
+
+// Adds each loaded bond's loads to its particles, in bond order (the order is the result's:
+// floating-point sums are not associative).
+void add_bond_loads(const BondArrays& bonds, std::vector<Particle>& particles);
+
+}  // namespace planter::dem

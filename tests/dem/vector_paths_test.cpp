@@ -1,0 +1,75 @@
+// The bond step's vector paths give the scalar path's results bit for bit (issue 30): a
+// compression fast enough to break bonds, run on every path this CPU has.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "dem/compression_test.h"
+
+namespace planter::dem {
+namespace {
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+bool same_bits(const Vec3& a, const Vec3& b) {
+  return same_bits(a.x(), b.x()) && same_bits(a.y(), b.y()) && same_bits(a.z(), b.z());
+}
+
+DemWorld crushed_on(VectorPath path, int steps) {
+  CompressionSetup s;
+  // A platen at 33 mm/s: bonds start breaking after about 2500 steps (941 of 3216 by 3000).
+  s.speedup = 1e4;
+  CompressionWorld c = make_compression_world(s);
+  c.world.set_vector_path(path);
+  for (int k = 0; k < steps; ++k) c.world.step(s.time_step_s);
+  return c.world;
+}
+
+TEST(BondVectorPaths, EveryPathTheHostRunsMatchesTheScalarPathBitForBit) {
+  constexpr int kSteps = 3000;
+  const DemWorld reference = crushed_on(VectorPath::kScalar, kSteps);
+  ASSERT_GT(reference.broken_bonds(), 0) << "the run should break bonds (the mask is tested)";
+  ASSERT_LT(reference.broken_bonds(), static_cast<int>(reference.bonds().size()) / 2);
+  int paths = 0;
+  for (VectorPath path : {VectorPath::kSse2, VectorPath::kAvx2, VectorPath::kAvx512}) {
+    if (!host_runs(path)) continue;
+    ++paths;
+    const DemWorld world = crushed_on(path, kSteps);
+    EXPECT_EQ(world.broken_bonds(), reference.broken_bonds()) << name(path);
+    const auto& a = reference.particles();
+    const auto& b = world.particles();
+    ASSERT_EQ(a.size(), b.size());
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      if (!same_bits(a[k].x, b[k].x) || !same_bits(a[k].v, b[k].v) || !same_bits(a[k].w, b[k].w)) {
+        ++differ;
+      }
+    }
+    EXPECT_EQ(differ, 0u) << name(path) << ": particles whose motion differs from the scalar path";
+    const std::vector<Bond> ra = reference.bonds();
+    const std::vector<Bond> rb = world.bonds();
+    ASSERT_EQ(ra.size(), rb.size());
+    std::size_t bonds_differ = 0;
+    for (std::size_t k = 0; k < ra.size(); ++k) {
+      if (!same_bits(ra[k].normal_force_N, rb[k].normal_force_N) ||
+          !same_bits(ra[k].shear_force, rb[k].shear_force) ||
+          !same_bits(ra[k].bending_moment, rb[k].bending_moment) ||
+          !same_bits(ra[k].twist_moment, rb[k].twist_moment) || ra[k].broken != rb[k].broken) {
+        ++bonds_differ;
+      }
+    }
+    EXPECT_EQ(bonds_differ, 0u) << name(path) << ": bonds whose loads differ";
+  }
+  // Every x86-64 CPU runs SSE2: a vector path is always compared there.
+#if defined(__x86_64__)
+  EXPECT_GE(paths, 1);
+#endif
+}
+
+TEST(BondVectorPaths, TheWidestPathIsOneTheHostRuns) {
+  EXPECT_TRUE(host_runs(widest_vector_path()));
+  EXPECT_TRUE(host_runs(VectorPath::kScalar));
+}
+
+}  // namespace
+}  // namespace planter::dem

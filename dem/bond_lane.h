@@ -1,6 +1,6 @@
 #pragma once
 // One bond's step, lane-wise: the same source runs one bond at a time (the scalar path) or one
-// bond per vector lane (dem/bond_kernel_simd.cpp). No branch: every choice is a select, and the
+// bond per vector lane (dem/lanes_simd.cpp). No branch: every choice is a select, and the
 // arithmetic is the same in both (IEEE square roots and divisions, no contraction: the dem
 // library is built with -ffp-contract=off), so the paths give bit-identical results.
 // The law: Potyondy and Cundall (2004), "A bonded-particle model for rock", the parallel bond's
@@ -8,22 +8,9 @@
 #include <cmath>
 #include <cstddef>
 
-#include "dem/bond_arrays.h"
+#include "dem/lane_views.h"
 
 namespace planter::dem::lanes {
-
-// Raw pointers into BondArrays and ParticleMotion, taken once per step.
-struct BondView {
-  const int* i;
-  const int* j;
-  double *fn, *twist, *sx, *sy, *sz, *bx, *by, *bz, *broken;
-  double *fx, *fy, *fz, *ti_x, *ti_y, *ti_z, *tj_x, *tj_y, *tj_z, *loaded;
-};
-struct MotionView {
-  const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r;
-};
-BondView view(BondArrays& b);
-MotionView view(const ParticleMotion& m);
 
 // Keeps a stored in-plane vector (a, b, c) in the plane normal to n with its magnitude (one
 // square root: the ratio of the squared lengths). Zero stays as it was.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace planter::dem {
 namespace {
@@ -85,27 +86,29 @@ void DemWorld::rebuild_neighbours() {
     bond_keys.push_back({{bonds_.i[b], bonds_.j[b]}, static_cast<int>(b)});
   }
   std::sort(bond_keys.begin(), bond_keys.end());
-  previous_.swap(candidates_);  // ordered by (i, j) as built last time
+  std::swap(previous_, candidates_);  // ordered by (i, j) as built last time
   candidates_.clear();
-  candidates_.reserve(pairs_scratch_.size());
   std::size_t prev = 0;
   std::size_t bk = 0;
   for (const auto& key : pairs_scratch_) {
-    Candidate c;
-    c.i = key.first;
-    c.j = key.second;
+    int bond = -1;
     while (bk < bond_keys.size() && bond_keys[bk].first < key) ++bk;
-    if (bk < bond_keys.size() && bond_keys[bk].first == key) c.bond = bond_keys[bk].second;
-    while (prev < previous_.size() && std::make_pair(previous_[prev].i, previous_[prev].j) < key) {
+    if (bk < bond_keys.size() && bond_keys[bk].first == key) bond = bond_keys[bk].second;
+    while (prev < previous_.size() && std::make_pair(previous_.i[prev], previous_.j[prev]) < key) {
       ++prev;
     }
-    if (prev < previous_.size() && previous_[prev].i == c.i && previous_[prev].j == c.j) {
-      c.spring = previous_[prev].spring;
-    }
-    const Particle& a = particles_[static_cast<std::size_t>(c.i)];
-    const Particle& b = particles_[static_cast<std::size_t>(c.j)];
-    c.props = pair_properties(material_, a.radius_m, b.radius_m, a.mass_kg, b.mass_kg);
-    candidates_.push_back(c);
+    const bool kept = prev < previous_.size() && previous_.i[prev] == key.first &&
+                      previous_.j[prev] == key.second;
+    const Particle& a = particles_[static_cast<std::size_t>(key.first)];
+    const Particle& b = particles_[static_cast<std::size_t>(key.second)];
+    // The Hertz contact acts in parallel with a bond (Potyondy and Cundall 2004: the parallel
+    // bond is "in parallel with" the contact), from the pair's as-built overlap. Switching it
+    // on only when the bond broke started it at the full overlap the soft bond had allowed:
+    // energy from nothing, which shattered the seedling.
+    const double rest = bond >= 0 ? bonds_.rest_overlap_m[static_cast<std::size_t>(bond)] : 0.0;
+    candidates_.push_back(key.first, key.second, bond, rest,
+                          pair_properties(material_, a.radius_m, b.radius_m, a.mass_kg, b.mass_kg),
+                          kept ? previous_.spring(prev) : Vec3::Zero());
   }
   x_at_rebuild_.resize(particles_.size());
   for (std::size_t k = 0; k < particles_.size(); ++k) x_at_rebuild_[k] = particles_[k].x;
@@ -123,25 +126,9 @@ void DemWorld::rebuild_neighbours() {
 }
 
 void DemWorld::particle_contacts(double dt) {
-  for (auto& c : candidates_) {
-    // The Hertz contact acts in parallel with a bond (Potyondy and Cundall 2004: the parallel
-    // bond is "in parallel with" the contact), from the pair's as-built overlap. Switching it on
-    // only when the bond broke started it at the full overlap the soft bond had allowed: energy
-    // from nothing, which shattered the seedling.
-    const double rest = rest_overlap(c);
-    Particle& a = particles_[static_cast<std::size_t>(c.i)];
-    Particle& b = particles_[static_cast<std::size_t>(c.j)];
-    const double reach = a.radius_m + b.radius_m - rest;
-    if ((b.x - a.x).squaredNorm() >= reach * reach) {
-      c.spring.setZero();
-      continue;
-    }
-    const ContactResult r = hertz_mindlin(material_, c.props, a, b, dt, c.spring, rest);
-    a.f += r.force_on_i;
-    b.f -= r.force_on_i;
-    a.tau += r.torque_on_i;
-    b.tau += r.torque_on_j;
-  }
+  update_contacts(vector_path_, candidates_, motion_, material_.friction,
+                  material_.rolling_friction, dt);
+  add_contact_loads(candidates_, particles_);
 }
 
 void DemWorld::platen_contacts(double dt) {
@@ -224,10 +211,11 @@ double DemWorld::kinetic_energy() const {
 
 double DemWorld::contact_energy() const {
   double e = 0.0;
-  for (const auto& c : candidates_) {
-    const Particle& a = particles_[static_cast<std::size_t>(c.i)];
-    const Particle& b = particles_[static_cast<std::size_t>(c.j)];
-    e += hertz_energy(c.props, a.radius_m + b.radius_m - rest_overlap(c) - (b.x - a.x).norm());
+  for (std::size_t k = 0; k < candidates_.size(); ++k) {
+    const Particle& a = particles_[static_cast<std::size_t>(candidates_.i[k])];
+    const Particle& b = particles_[static_cast<std::size_t>(candidates_.j[k])];
+    e += hertz_energy(candidates_.properties(k),
+                      a.radius_m + b.radius_m - candidates_.rest_overlap_m[k] - (b.x - a.x).norm());
   }
   return e;
 }

@@ -2,13 +2,14 @@
 // The bonded-particle world: particles, parallel bonds, Hertz-Mindlin contacts (between
 // particles and with rigid platens), integrated with the symplectic (leapfrog) Euler step.
 // Single-threaded and deterministic: the same input gives bit-identical results, on every
-// vector path of the bond step (dem/bond_kernel.h).
+// vector path of the bonds' and contacts' steps (dem/vector_path.h).
 #include <utility>
 #include <vector>
 
 #include "dem/bond_arrays.h"
 #include "dem/bond_kernel.h"
 #include "dem/cell_list.h"
+#include "dem/contact_kernel.h"
 #include "dem/hertz_mindlin.h"
 #include "dem/parallel_bond.h"
 
@@ -40,7 +41,8 @@ class DemWorld {
   // Cundall's local non-viscous damping (Yade's NewtonIntegrator damping): each force and
   // torque component is reduced by `fraction` of its size against the motion. 0 = none.
   void set_local_damping(double fraction) { local_damping_ = fraction; }
-  // The bonds' vector path: the widest this CPU has unless told (the tests run each).
+  // The vector path of the bonds' and contacts' steps: the widest this CPU has unless told
+  // (the tests run each).
   void set_vector_path(VectorPath path) { vector_path_ = path; }
   [[nodiscard]] VectorPath vector_path() const { return vector_path_; }
 
@@ -60,18 +62,7 @@ class DemWorld {
   [[nodiscard]] long neighbour_rebuilds() const { return rebuilds_; }
 
  private:
-  // A candidate pair of the Verlet list and its contact history.
-  struct Candidate {
-    int i = 0;
-    int j = 0;
-    int bond = -1;  // index into bonds_ for a pair bonded at build (broken or not)
-    PairProperties props;
-    Vec3 spring = Vec3::Zero();
-  };
   void rebuild_neighbours();
-  [[nodiscard]] double rest_overlap(const Candidate& c) const {
-    return c.bond >= 0 ? bonds_.rest_overlap_m[static_cast<std::size_t>(c.bond)] : 0.0;
-  }
   [[nodiscard]] bool neighbours_stale() const;
   void particle_contacts(double dt);
   void platen_contacts(double dt);
@@ -82,15 +73,15 @@ class DemWorld {
   BondParameters bond_params_;
   std::vector<Particle> particles_;
   BondArrays bonds_;
-  ParticleMotion motion_;  // the particles' motion as the bond step reads it
+  ParticleMotion motion_;  // the particles' motion as the pair steps read it
   VectorPath vector_path_ = widest_vector_path();
   std::vector<Platen> platens_;
   double local_damping_ = 0.0;
   // Verlet list: pairs within 2 r_max + skin; rebuilt when any particle has moved skin/2.
   CellList cells_;
   std::vector<std::pair<int, int>> pairs_scratch_;
-  std::vector<Candidate> candidates_;
-  std::vector<Candidate> previous_;
+  ContactArrays candidates_;  // the Verlet list's pairs and their contact history
+  ContactArrays previous_;
   std::vector<Vec3> x_at_rebuild_;
   double skin_m_ = 0.0;
   bool neighbours_valid_ = false;

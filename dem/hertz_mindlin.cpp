@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "dem/contact_lane.h"
+
 namespace planter::dem {
 namespace {
 
@@ -47,50 +49,22 @@ double hertz_normal_force(const PairProperties& p, double overlap_m) {
 
 ContactResult hertz_mindlin(const ContactMaterial& m, const PairProperties& p, const Particle& i,
                             const Particle& j, double dt, Vec3& spring, double rest_overlap_m) {
-  ContactResult r;
-  const Vec3 d = j.x - i.x;
-  const double dist = d.norm();
-  const double overlap = i.radius_m + j.radius_m - rest_overlap_m - dist;
-  if (overlap <= 0.0 || dist <= 0.0) {
-    spring.setZero();
-    return r;
-  }
-  const Vec3 n = d / dist;  // from i to j
-  // Relative velocity of j's surface against i's at the contact point.
-  const Vec3 vc = (j.v + j.w.cross(-j.radius_m * n)) - (i.v + i.w.cross(i.radius_m * n));
-  const double vn = vc.dot(n);
-  const Vec3 vt = vc - vn * n;
-  const double sqrt_rd = std::sqrt(p.r_star * overlap);
-  const double s_n = 2.0 * p.e_star * sqrt_rd;
-  const double s_t = 8.0 * p.g_star * sqrt_rd;
-  constexpr double kSqrt56 = 0.91287092917527690;  // sqrt(5/6)
-  // hertz_normal_force without its pow: 4/3 E* sqrt(R* d) d = 2/3 s_n d.
-  const double fn_elastic = 2.0 / 3.0 * s_n * overlap;
-  // Damping opposes the relative motion (beta < 0): less push while separating (vn > 0).
-  const double fn_damp = 2.0 * kSqrt56 * p.beta * std::sqrt(s_n * p.m_star) * vn;
-  const double fn = std::max(0.0, fn_elastic + fn_damp);
-  // Tangential spring: keep it in the contact plane, add this step's displacement.
-  spring -= spring.dot(n) * n;
-  spring += s_t * vt * dt;
-  Vec3 ft = spring - 2.0 * kSqrt56 * p.beta * std::sqrt(s_t * p.m_star) * vt;
-  const double ft_max = m.friction * fn;
-  if (ft.norm() > ft_max) {
-    r.sliding = true;
-    ft = ft_max * ft.normalized();
-    spring = ft;
-  }
-  // On i: pushed away along -n, dragged along the relative tangential motion.
-  r.force_on_i = -fn * n + ft;
-  r.normal_force_N = fn;
-  r.torque_on_i = (i.radius_m * n).cross(ft);
-  r.torque_on_j = (-j.radius_m * n).cross(-ft);
-  // Rolling friction opposes each particle's own rotation.
-  auto rolling = [&](const Particle& q) -> Vec3 {
-    const double wn = q.w.norm();
-    return wn > 0.0 ? Vec3(-m.rolling_friction * fn * q.radius_m * q.w / wn) : Vec3::Zero();
+  auto sphere = [](const Particle& q) {
+    return lanes::Sphere{q.x.x(), q.x.y(), q.x.z(), q.v.x(), q.v.y(),
+                         q.v.z(), q.w.x(), q.w.y(), q.w.z(), q.radius_m};
   };
-  r.torque_on_i += rolling(i);
-  r.torque_on_j += rolling(j);
+  double sx = spring.x();
+  double sy = spring.y();
+  double sz = spring.z();
+  const lanes::ContactLoads l = lanes::contact_lane(m.friction, m.rolling_friction, p, sphere(i),
+                                                    sphere(j), dt, rest_overlap_m, sx, sy, sz);
+  spring = Vec3(sx, sy, sz);
+  ContactResult r;
+  r.force_on_i = Vec3(l.fx, l.fy, l.fz);
+  r.torque_on_i = Vec3(l.ti_x, l.ti_y, l.ti_z);
+  r.torque_on_j = Vec3(l.tj_x, l.tj_y, l.tj_z);
+  r.normal_force_N = l.normal_N;
+  r.sliding = l.sliding;
   return r;
 }
 

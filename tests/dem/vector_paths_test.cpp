@@ -1,4 +1,4 @@
-// The bond step's vector paths give the scalar path's results bit for bit (issue 30): a
+// The bond and contact steps' vector paths give the scalar path's results bit for bit (issue 30): a
 // compression fast enough to break bonds, run on every path this CPU has.
 #include <gtest/gtest.h>
 
@@ -25,13 +25,13 @@ DemWorld crushed_on(VectorPath path, int steps) {
   return c.world;
 }
 
-TEST(BondVectorPaths, EveryPathTheHostRunsMatchesTheScalarPathBitForBit) {
+TEST(PairVectorPaths, EveryPathTheHostRunsMatchesTheScalarPathBitForBit) {
   constexpr int kSteps = 3000;
   const DemWorld reference = crushed_on(VectorPath::kScalar, kSteps);
   ASSERT_GT(reference.broken_bonds(), 0) << "the run should break bonds (the mask is tested)";
   ASSERT_LT(reference.broken_bonds(), static_cast<int>(reference.bonds().size()) / 2);
   int paths = 0;
-  for (VectorPath path : {VectorPath::kSse2, VectorPath::kAvx2, VectorPath::kAvx512}) {
+  for (VectorPath path : {VectorPath::kBaseline, VectorPath::kAvx2, VectorPath::kAvx512}) {
     if (!host_runs(path)) continue;
     ++paths;
     const DemWorld world = crushed_on(path, kSteps);
@@ -66,7 +66,7 @@ TEST(BondVectorPaths, EveryPathTheHostRunsMatchesTheScalarPathBitForBit) {
 #endif
 }
 
-TEST(BondVectorPaths, TheWidestPathIsOneTheHostRuns) {
+TEST(PairVectorPaths, TheWidestPathIsOneTheHostRuns) {
   EXPECT_TRUE(host_runs(widest_vector_path()));
   EXPECT_TRUE(host_runs(VectorPath::kScalar));
 }

@@ -1,7 +1,8 @@
-// The reference path: one bond at a time. Built with the vectoriser off (dem/CMakeLists.txt),
+// The reference path: one pair at a time. Built with the vectoriser off (dem/CMakeLists.txt),
 // so that it is the scalar arithmetic the vector paths are held to.
-#include "dem/bond_kernel_paths.h"
 #include "dem/bond_lane.h"
+#include "dem/contact_lane.h"
+#include "dem/lane_paths.h"
 
 namespace planter::dem::lanes {
 
@@ -29,6 +30,30 @@ BondView view(BondArrays& b) {
           b.loaded.data()};
 }
 
+ContactView view(ContactArrays& c) {
+  return {c.i.data(),
+          c.j.data(),
+          c.rest_overlap_m.data(),
+          c.e_star.data(),
+          c.g_star.data(),
+          c.r_star.data(),
+          c.m_star.data(),
+          c.beta.data(),
+          c.spring_x.data(),
+          c.spring_y.data(),
+          c.spring_z.data(),
+          c.force_on_i_x.data(),
+          c.force_on_i_y.data(),
+          c.force_on_i_z.data(),
+          c.torque_on_i_x.data(),
+          c.torque_on_i_y.data(),
+          c.torque_on_i_z.data(),
+          c.torque_on_j_x.data(),
+          c.torque_on_j_y.data(),
+          c.torque_on_j_z.data(),
+          c.touching.data()};
+}
+
 MotionView view(const ParticleMotion& m) {
   return {m.x.data(),  m.y.data(),  m.z.data(),  m.vx.data(), m.vy.data(),
           m.vz.data(), m.wx.data(), m.wy.data(), m.wz.data(), m.radius_m.data()};
@@ -36,6 +61,11 @@ MotionView view(const ParticleMotion& m) {
 
 void bonds_scalar(const BondView& b, const MotionView& m, const BondStep& s, std::size_t n) {
   for (std::size_t k = 0; k < n; ++k) bond_lane(b, m, s, k);
+}
+
+void contacts_scalar(const ContactView& c, const MotionView& m, const ContactStep& s,
+                     std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) contact_pair_lane(c, m, s, k);
 }
 
 }  // namespace planter::dem::lanes

@@ -1,0 +1,143 @@
+#pragma once
+// One Hertz-Mindlin contact's step on plain numbers (the law: hertz_mindlin.h), with no branch:
+// every choice is a select, so the same source runs one contact at a time (hertz_mindlin(), the
+// platens) or one candidate pair per vector lane (dem/lanes_simd.cpp) with the same arithmetic.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "dem/hertz_mindlin.h"
+#include "dem/lane_views.h"
+
+namespace planter::dem::lanes {
+
+// A sphere's centre, velocity, angular velocity and radius.
+struct Sphere {
+  double x, y, z, vx, vy, vz, wx, wy, wz, r;
+};
+
+// The loads of one contact: the force on i, the torques on i and j, the normal force.
+struct ContactLoads {
+  double fx, fy, fz, ti_x, ti_y, ti_z, tj_x, tj_y, tj_z, normal_N;
+  bool touching, sliding;
+};
+
+// `sx, sy, sz` is the contact's tangential spring, carried between steps (zeroed when the
+// spheres part). The overlap counts from `rest_overlap_m`.
+[[gnu::always_inline]] inline ContactLoads contact_lane(double friction, double rolling_friction,
+                                                        const PairProperties& p, const Sphere& i,
+                                                        const Sphere& j, double dt,
+                                                        double rest_overlap_m, double& sx,
+                                                        double& sy, double& sz) {
+  constexpr double kSqrt56 = 0.91287092917527690;  // sqrt(5/6)
+  const double dx = j.x - i.x;
+  const double dy = j.y - i.y;
+  const double dz = j.z - i.z;
+  const double dist = std::sqrt(dx * dx + dy * dy + dz * dz);
+  const double overlap = i.r + j.r - rest_overlap_m - dist;
+  const bool touching = (overlap > 0.0) & (dist > 0.0);
+  // Every lane computes; a lane not touching selects zeros below (its NaNs are not used).
+  const double nx = dx / dist;  // from i to j
+  const double ny = dy / dist;
+  const double nz = dz / dist;
+  // Relative velocity of j's surface against i's at the contact point: v + w x (r n) with
+  // r n = -r_j n on j and r_i n on i.
+  const double rjn_x = -j.r * nx;
+  const double rjn_y = -j.r * ny;
+  const double rjn_z = -j.r * nz;
+  const double rin_x = i.r * nx;
+  const double rin_y = i.r * ny;
+  const double rin_z = i.r * nz;
+  const double vcx =
+      (j.vx + (j.wy * rjn_z - j.wz * rjn_y)) - (i.vx + (i.wy * rin_z - i.wz * rin_y));
+  const double vcy =
+      (j.vy + (j.wz * rjn_x - j.wx * rjn_z)) - (i.vy + (i.wz * rin_x - i.wx * rin_z));
+  const double vcz =
+      (j.vz + (j.wx * rjn_y - j.wy * rjn_x)) - (i.vz + (i.wx * rin_y - i.wy * rin_x));
+  const double vn = vcx * nx + vcy * ny + vcz * nz;
+  const double vtx = vcx - vn * nx;
+  const double vty = vcy - vn * ny;
+  const double vtz = vcz - vn * nz;
+  const double sqrt_rd = std::sqrt(p.r_star * overlap);
+  const double s_n = 2.0 * p.e_star * sqrt_rd;
+  const double s_t = 8.0 * p.g_star * sqrt_rd;
+  // hertz_normal_force without its pow: 4/3 E* sqrt(R* d) d = 2/3 s_n d.
+  const double fn_elastic = 2.0 / 3.0 * s_n * overlap;
+  // Damping opposes the relative motion (beta < 0): less push while separating (vn > 0).
+  const double fn_damp = 2.0 * kSqrt56 * p.beta * std::sqrt(s_n * p.m_star) * vn;
+  const double fn = std::max(0.0, fn_elastic + fn_damp);
+  // Tangential spring: kept in the contact plane, this step's displacement added.
+  const double along = sx * nx + sy * ny + sz * nz;
+  const double kx = (sx - along * nx) + s_t * vtx * dt;
+  const double ky = (sy - along * ny) + s_t * vty * dt;
+  const double kz = (sz - along * nz) + s_t * vtz * dt;
+  const double c_t = 2.0 * kSqrt56 * p.beta * std::sqrt(s_t * p.m_star);
+  double ftx = kx - c_t * vtx;
+  double fty = ky - c_t * vty;
+  double ftz = kz - c_t * vtz;
+  // Coulomb's limit: a sliding contact's force is capped, and its spring is the capped force.
+  const double ft_max = friction * fn;
+  const double ft_norm = std::sqrt(ftx * ftx + fty * fty + ftz * ftz);
+  const bool sliding = ft_norm > ft_max;
+  const double cap = ft_max / ft_norm;
+  ftx = sliding ? ftx * cap : ftx;
+  fty = sliding ? fty * cap : fty;
+  ftz = sliding ? ftz * cap : ftz;
+  sx = touching ? (sliding ? ftx : kx) : 0.0;
+  sy = touching ? (sliding ? fty : ky) : 0.0;
+  sz = touching ? (sliding ? ftz : kz) : 0.0;
+  // Rolling friction (EDEM type A) opposes each sphere's own rotation.
+  const double wi = std::sqrt(i.wx * i.wx + i.wy * i.wy + i.wz * i.wz);
+  const double wj = std::sqrt(j.wx * j.wx + j.wy * j.wy + j.wz * j.wz);
+  const double roll_i = wi > 0.0 ? -rolling_friction * fn * i.r / wi : 0.0;
+  const double roll_j = wj > 0.0 ? -rolling_friction * fn * j.r / wj : 0.0;
+  ContactLoads out;
+  // On i: pushed away along -n, dragged along the relative tangential motion.
+  out.fx = touching ? -fn * nx + ftx : 0.0;
+  out.fy = touching ? -fn * ny + fty : 0.0;
+  out.fz = touching ? -fn * nz + ftz : 0.0;
+  // (r_i n) x ft on i; (-r_j n) x (-ft) = (r_j n) x ft on j; each plus its rolling torque.
+  out.ti_x = touching ? (rin_y * ftz - rin_z * fty) + roll_i * i.wx : 0.0;
+  out.ti_y = touching ? (rin_z * ftx - rin_x * ftz) + roll_i * i.wy : 0.0;
+  out.ti_z = touching ? (rin_x * fty - rin_y * ftx) + roll_i * i.wz : 0.0;
+  out.tj_x = touching ? (rjn_z * fty - rjn_y * ftz) + roll_j * j.wx : 0.0;
+  out.tj_y = touching ? (rjn_x * ftz - rjn_z * ftx) + roll_j * j.wy : 0.0;
+  out.tj_z = touching ? (rjn_y * ftx - rjn_x * fty) + roll_j * j.wz : 0.0;
+  out.normal_N = touching ? fn : 0.0;
+  out.touching = touching;
+  out.sliding = touching & sliding;
+  return out;
+}
+
+// Candidate pair k of the arrays: its spheres from the particles' motion, its loads and spring
+// back into the arrays.
+[[gnu::always_inline]] inline void contact_pair_lane(const ContactView& c, const MotionView& m,
+                                                     const ContactStep& s, std::size_t k) {
+  const int a = c.i[k];
+  const int b = c.j[k];
+  const Sphere i{m.x[a],  m.y[a],  m.z[a],  m.vx[a], m.vy[a],
+                 m.vz[a], m.wx[a], m.wy[a], m.wz[a], m.r[a]};
+  const Sphere j{m.x[b],  m.y[b],  m.z[b],  m.vx[b], m.vy[b],
+                 m.vz[b], m.wx[b], m.wy[b], m.wz[b], m.r[b]};
+  const PairProperties p{c.e_star[k], c.g_star[k], c.r_star[k], c.m_star[k], c.beta[k]};
+  double sx = c.sx[k];
+  double sy = c.sy[k];
+  double sz = c.sz[k];
+  const ContactLoads l =
+      contact_lane(s.friction, s.rolling_friction, p, i, j, s.dt, c.rest[k], sx, sy, sz);
+  c.sx[k] = sx;
+  c.sy[k] = sy;
+  c.sz[k] = sz;
+  c.fx[k] = l.fx;
+  c.fy[k] = l.fy;
+  c.fz[k] = l.fz;
+  c.ti_x[k] = l.ti_x;
+  c.ti_y[k] = l.ti_y;
+  c.ti_z[k] = l.ti_z;
+  c.tj_x[k] = l.tj_x;
+  c.tj_y[k] = l.tj_y;
+  c.tj_z[k] = l.tj_z;
+  c.touching[k] = l.touching ? 1.0 : 0.0;
+}
+
+}  // namespace planter::dem::lanes

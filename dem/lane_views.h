@@ -1,0 +1,35 @@
+#pragma once
+// Raw pointers into the DEM's arrays (bonds, candidate pairs, the particles' motion), taken
+// once per step for the lane-wise kernels (dem/bond_lane.h, dem/contact_lane.h).
+#include "dem/bond_arrays.h"
+#include "dem/contact_arrays.h"
+
+namespace planter::dem::lanes {
+
+struct BondView {
+  const int* i;
+  const int* j;
+  double *fn, *twist, *sx, *sy, *sz, *bx, *by, *bz, *broken;
+  double *fx, *fy, *fz, *ti_x, *ti_y, *ti_z, *tj_x, *tj_y, *tj_z, *loaded;
+};
+struct ContactView {
+  const int* i;
+  const int* j;
+  const double *rest, *e_star, *g_star, *r_star, *m_star, *beta;
+  double *sx, *sy, *sz;
+  double *fx, *fy, *fz, *ti_x, *ti_y, *ti_z, *tj_x, *tj_y, *tj_z, *touching;
+};
+struct MotionView {
+  const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r;
+};
+// What every candidate pair's step shares.
+struct ContactStep {
+  double friction;
+  double rolling_friction;
+  double dt;
+};
+BondView view(BondArrays& b);
+ContactView view(ContactArrays& c);
+MotionView view(const ParticleMotion& m);
+
+}  // namespace planter::dem::lanes

@@ -1,0 +1,54 @@
+// The vector paths: one pair per lane (OpenMP's simd loop; built with -fopenmp-simd, no
+// runtime). On x86-64 each is compiled for its instruction set and picked at run time by the
+// CPU's flags; elsewhere the wider ones are the baseline's (host_runs never picks them).
+#include "dem/bond_lane.h"
+#include "dem/contact_lane.h"
+#include "dem/lane_paths.h"
+
+#if defined(__x86_64__)
+#define PLANTER_DEM_TARGET(isa) [[gnu::target(isa)]]
+#else
+#define PLANTER_DEM_TARGET(isa)
+#endif
+
+namespace planter::dem::lanes {
+namespace {
+
+// One pair per lane over all n, inlined into each path so that it is compiled for that path's
+// instruction set.
+template <auto Lane, typename View, typename Step>
+[[gnu::always_inline]] inline void each_lane(const View& v, const MotionView& m, const Step& s,
+                                             std::size_t n) {
+#pragma omp simd
+  for (std::size_t k = 0; k < n; ++k) Lane(v, m, s, k);
+}
+
+}  // namespace
+
+void bonds_baseline(const BondView& b, const MotionView& m, const BondStep& s, std::size_t n) {
+  each_lane<bond_lane>(b, m, s, n);
+}
+PLANTER_DEM_TARGET("avx2")
+void bonds_avx2(const BondView& b, const MotionView& m, const BondStep& s, std::size_t n) {
+  each_lane<bond_lane>(b, m, s, n);
+}
+PLANTER_DEM_TARGET("avx512f")
+void bonds_avx512(const BondView& b, const MotionView& m, const BondStep& s, std::size_t n) {
+  each_lane<bond_lane>(b, m, s, n);
+}
+
+void contacts_baseline(const ContactView& c, const MotionView& m, const ContactStep& s,
+                       std::size_t n) {
+  each_lane<contact_pair_lane>(c, m, s, n);
+}
+PLANTER_DEM_TARGET("avx2")
+void contacts_avx2(const ContactView& c, const MotionView& m, const ContactStep& s, std::size_t n) {
+  each_lane<contact_pair_lane>(c, m, s, n);
+}
+PLANTER_DEM_TARGET("avx512f")
+void contacts_avx512(const ContactView& c, const MotionView& m, const ContactStep& s,
+                     std::size_t n) {
+  each_lane<contact_pair_lane>(c, m, s, n);
+}
+
+}  // namespace planter::dem::lanes

@@ -1,16 +1,20 @@
 #pragma once
 // The Hertz-Mindlin step of every candidate pair at once, on a vector path
 // (dem/vector_path.h).
+#include <cstddef>
+
 #include "dem/bond_arrays.h"
 #include "dem/contact_arrays.h"
 #include "dem/vector_path.h"
 
 namespace planter::dem {
 
-// Evaluates every candidate pair's contact over one step from the particles' motion, carries
-// its tangential spring, and leaves its loads in the arrays' outputs (add_contact_loads adds
-// them). `friction` and `rolling_friction` are the particles' material's.
+// Evaluates the contacts of candidate pairs [begin, end) over one step from the particles'
+// motion, carries their tangential springs, and leaves their loads in the arrays' outputs
+// (add_contact_loads adds them). `friction` and `rolling_friction` are the particles'
+// material's. Each pair writes only its own entries: ranges may run at once.
 void update_contacts(VectorPath path, ContactArrays& contacts, const ParticleMotion& motion,
-                     double friction, double rolling_friction, double dt);
+                     double friction, double rolling_friction, double dt, std::size_t begin,
+                     std::size_t end);
 
 }  // namespace planter::dem

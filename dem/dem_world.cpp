@@ -125,9 +125,25 @@ void DemWorld::rebuild_neighbours() {
   ++rebuilds_;
 }
 
-void DemWorld::particle_contacts(double dt) {
-  update_contacts(vector_path_, candidates_, motion_, material_.friction,
-                  material_.rolling_friction, dt);
+void DemWorld::pair_steps(double dt) {
+  motion_.assign(particles_);
+  const BondStep bond_constants = bond_step(bond_params_, dt);
+  const auto parts = static_cast<std::size_t>(threads_->threads());
+  // Part k of each: an equal share of the bonds and of the candidate pairs.
+  auto part = [&](int k) {
+    const auto share = [&](std::size_t n) {
+      const auto kk = static_cast<std::size_t>(k);
+      return std::pair<std::size_t, std::size_t>{n * kk / parts, n * (kk + 1) / parts};
+    };
+    const auto [b0, b1] = share(bonds_.size());
+    update_bonds(vector_path_, bonds_, motion_, bond_constants, b0, b1);
+    const auto [c0, c1] = share(candidates_.size());
+    update_contacts(vector_path_, candidates_, motion_, material_.friction,
+                    material_.rolling_friction, dt, c0, c1);
+  };
+  threads_->run(part);
+  // Added one thread, in the pairs' order: the sums' order is the result's.
+  add_bond_loads(bonds_, particles_);
   add_contact_loads(candidates_, particles_);
 }
 
@@ -180,10 +196,7 @@ void DemWorld::step(double dt) {
     p.f.setZero();
     p.tau.setZero();
   }
-  motion_.assign(particles_);
-  update_bonds(vector_path_, bonds_, motion_, bond_step(bond_params_, dt));
-  add_bond_loads(bonds_, particles_);
-  particle_contacts(dt);
+  pair_steps(dt);
   platen_contacts(dt);
   integrate(dt);
   ++steps_;

@@ -3,6 +3,7 @@
 // particles and with rigid platens), integrated with the symplectic (leapfrog) Euler step.
 // Single-threaded and deterministic: the same input gives bit-identical results, on every
 // vector path of the bonds' and contacts' steps (dem/vector_path.h).
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "dem/contact_kernel.h"
 #include "dem/hertz_mindlin.h"
 #include "dem/parallel_bond.h"
+#include "dem/step_threads.h"
 
 namespace planter::dem {
 
@@ -45,6 +47,12 @@ class DemWorld {
   // (the tests run each).
   void set_vector_path(VectorPath path) { vector_path_ = path; }
   [[nodiscard]] VectorPath vector_path() const { return vector_path_; }
+  // Threads sharing each step's bonds and contacts (1: the calling thread alone, the default: a
+  // calibration runs one world a core). The results are the same bits on any number.
+  void set_threads(int threads) {
+    threads_.reset();
+    threads_.emplace(threads);
+  }
 
   void step(double dt);
 
@@ -64,7 +72,7 @@ class DemWorld {
  private:
   void rebuild_neighbours();
   [[nodiscard]] bool neighbours_stale() const;
-  void particle_contacts(double dt);
+  void pair_steps(double dt);
   void platen_contacts(double dt);
   void integrate(double dt);
 
@@ -75,6 +83,7 @@ class DemWorld {
   BondArrays bonds_;
   ParticleMotion motion_;  // the particles' motion as the pair steps read it
   VectorPath vector_path_ = widest_vector_path();
+  std::optional<StepThreads> threads_{std::in_place, 1};
   std::vector<Platen> platens_;
   double local_damping_ = 0.0;
   // Verlet list: pairs within 2 r_max + skin; rebuilt when any particle has moved skin/2.

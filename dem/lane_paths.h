@@ -8,20 +8,27 @@
 
 namespace planter::dem::lanes {
 
-using BondsFn = void (*)(const BondView&, const MotionView&, const BondStep&, std::size_t);
-using ContactsFn = void (*)(const ContactView&, const MotionView&, const ContactStep&, std::size_t);
+using BondsFn = void (*)(const BondView&, const MotionView&, const BondStep&, std::size_t,
+                         std::size_t);
+using ContactsFn = void (*)(const ContactView&, const MotionView&, const ContactStep&, std::size_t,
+                            std::size_t);
 
-void bonds_scalar(const BondView& b, const MotionView& m, const BondStep& s, std::size_t n);
-void bonds_baseline(const BondView& b, const MotionView& m, const BondStep& s, std::size_t n);
-void bonds_avx2(const BondView& b, const MotionView& m, const BondStep& s, std::size_t n);
-void bonds_avx512(const BondView& b, const MotionView& m, const BondStep& s, std::size_t n);
+void bonds_scalar(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,
+                  std::size_t end);
+void bonds_baseline(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,
+                    std::size_t end);
+void bonds_avx2(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,
+                std::size_t end);
+void bonds_avx512(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,
+                  std::size_t end);
 
 void contacts_scalar(const ContactView& c, const MotionView& m, const ContactStep& s,
-                     std::size_t n);
+                     std::size_t begin, std::size_t end);
 void contacts_baseline(const ContactView& c, const MotionView& m, const ContactStep& s,
-                       std::size_t n);
-void contacts_avx2(const ContactView& c, const MotionView& m, const ContactStep& s, std::size_t n);
+                       std::size_t begin, std::size_t end);
+void contacts_avx2(const ContactView& c, const MotionView& m, const ContactStep& s,
+                   std::size_t begin, std::size_t end);
 void contacts_avx512(const ContactView& c, const MotionView& m, const ContactStep& s,
-                     std::size_t n);
+                     std::size_t begin, std::size_t end);
 
 }  // namespace planter::dem::lanes

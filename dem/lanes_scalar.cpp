@@ -59,13 +59,14 @@ MotionView view(const ParticleMotion& m) {
           m.vz.data(), m.wx.data(), m.wy.data(), m.wz.data(), m.radius_m.data()};
 }
 
-void bonds_scalar(const BondView& b, const MotionView& m, const BondStep& s, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) bond_lane(b, m, s, k);
+void bonds_scalar(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,
+                  std::size_t end) {
+  for (std::size_t k = begin; k < end; ++k) bond_lane(b, m, s, k);
 }
 
 void contacts_scalar(const ContactView& c, const MotionView& m, const ContactStep& s,
-                     std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) contact_pair_lane(c, m, s, k);
+                     std::size_t begin, std::size_t end) {
+  for (std::size_t k = begin; k < end; ++k) contact_pair_lane(c, m, s, k);
 }
 
 }  // namespace planter::dem::lanes

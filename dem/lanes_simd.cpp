@@ -14,41 +14,45 @@
 namespace planter::dem::lanes {
 namespace {
 
-// One pair per lane over all n, inlined into each path so that it is compiled for that path's
-// instruction set.
+// One pair per lane over [begin, end), inlined into each path so that it is compiled for that
+// path's instruction set.
 template <auto Lane, typename View, typename Step>
 [[gnu::always_inline]] inline void each_lane(const View& v, const MotionView& m, const Step& s,
-                                             std::size_t n) {
+                                             std::size_t begin, std::size_t end) {
 #pragma omp simd
-  for (std::size_t k = 0; k < n; ++k) Lane(v, m, s, k);
+  for (std::size_t k = begin; k < end; ++k) Lane(v, m, s, k);
 }
 
 }  // namespace
 
-void bonds_baseline(const BondView& b, const MotionView& m, const BondStep& s, std::size_t n) {
-  each_lane<bond_lane>(b, m, s, n);
+void bonds_baseline(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,
+                    std::size_t end) {
+  each_lane<bond_lane>(b, m, s, begin, end);
 }
 PLANTER_DEM_TARGET("avx2")
-void bonds_avx2(const BondView& b, const MotionView& m, const BondStep& s, std::size_t n) {
-  each_lane<bond_lane>(b, m, s, n);
+void bonds_avx2(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,
+                std::size_t end) {
+  each_lane<bond_lane>(b, m, s, begin, end);
 }
 PLANTER_DEM_TARGET("avx512f")
-void bonds_avx512(const BondView& b, const MotionView& m, const BondStep& s, std::size_t n) {
-  each_lane<bond_lane>(b, m, s, n);
+void bonds_avx512(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,
+                  std::size_t end) {
+  each_lane<bond_lane>(b, m, s, begin, end);
 }
 
 void contacts_baseline(const ContactView& c, const MotionView& m, const ContactStep& s,
-                       std::size_t n) {
-  each_lane<contact_pair_lane>(c, m, s, n);
+                       std::size_t begin, std::size_t end) {
+  each_lane<contact_pair_lane>(c, m, s, begin, end);
 }
 PLANTER_DEM_TARGET("avx2")
-void contacts_avx2(const ContactView& c, const MotionView& m, const ContactStep& s, std::size_t n) {
-  each_lane<contact_pair_lane>(c, m, s, n);
+void contacts_avx2(const ContactView& c, const MotionView& m, const ContactStep& s,
+                   std::size_t begin, std::size_t end) {
+  each_lane<contact_pair_lane>(c, m, s, begin, end);
 }
 PLANTER_DEM_TARGET("avx512f")
 void contacts_avx512(const ContactView& c, const MotionView& m, const ContactStep& s,
-                     std::size_t n) {
-  each_lane<contact_pair_lane>(c, m, s, n);
+                     std::size_t begin, std::size_t end) {
+  each_lane<contact_pair_lane>(c, m, s, begin, end);
 }
 
 }  // namespace planter::dem::lanes

@@ -49,7 +49,7 @@ void update_bond(Bond& b, const BondStep& s, Particle& pi, Particle& pj) {
   std::vector<Particle> pair{pi, pj};
   ParticleMotion motion;
   motion.assign(pair);
-  update_bonds(VectorPath::kScalar, one, motion, s);
+  update_bonds(VectorPath::kScalar, one, motion, s, 0, 1);
   add_bond_loads(one, pair);
   local = one.bond(0);
   local.i = b.i;

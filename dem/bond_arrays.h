@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "dem/incidence.h"
 #include "dem/parallel_bond.h"
 
 namespace planter::dem {
@@ -35,8 +36,14 @@ struct ParticleMotion {
   void assign(const std::vector<Particle>& particles);
 };
 
-// Adds each loaded bond's loads to its particles, in bond order (the order is the result's:
-// floating-point sums are not associative).
-void add_bond_loads(const BondArrays& bonds, std::vector<Particle>& particles);
+// Adds bond k's loads on its j (`on_j`) or its i to `particle` (nothing if it carried none).
+void add_bond_load(const BondArrays& bonds, std::size_t k, bool on_j, Particle& particle);
+// Adds the loads of each bond particle `p` is in to `particle`, in bond order (the order is the
+// result's: floating-point sums are not associative). `bonds_of` is the bonds' incidence.
+void add_bond_loads(const BondArrays& bonds, const Incidence& bonds_of, std::size_t p,
+                    Particle& particle);
+// The same sums for every particle at once, in one pass over the bonds (one thread: the
+// arrays are read in order).
+void add_all_bond_loads(const BondArrays& bonds, std::vector<Particle>& particles);
 
 }  // namespace planter::dem

@@ -47,7 +47,29 @@ PairProperties ContactArrays::properties(std::size_t k) const {
 
 Vec3 ContactArrays::spring(std::size_t k) const { return {spring_x[k], spring_y[k], spring_z[k]}; }
 
-void add_contact_loads(const ContactArrays& c, std::vector<Particle>& particles) {
+void add_contact_load(const ContactArrays& c, std::size_t k, bool on_j, Particle& particle) {
+  if (c.touching[k] == 0.0) return;
+  const Vec3 f(c.force_on_i_x[k], c.force_on_i_y[k], c.force_on_i_z[k]);
+  if (on_j) {
+    particle.f -= f;
+    particle.tau += Vec3(c.torque_on_j_x[k], c.torque_on_j_y[k], c.torque_on_j_z[k]);
+  } else {
+    particle.f += f;
+    particle.tau += Vec3(c.torque_on_i_x[k], c.torque_on_i_y[k], c.torque_on_i_z[k]);
+  }
+}
+
+void add_contact_loads(const ContactArrays& c, const Incidence& contacts_of, std::size_t p,
+                       Particle& particle) {
+  const auto end = static_cast<std::size_t>(contacts_of.start[p + 1]);
+  for (auto e = static_cast<std::size_t>(contacts_of.start[p]); e < end; ++e) {
+    add_contact_load(c, static_cast<std::size_t>(contacts_of.pair[e]), contacts_of.is_j[e] != 0,
+                     particle);
+  }
+}
+
+void add_all_contact_loads(const ContactArrays& c, std::vector<Particle>& particles) {
+  // add_contact_load's two sides with one test and one read of the force.
   for (std::size_t k = 0; k < c.size(); ++k) {
     if (c.touching[k] == 0.0) continue;
     Particle& a = particles[static_cast<std::size_t>(c.i[k])];

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dem/hertz_mindlin.h"
+#include "dem/incidence.h"
 
 namespace planter::dem {
 
@@ -29,7 +30,13 @@ struct ContactArrays {
   [[nodiscard]] Vec3 spring(std::size_t k) const;
 };
 
-// Adds each touching pair's loads to its particles, in pair order (the order is the result's).
-void add_contact_loads(const ContactArrays& contacts, std::vector<Particle>& particles);
+// Adds pair k's loads on its j (`on_j`) or its i to `particle` (nothing if it did not touch).
+void add_contact_load(const ContactArrays& contacts, std::size_t k, bool on_j, Particle& particle);
+// Adds the loads of each pair particle `p` is in to `particle`, in pair order (the order is
+// the result's). `contacts_of` is the pairs' incidence.
+void add_contact_loads(const ContactArrays& contacts, const Incidence& contacts_of, std::size_t p,
+                       Particle& particle);
+// The same sums for every particle at once, in one pass over the pairs.
+void add_all_contact_loads(const ContactArrays& contacts, std::vector<Particle>& particles);
 
 }  // namespace planter::dem

@@ -37,9 +37,10 @@ struct ContactLoads {
   const double overlap = i.r + j.r - rest_overlap_m - dist;
   const bool touching = (overlap > 0.0) & (dist > 0.0);
   // Every lane computes; a lane not touching selects zeros below (its NaNs are not used).
-  const double nx = dx / dist;  // from i to j
-  const double ny = dy / dist;
-  const double nz = dz / dist;
+  const double inv_dist = 1.0 / dist;  // one division, not three
+  const double nx = dx * inv_dist;     // from i to j
+  const double ny = dy * inv_dist;
+  const double nz = dz * inv_dist;
   // Relative velocity of j's surface against i's at the contact point: v + w x (r n) with
   // r n = -r_j n on j and r_i n on i.
   const double rjn_x = -j.r * nx;

@@ -113,6 +113,9 @@ void DemWorld::rebuild_neighbours() {
   x_at_rebuild_.resize(particles_.size());
   for (std::size_t k = 0; k < particles_.size(); ++k) x_at_rebuild_[k] = particles_[k].x;
   platen_springs_.resize(platens_.size() * particles_.size(), Vec3::Zero());
+  platen_normal_N_.assign(platens_.size() * particles_.size(), 0.0);
+  bonds_of_.build(particles_.size(), bonds_.i, bonds_.j);
+  contacts_of_.build(particles_.size(), candidates_.i, candidates_.j);
   // Every platen is the same steel: one pair per particle, not one per contact and step.
   constexpr double kInf = std::numeric_limits<double>::infinity();
   platen_props_.clear();
@@ -125,80 +128,102 @@ void DemWorld::rebuild_neighbours() {
   ++rebuilds_;
 }
 
-void DemWorld::pair_steps(double dt) {
-  motion_.assign(particles_);
-  const BondStep bond_constants = bond_step(bond_params_, dt);
-  const auto parts = static_cast<std::size_t>(threads_->threads());
-  // Part k of each: an equal share of the bonds and of the candidate pairs.
-  auto part = [&](int k) {
-    const auto share = [&](std::size_t n) {
-      const auto kk = static_cast<std::size_t>(k);
-      return std::pair<std::size_t, std::size_t>{n * kk / parts, n * (kk + 1) / parts};
-    };
-    const auto [b0, b1] = share(bonds_.size());
-    update_bonds(vector_path_, bonds_, motion_, bond_constants, b0, b1);
-    const auto [c0, c1] = share(candidates_.size());
-    update_contacts(vector_path_, candidates_, motion_, material_.friction,
-                    material_.rolling_friction, dt, c0, c1);
-  };
-  threads_->run(part);
-  // Added one thread, in the pairs' order: the sums' order is the result's.
-  add_bond_loads(bonds_, particles_);
-  add_contact_loads(candidates_, particles_);
-}
-
-void DemWorld::platen_contacts(double dt) {
+void DemWorld::platen_contacts(std::size_t i, Particle& p, double dt) {
   // A wall is a sphere of infinite radius and mass at the particle's foot point.
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const std::size_t n = particles_.size();
   for (std::size_t k = 0; k < platens_.size(); ++k) {
-    Platen& w = platens_[k];
-    w.force_N = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      Particle& p = particles_[i];
-      Vec3& spring = platen_springs_[k * n + i];
-      const double h = (p.x - w.point).dot(w.normal);
-      if (h >= p.radius_m) {
-        spring.setZero();
-        continue;
-      }
-      Particle wall;
-      wall.radius_m = 1.0;  // geometry only: R* below treats the wall as flat
-      wall.x = p.x - (h + wall.radius_m) * w.normal;
-      wall.v = w.velocity;
-      wall.mass_kg = kInf;
-      const ContactResult r =
-          hertz_mindlin(platen_material_, platen_props_[i], p, wall, dt, spring);
-      p.f += r.force_on_i;
-      p.tau += r.torque_on_i;
-      w.force_N += r.normal_force_N;
+    const Platen& w = platens_[k];
+    Vec3& spring = platen_springs_[k * n + i];
+    double& normal_N = platen_normal_N_[k * n + i];
+    normal_N = 0.0;
+    const double h = (p.x - w.point).dot(w.normal);
+    if (h >= p.radius_m) {
+      spring.setZero();
+      continue;
     }
+    Particle wall;
+    wall.radius_m = 1.0;  // geometry only: R* below treats the wall as flat
+    wall.x = p.x - (h + wall.radius_m) * w.normal;
+    wall.v = w.velocity;
+    wall.mass_kg = kInf;
+    const ContactResult r = hertz_mindlin(platen_material_, platen_props_[i], p, wall, dt, spring);
+    p.f += r.force_on_i;
+    p.tau += r.torque_on_i;
+    normal_N = r.normal_force_N;
   }
 }
 
-void DemWorld::integrate(double dt) {
-  for (auto& p : particles_) {
-    if (p.fixed) continue;
-    if (local_damping_ > 0.0) {
-      damp(p.f, p.v, local_damping_);
-      damp(p.tau, p.w, local_damping_);
-    }
-    p.v += p.f / p.mass_kg * dt;
-    p.x += p.v * dt;
-    if (p.inertia_kgm2 > 0.0) p.w += p.tau / p.inertia_kgm2 * dt;
+void DemWorld::integrate(Particle& p, double dt) const {
+  if (p.fixed) return;
+  if (local_damping_ > 0.0) {
+    damp(p.f, p.v, local_damping_);
+    damp(p.tau, p.w, local_damping_);
   }
-  for (auto& w : platens_) w.point += w.velocity * dt;
+  p.v += p.f / p.mass_kg * dt;
+  p.x += p.v * dt;
+  if (p.inertia_kgm2 > 0.0) p.w += p.tau / p.inertia_kgm2 * dt;
+}
+
+void DemWorld::particle_step(std::size_t i, bool sum_pairs, double dt) {
+  Particle& p = particles_[i];
+  // Bonds, then contacts, then platens, each in pair order: the order of the sums is the
+  // result's, and it is the same for every particle whichever thread sums it.
+  if (sum_pairs) {
+    p.f.setZero();
+    p.tau.setZero();
+    add_bond_loads(bonds_, bonds_of_, i, p);
+    add_contact_loads(candidates_, contacts_of_, i, p);
+  }
+  platen_contacts(i, p, dt);
+  integrate(p, dt);
 }
 
 void DemWorld::step(double dt) {
   if (neighbours_stale()) rebuild_neighbours();
-  for (auto& p : particles_) {
-    p.f.setZero();
-    p.tau.setZero();
+  motion_.assign(particles_);
+  const BondStep bond_constants = bond_step(bond_params_, dt);
+  const auto parts = static_cast<std::size_t>(threads_->threads());
+  // Part k of n things: an equal share.
+  const auto share = [parts](std::size_t n, int k) {
+    const auto kk = static_cast<std::size_t>(k);
+    return std::pair<std::size_t, std::size_t>{n * kk / parts, n * (kk + 1) / parts};
+  };
+  // First every pair's loads (each pair writes only its own), then every particle's sums and
+  // motion (each particle only its own): two parts per thread, the second after all of the
+  // first.
+  auto pairs = [&](int k) {
+    const auto [b0, b1] = share(bonds_.size(), k);
+    update_bonds(vector_path_, bonds_, motion_, bond_constants, b0, b1);
+    const auto [c0, c1] = share(candidates_.size(), k);
+    update_contacts(vector_path_, candidates_, motion_, material_.friction,
+                    material_.rolling_friction, dt, c0, c1);
+  };
+  threads_->run(pairs);
+  // On one thread the pairs' loads are added in one pass over the pairs (the arrays read in
+  // order: 5 % faster here); on several, each particle gathers its own. The same sums.
+  const bool gather = parts > 1;
+  if (!gather) {
+    for (auto& p : particles_) {
+      p.f.setZero();
+      p.tau.setZero();
+    }
+    add_all_bond_loads(bonds_, particles_);
+    add_all_contact_loads(candidates_, particles_);
   }
-  pair_steps(dt);
-  platen_contacts(dt);
-  integrate(dt);
+  auto particles = [&](int k) {
+    const auto [p0, p1] = share(particles_.size(), k);
+    for (std::size_t i = p0; i < p1; ++i) particle_step(i, gather, dt);
+  };
+  threads_->run(particles);
+  // Each platen's force: its particles' normal forces summed in particle order.
+  const std::size_t n = particles_.size();
+  for (std::size_t k = 0; k < platens_.size(); ++k) {
+    Platen& w = platens_[k];
+    w.force_N = 0.0;
+    for (std::size_t i = 0; i < n; ++i) w.force_N += platen_normal_N_[k * n + i];
+    w.point += w.velocity * dt;
+  }
   ++steps_;
 }
 

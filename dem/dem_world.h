@@ -72,9 +72,11 @@ class DemWorld {
  private:
   void rebuild_neighbours();
   [[nodiscard]] bool neighbours_stale() const;
-  void pair_steps(double dt);
-  void platen_contacts(double dt);
-  void integrate(double dt);
+  // Particle i's pair loads summed (`sum_pairs`; else they were), its platen contacts, and its
+  // motion advanced.
+  void particle_step(std::size_t i, bool sum_pairs, double dt);
+  void platen_contacts(std::size_t i, Particle& p, double dt);
+  void integrate(Particle& p, double dt) const;
 
   ContactMaterial material_;
   ContactMaterial platen_material_;
@@ -91,11 +93,14 @@ class DemWorld {
   std::vector<std::pair<int, int>> pairs_scratch_;
   ContactArrays candidates_;  // the Verlet list's pairs and their contact history
   ContactArrays previous_;
+  Incidence bonds_of_;     // the bonds each particle is in
+  Incidence contacts_of_;  // the candidate pairs each particle is in
   std::vector<Vec3> x_at_rebuild_;
   double skin_m_ = 0.0;
   bool neighbours_valid_ = false;
   std::vector<Vec3> platen_springs_;          // [platen * n + particle]
   std::vector<PairProperties> platen_props_;  // [particle], against the platen material
+  std::vector<double> platen_normal_N_;       // [platen * n + particle], this step's
   long steps_ = 0;
   long rebuilds_ = 0;
 };

@@ -119,9 +119,10 @@ long compression_steps(const CompressionSetup& s) {
   return std::lround(s.stroke_m / (s.platen_speed_mps * s.speedup) / s.time_step_s);
 }
 
-CompressionResult run_compression(const CompressionSetup& s) {
+CompressionResult run_compression(const CompressionSetup& s, int threads) {
   CompressionWorld c = make_compression_world(s);
   DemWorld& world = c.world;
+  world.set_threads(threads);
   const SeedlingBuild& built = c.seedling;
   const double speed = c.platen_speed_mps;
   const int top = c.upper_platen;

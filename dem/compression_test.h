@@ -63,7 +63,8 @@ struct CompressionWorld {
 CompressionWorld make_compression_world(const CompressionSetup& setup);
 
 // Runs the test; deterministic for a given setup.
-CompressionResult run_compression(const CompressionSetup& setup);
+// `threads` share each step (DemWorld::set_threads): the same result on any number.
+CompressionResult run_compression(const CompressionSetup& setup, int threads = 1);
 // The number of time steps run_compression takes: the stroke at the platen's (sped-up) speed.
 [[nodiscard]] long compression_steps(const CompressionSetup& setup);
 

@@ -6,15 +6,20 @@ namespace planter::dem {
 namespace {
 
 // Waits for `a` to leave `old`: spinning first (a step's serial part is tens of microseconds,
-// a futex wake-up on a virtual machine as long), then blocking (a world no longer stepping
-// costs no core). About a millisecond of spinning at most.
+// a futex wake-up on a virtual machine as long), yielding the core after a short while (a busy
+// machine's other work, or this world's own threads on fewer cores, may need it to get here),
+// then blocking (a world no longer stepping costs no core).
 template <typename T>
 void spin_then_wait(const std::atomic<T>& a, T old) {
-  for (int k = 0; k < 20000; ++k) {
+  for (int k = 0; k < 4000; ++k) {
     if (a.load() != old) return;
+    if (k < 200) {
 #if defined(__x86_64__) || defined(__i386__)
-    __builtin_ia32_pause();
+      __builtin_ia32_pause();
 #endif
+    } else {
+      std::this_thread::yield();
+    }
   }
   a.wait(old);
 }

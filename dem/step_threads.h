@@ -3,8 +3,10 @@
 // and of the candidate pairs), the caller runs part 0, and run() returns when every part is
 // done. Which thread runs a part does not change its results (each pair writes only its own
 // outputs), so a world gives the same bits on any number of threads.
-// The threads live as long as the pool and wait between steps (a spin of up to about a
-// millisecond, then C++20's atomic wait), so a step costs no thread start and no wake-up.
+// The threads live as long as the pool and wait between steps (a short spin, then yielding
+// the core, then C++20's atomic wait), so a step costs no thread start and, on an idle
+// machine, no wake-up. On a busy one more threads can be slower than one (measured: 1.3x
+// slower with one core taken by another process): `--threads 1` then.
 #include <atomic>
 #include <thread>
 #include <vector>

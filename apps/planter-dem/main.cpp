@@ -82,12 +82,12 @@ dem::CompressionSetup load_setup(const Common& c) {
   return s;
 }
 
-int compress(const Common& c) {
+int compress(const Common& c, int threads) {
   dem::CompressionRun run;
   run.setup = load_setup(c);
   config::OutputSet out(c.out, "planter-dem compress", c.force);
   const auto t0 = std::chrono::steady_clock::now();
-  run.result = dem::run_compression(run.setup);
+  run.result = dem::run_compression(run.setup, threads);
   run.wall_s = seconds_since(t0);
   dem::write_compression_outputs(out, run);
   const auto& r = run.result;
@@ -238,6 +238,13 @@ int main(int argc, char** argv) {
   };
   auto* compress_cmd = app.add_subcommand("compress", "the radial compression test");
   add_common(compress_cmd);
+  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  compress_cmd
+      ->add_option(
+          "--threads", threads,
+          "threads sharing each step (default: all cores; the same result on any number; 1 on a "
+          "busy machine)")
+      ->check(planter::config::finite_range(1, 256));
   auto* calibrate_cmd = app.add_subcommand("calibrate", "calibrate to a target peak force");
   add_common(calibrate_cmd);
   double target_N = 140.6;
@@ -279,7 +286,7 @@ int main(int argc, char** argv) {
     return fail(2, std::string(e.what()) + " (planter-dem --help lists the options)");
   }
   try {
-    if (*compress_cmd) return compress(common);
+    if (*compress_cmd) return compress(common, threads);
     if (*reduce_cmd) return reduce(common, diameters_mm, jobs);
     if (*plan_run) {
       dem::execute_stage_run(plan_path, plan_index);

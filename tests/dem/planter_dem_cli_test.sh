@@ -27,6 +27,7 @@ expect 2 "stroke_mm" -- compress --params "$work/stroke.toml" --out "$work/o"
 expect 2 "out" -- compress
 expect 2 "speedup" -- compress --out "$work/o" --speedup 0
 expect 2 "jobs" -- calibrate --out "$work/o" --jobs 0
+expect 2 "threads" -- compress --out "$work/o" --threads 0
 expect 2 "diameters" -- reduce --out "$work/o" --diameters-mm 8.3,abc
 # A calibration stage's plan (what a Slurm task runs): a missing plan, another file, an index
 # the plan has not.
@@ -51,5 +52,13 @@ expect 2 "one compression would take 3[0-9]* particles x 18000 steps" -- compres
 mkfifo "$work/fifo.toml"
 expect 2 "fifo.toml: is a FIFO, not a regular file" -- compress --params "$work/fifo.toml" --out "$work/o"
 [ -e "$work/o" ] && { echo "FAIL: refused runs left $work/o"; fails=$((fails + 1)); }
-[ "$fails" -eq 0 ] && echo "planter-dem bad input: all rejected with exit 2 and a message"
+# The README's compress on one thread and on two: the same curve, bit for bit (a step's threads
+# share its pairs and particles, never the order of a sum).
+for t in 1 2; do
+  "$tool" compress --speedup 200 --threads "$t" --out "$work/threads-$t" >/dev/null ||
+    { echo "FAIL: planter-dem compress --threads $t exited $?"; fails=$((fails + 1)); }
+done
+cmp -s "$work/threads-1/curve.csv" "$work/threads-2/curve.csv" ||
+  { echo "FAIL: curve.csv differs between --threads 1 and 2"; fails=$((fails + 1)); }
+[ "$fails" -eq 0 ] && echo "planter-dem bad input: all rejected with exit 2 and a message; --threads changes no bit"
 exit "$fails"

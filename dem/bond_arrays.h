@@ -30,9 +30,10 @@ struct BondArrays {
   [[nodiscard]] Bond bond(std::size_t k) const;
 };
 
-// Position, velocity, angular velocity and radius of every particle, one array per component.
+// Position, velocity, angular velocity and radius of every particle, one array per component,
+// and 1/|w| (0 for a particle that does not spin).
 struct ParticleMotion {
-  std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz, radius_m;
+  std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz, radius_m, inv_spin;
   void assign(const std::vector<Particle>& particles);
 };
 

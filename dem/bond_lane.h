@@ -93,12 +93,16 @@ namespace planter::dem::lanes {
   by += -(wry - wn * ny) * s.bending_per_rad;
   bz += -(wrz - wn * nz) * s.bending_per_rad;
   // Signed criteria (bond_tensile_stress, bond_shear_stress): compression lowers the tensile
-  // stress, it never breaks a bond alone.
-  const double tensile =
-      -fn * s.per_area + 2.0 * std::sqrt(bx * bx + by * by + bz * bz) * s.rim_per_polar;
-  const double shear =
-      std::sqrt(sx * sx + sy * sy + sz * sz) * s.per_area + std::fabs(twist) * s.rim_per_polar;
-  const bool breaks = (tensile > s.tensile_strength_Pa) | (shear > s.shear_strength_Pa);
+  // stress, it never breaks a bond alone. Each is "a norm times a factor exceeds what the rest
+  // leaves", compared squared: -F/A + 2|M| R/J > sigma_c is 2|M| R/J > sigma_c + F/A, true
+  // when the right side is negative, else when its square is exceeded (no square root).
+  const double tensile_left = s.tensile_strength_Pa + fn * s.per_area;
+  const double bending2 = (bx * bx + by * by + bz * bz) * (4.0 * s.rim_per_polar * s.rim_per_polar);
+  const bool tensile_breaks = (tensile_left < 0.0) | (bending2 > tensile_left * tensile_left);
+  const double shear_left = s.shear_strength_Pa - std::fabs(twist) * s.rim_per_polar;
+  const double shear2 = (sx * sx + sy * sy + sz * sz) * (s.per_area * s.per_area);
+  const bool shear_breaks = (shear_left < 0.0) | (shear2 > shear_left * shear_left);
+  const bool breaks = tensile_breaks | shear_breaks;
   // The loads are advanced on the step a bond breaks (they are its last), not after.
   b.fn[k] = live ? fn : fn0;
   b.twist[k] = live ? twist : twist0;

@@ -6,10 +6,26 @@ namespace {
 
 template <typename Fn>
 void each_array(ContactArrays& c, Fn&& fn) {
-  for (auto* a : {&c.rest_overlap_m, &c.e_star, &c.g_star, &c.r_star, &c.m_star, &c.beta,
-                  &c.spring_x, &c.spring_y, &c.spring_z, &c.force_on_i_x, &c.force_on_i_y,
-                  &c.force_on_i_z, &c.torque_on_i_x, &c.torque_on_i_y, &c.torque_on_i_z,
-                  &c.torque_on_j_x, &c.torque_on_j_y, &c.torque_on_j_z, &c.touching}) {
+  for (auto* a : {&c.rest_overlap_m,
+                  &c.e_star,
+                  &c.g_star,
+                  &c.r_star,
+                  &c.m_star,
+                  &c.beta,
+                  &c.shear_to_normal_root,
+                  &c.spring_x,
+                  &c.spring_y,
+                  &c.spring_z,
+                  &c.force_on_i_x,
+                  &c.force_on_i_y,
+                  &c.force_on_i_z,
+                  &c.torque_on_i_x,
+                  &c.torque_on_i_y,
+                  &c.torque_on_i_z,
+                  &c.torque_on_j_x,
+                  &c.torque_on_j_y,
+                  &c.torque_on_j_z,
+                  &c.touching}) {
     fn(*a);
   }
 }
@@ -36,13 +52,14 @@ void ContactArrays::push_back(int pi, int pj, int bond_index, double rest_overla
   r_star[k] = p.r_star;
   m_star[k] = p.m_star;
   beta[k] = p.beta;
+  shear_to_normal_root[k] = p.shear_to_normal_root;
   spring_x[k] = spring.x();
   spring_y[k] = spring.y();
   spring_z[k] = spring.z();
 }
 
 PairProperties ContactArrays::properties(std::size_t k) const {
-  return {e_star[k], g_star[k], r_star[k], m_star[k], beta[k]};
+  return {e_star[k], g_star[k], r_star[k], m_star[k], beta[k], shear_to_normal_root[k]};
 }
 
 Vec3 ContactArrays::spring(std::size_t k) const { return {spring_x[k], spring_y[k], spring_z[k]}; }

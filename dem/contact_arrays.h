@@ -14,8 +14,8 @@ struct ContactArrays {
   std::vector<int> i, j;
   std::vector<int> bond;               // index into the bonds for a pair bonded at build, or -1
   std::vector<double> rest_overlap_m;  // the bonded pair's as-built overlap, else 0
-  std::vector<double> e_star, g_star, r_star, m_star, beta;  // PairProperties
-  std::vector<double> spring_x, spring_y, spring_z;          // tangential spring (history)
+  std::vector<double> e_star, g_star, r_star, m_star, beta, shear_to_normal_root;  // PairProperties
+  std::vector<double> spring_x, spring_y, spring_z;  // tangential spring (history)
   // This step's loads, and whether the pair touched (1) or not (0).
   std::vector<double> force_on_i_x, force_on_i_y, force_on_i_z;
   std::vector<double> torque_on_i_x, torque_on_i_y, torque_on_i_z;

@@ -11,9 +11,10 @@
 
 namespace planter::dem::lanes {
 
-// A sphere's centre, velocity, angular velocity and radius.
+// A sphere's centre, velocity, angular velocity, radius, and 1/|w| (0 when it does not spin:
+// the rolling torque's direction, worked out once a step per particle, not per contact).
 struct Sphere {
-  double x, y, z, vx, vy, vz, wx, wy, wz, r;
+  double x, y, z, vx, vy, vz, wx, wy, wz, r, inv_spin;
 };
 
 // The loads of one contact: the force on i, the torques on i and j, the normal force.
@@ -65,14 +66,16 @@ struct ContactLoads {
   // hertz_normal_force without its pow: 4/3 E* sqrt(R* d) d = 2/3 s_n d.
   const double fn_elastic = 2.0 / 3.0 * s_n * overlap;
   // Damping opposes the relative motion (beta < 0): less push while separating (vn > 0).
-  const double fn_damp = 2.0 * kSqrt56 * p.beta * std::sqrt(s_n * p.m_star) * vn;
+  const double damp_n = 2.0 * kSqrt56 * p.beta * std::sqrt(s_n * p.m_star);
+  const double fn_damp = damp_n * vn;
   const double fn = std::max(0.0, fn_elastic + fn_damp);
   // Tangential spring: kept in the contact plane, this step's displacement added.
   const double along = sx * nx + sy * ny + sz * nz;
   const double kx = (sx - along * nx) + s_t * vtx * dt;
   const double ky = (sy - along * ny) + s_t * vty * dt;
   const double kz = (sz - along * nz) + s_t * vtz * dt;
-  const double c_t = 2.0 * kSqrt56 * p.beta * std::sqrt(s_t * p.m_star);
+  // sqrt(s_t m*) = sqrt(s_n m*) sqrt(4 G*/E*): the pair's constant root, not a second one here.
+  const double c_t = damp_n * p.shear_to_normal_root;
   double ftx = kx - c_t * vtx;
   double fty = ky - c_t * vty;
   double ftz = kz - c_t * vtz;
@@ -88,10 +91,8 @@ struct ContactLoads {
   sy = touching ? (sliding ? fty : ky) : 0.0;
   sz = touching ? (sliding ? ftz : kz) : 0.0;
   // Rolling friction (EDEM type A) opposes each sphere's own rotation.
-  const double wi = std::sqrt(i.wx * i.wx + i.wy * i.wy + i.wz * i.wz);
-  const double wj = std::sqrt(j.wx * j.wx + j.wy * j.wy + j.wz * j.wz);
-  const double roll_i = wi > 0.0 ? -rolling_friction * fn * i.r / wi : 0.0;
-  const double roll_j = wj > 0.0 ? -rolling_friction * fn * j.r / wj : 0.0;
+  const double roll_i = -rolling_friction * fn * i.r * i.inv_spin;
+  const double roll_j = -rolling_friction * fn * j.r * j.inv_spin;
   ContactLoads out;
   // On i: pushed away along -n, dragged along the relative tangential motion.
   out.fx = touching ? -fn * nx + ftx : 0.0;
@@ -116,11 +117,12 @@ struct ContactLoads {
                                                      const ContactStep& s, std::size_t k) {
   const int a = c.i[k];
   const int b = c.j[k];
-  const Sphere i{m.x[a],  m.y[a],  m.z[a],  m.vx[a], m.vy[a],
-                 m.vz[a], m.wx[a], m.wy[a], m.wz[a], m.r[a]};
-  const Sphere j{m.x[b],  m.y[b],  m.z[b],  m.vx[b], m.vy[b],
-                 m.vz[b], m.wx[b], m.wy[b], m.wz[b], m.r[b]};
-  const PairProperties p{c.e_star[k], c.g_star[k], c.r_star[k], c.m_star[k], c.beta[k]};
+  const Sphere i{m.x[a],  m.y[a],  m.z[a],  m.vx[a], m.vy[a],      m.vz[a],
+                 m.wx[a], m.wy[a], m.wz[a], m.r[a],  m.inv_spin[a]};
+  const Sphere j{m.x[b],  m.y[b],  m.z[b],  m.vx[b], m.vy[b],      m.vz[b],
+                 m.wx[b], m.wy[b], m.wz[b], m.r[b],  m.inv_spin[b]};
+  const PairProperties p{c.e_star[k], c.g_star[k], c.r_star[k],
+                         c.m_star[k], c.beta[k],   c.shear_to_normal_root[k]};
   double sx = c.sx[k];
   double sy = c.sy[k];
   double sz = c.sz[k];

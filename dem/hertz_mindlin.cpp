@@ -34,6 +34,7 @@ PairProperties pair_properties(const ContactMaterial& mat_i, const ContactMateri
   p.m_star = inverse_sum(std::isinf(m_i) ? 0.0 : 1.0 / m_i, std::isinf(m_j) ? 0.0 : 1.0 / m_j);
   const double le = std::log(e);
   p.beta = e >= 1.0 ? 0.0 : le / std::sqrt(le * le + kPi * kPi);
+  p.shear_to_normal_root = p.e_star > 0.0 ? std::sqrt(4.0 * p.g_star / p.e_star) : 0.0;
   return p;
 }
 
@@ -50,8 +51,18 @@ double hertz_normal_force(const PairProperties& p, double overlap_m) {
 ContactResult hertz_mindlin(const ContactMaterial& m, const PairProperties& p, const Particle& i,
                             const Particle& j, double dt, Vec3& spring, double rest_overlap_m) {
   auto sphere = [](const Particle& q) {
-    return lanes::Sphere{q.x.x(), q.x.y(), q.x.z(), q.v.x(), q.v.y(),
-                         q.v.z(), q.w.x(), q.w.y(), q.w.z(), q.radius_m};
+    const double spin = q.w.norm();
+    return lanes::Sphere{q.x.x(),
+                         q.x.y(),
+                         q.x.z(),
+                         q.v.x(),
+                         q.v.y(),
+                         q.v.z(),
+                         q.w.x(),
+                         q.w.y(),
+                         q.w.z(),
+                         q.radius_m,
+                         spin > 0.0 ? 1.0 / spin : 0.0};
   };
   double sx = spring.x();
   double sy = spring.y();

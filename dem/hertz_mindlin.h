@@ -13,6 +13,8 @@ struct PairProperties {
   double r_star = 0.0;
   double m_star = 0.0;
   double beta = 0.0;  // ln e / sqrt(ln^2 e + pi^2)
+  // sqrt(S_t / S_n) = sqrt(8 G* / (2 E*)): the tangential damping's root from the normal one.
+  double shear_to_normal_root = 0.0;
 };
 PairProperties pair_properties(const ContactMaterial& m, double r_i, double r_j, double m_i,
                                double m_j);

@@ -15,12 +15,12 @@ struct BondView {
 struct ContactView {
   const int* i;
   const int* j;
-  const double *rest, *e_star, *g_star, *r_star, *m_star, *beta;
+  const double *rest, *e_star, *g_star, *r_star, *m_star, *beta, *shear_to_normal_root;
   double *sx, *sy, *sz;
   double *fx, *fy, *fz, *ti_x, *ti_y, *ti_z, *tj_x, *tj_y, *tj_z, *touching;
 };
 struct MotionView {
-  const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r;
+  const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r, *inv_spin;
 };
 // What every candidate pair's step shares.
 struct ContactStep {

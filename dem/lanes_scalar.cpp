@@ -39,6 +39,7 @@ ContactView view(ContactArrays& c) {
           c.r_star.data(),
           c.m_star.data(),
           c.beta.data(),
+          c.shear_to_normal_root.data(),
           c.spring_x.data(),
           c.spring_y.data(),
           c.spring_z.data(),
@@ -55,8 +56,8 @@ ContactView view(ContactArrays& c) {
 }
 
 MotionView view(const ParticleMotion& m) {
-  return {m.x.data(),  m.y.data(),  m.z.data(),  m.vx.data(), m.vy.data(),
-          m.vz.data(), m.wx.data(), m.wy.data(), m.wz.data(), m.radius_m.data()};
+  return {m.x.data(),  m.y.data(),  m.z.data(),  m.vx.data(),       m.vy.data(),      m.vz.data(),
+          m.wx.data(), m.wy.data(), m.wz.data(), m.radius_m.data(), m.inv_spin.data()};
 }
 
 void bonds_scalar(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,

@@ -47,27 +47,9 @@ nlohmann::json params_json(const std::vector<ParamSpec>& specs, const std::vecto
   return j;
 }
 
-// "relaxation of the clamp: fraction = 0.2987 +- 0.001, tau = 3.023 +- 0.011 s"
-// A stiction that is a friction's own hold says so after its values.
-std::string effect_text(const ChannelReport& report, std::size_t e) {
-  const ChannelFit& f = report.final_fit;
-  const ChannelModel& c = *report.channel;
-  const Effect& eff = f.effects[e];
-  std::string out = eff.spec->name + ":";
-  for (std::size_t k = 0; k < eff.values.size() && k < eff.spec->params.size(); ++k) {
-    const double sd = e < f.effect_sd.size() && k < f.effect_sd[e].size() ? f.effect_sd[e][k] : 0;
-    char buf[96];
-    std::snprintf(buf, sizeof buf, " %.4g +- %.2g", eff.values[k], sd);
-    const std::string unit = concrete_unit(eff.spec->params[k].unit, c);
-    out += (k ? ", " : " ") + eff.spec->params[k].name + " =" + buf +
-           (unit.empty() || unit == "-" || unit == "1" ? "" : " " + unit);
-  }
-  if (report.friction_hold && report.friction_hold->stiction == e)
-    out += " (" + report.friction_hold->note + ")";
-  return out;
-}
-
-// A stiction that is a friction's own hold says whose (`hold_of`, judge_friction_hold).
+// An effect that is another effect seen from this channel says whose (`hold_of`: a friction's
+// own hold at rest; `through_speed_loop_of`: the disc's friction through the speed loop), as
+// "output:effect", and why (`explained`).
 nlohmann::json effects_json(const ChannelReport& report) {
   const ChannelFit& f = report.final_fit;
   nlohmann::json j = nlohmann::json::array();
@@ -78,9 +60,10 @@ nlohmann::json effects_json(const ChannelReport& report) {
         {"parameters", params_json(f.effects[e].spec->params, f.effects[e].values,
                                    e < f.effect_sd.size() ? f.effect_sd[e] : std::vector<double>{},
                                    *report.channel)}};
-    if (report.friction_hold && report.friction_hold->stiction == e) {
-      entry["hold_of"] = report.friction_hold->friction;
-      entry["hold"] = report.friction_hold->note;
+    if (const auto* x = report.explained_by(e)) {
+      const bool hold = x->relation == ChannelReport::ExplainedBy::Relation::kHoldAtRest;
+      entry[hold ? "hold_of" : "through_speed_loop_of"] = x->by;
+      entry["explained"] = x->note;
     }
     j.push_back(entry);
   }
@@ -103,6 +86,25 @@ nlohmann::json fast_tone_json(const FastTone& f, const ChannelModel& c, double a
 }
 
 }  // namespace
+
+// "relaxation of the clamp: fraction = 0.2987 +- 0.001, tau = 3.023 +- 0.011 s"
+// An effect that is another effect seen from this channel says so after its values.
+std::string effect_text(const ChannelReport& report, std::size_t e) {
+  const ChannelFit& f = report.final_fit;
+  const ChannelModel& c = *report.channel;
+  const Effect& eff = f.effects[e];
+  std::string out = eff.spec->name + ":";
+  for (std::size_t k = 0; k < eff.values.size() && k < eff.spec->params.size(); ++k) {
+    const double sd = e < f.effect_sd.size() && k < f.effect_sd[e].size() ? f.effect_sd[e][k] : 0;
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " %.4g +- %.2g", eff.values[k], sd);
+    const std::string unit = concrete_unit(eff.spec->params[k].unit, c);
+    out += (k ? ", " : " ") + eff.spec->params[k].name + " =" + buf +
+           (unit.empty() || unit == "-" || unit == "1" ? "" : " " + unit);
+  }
+  if (const auto* x = report.explained_by(e)) out += " (" + x->note + ")";
+  return out;
+}
 
 std::string fit_json(const FitReport& r, double wall_s) {
   nlohmann::json j;

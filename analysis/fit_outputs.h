@@ -11,6 +11,10 @@
 namespace planter::analysis {
 
 std::string fit_json(const FitReport& r, double wall_s);
+// One effect of a channel as the summary and the report print it, with its parameters, their
+// SDs and units ("relaxation of the clamp: fraction = 0.2987 +- 0.001, tau_s = 3.023 +- 0.011
+// s"), and why when it is another effect seen from this channel.
+std::string effect_text(const ChannelReport& report, std::size_t effect);
 std::string fit_model_toml(const FitReport& r);
 std::string fit_report_html(const FitReport& r, const Recording& rec);
 // Writes all three into the output set, commits it (the old set or the new, never a mix) and

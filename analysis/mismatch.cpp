@@ -695,7 +695,69 @@ void judge_friction_hold(ChannelReport& c) {
                 "at rest, %.4g +- %.2g %s (a static friction of its own would hold more)",
                 f.spec->name.c_str(), breakaway, unit.c_str(), level, std::sqrt(level_var),
                 unit.c_str());
-  c.friction_hold = ChannelReport::FrictionHold{*stiction, f.spec->name, note};
+  c.explained.push_back({*stiction, ChannelReport::ExplainedBy::Relation::kHoldAtRest,
+                         c.channel->output() + ":" + f.spec->name, note});
+}
+
+// A dead zone on the disc's speed beside a dry friction on its torque. A speed loop that is
+// proportional (with any feedforward) closes on the disc's inertia J as a first-order lag of
+// time constant T_d = J / K, K its stiffness in torque per unit of speed error (the speed
+// channel's nominal form); a constant load torque F then holds the speed F / K = F T_d / J
+// below its command (the loop's steady-state error; Ogata, Modern Control Engineering, ch. 5,
+// type-0 systems). A dead zone of that width is the friction seen through the loop, not a
+// dead zone of the drive: said so when the width is within two SDs (or 5 %) of F T_d / J,
+// with F the friction's moving level, J the torque channel's inertia and T_d the speed
+// channel's lag, each as fitted. An integrating loop leaves no such deficit, so no dead zone.
+void judge_speed_loop_deficit(FitReport& rep) {
+  ChannelReport* speed = nullptr;
+  const ChannelReport* torque = nullptr;
+  for (auto& c : rep.channels) {
+    if (c.channel->output() == "omega") speed = &c;
+    if (c.channel->output() == "disc_torque") torque = &c;
+  }
+  if (speed == nullptr || torque == nullptr) return;
+  std::optional<std::size_t> dead_zone, friction;
+  for (std::size_t e = 0; e < speed->final_fit.effects.size(); ++e)
+    if (speed->final_fit.effects[e].spec->kind == EffectKind::kDeadZone) dead_zone = e;
+  for (std::size_t e = 0; e < torque->final_fit.effects.size(); ++e) {
+    const EffectKind kind = torque->final_fit.effects[e].spec->kind;
+    if (kind == EffectKind::kCoulomb || kind == EffectKind::kStribeck) friction = e;
+  }
+  if (!dead_zone || !friction) return;
+  auto value_sd = [](const ChannelFit& f, std::size_t e, std::size_t k) {
+    const double sd = e < f.effect_sd.size() && k < f.effect_sd[e].size() ? f.effect_sd[e][k] : 0;
+    return std::pair{f.effects[e].values[k], sd};
+  };
+  auto nominal_sd = [](const ChannelFit& f, std::size_t k) {
+    return std::pair{f.nominal[k], k < f.nominal_sd.size() ? f.nominal_sd[k] : 0.0};
+  };
+  // The friction's moving level: Coulomb's, or Stribeck's Coulomb part (its extra is gone
+  // within a few Stribeck speeds).
+  const auto [level, level_sd] = value_sd(torque->final_fit, *friction, 0);
+  const auto [inertia, inertia_sd] = nominal_sd(torque->final_fit, 0);  // J
+  const auto [lag, lag_sd] = nominal_sd(speed->final_fit, 0);           // T_d
+  const auto [width, width_sd] = value_sd(speed->final_fit, *dead_zone, 0);
+  if (!(inertia > 0.0) || !(lag > 0.0) || !(level > 0.0)) return;
+  const double predicted = level * lag / inertia;
+  // First-order propagation of the three fitted values' SDs (treated as independent).
+  const double rel2 =
+      std::pow(level_sd / level, 2) + std::pow(lag_sd / lag, 2) + std::pow(inertia_sd / inertia, 2);
+  const double predicted_sd = predicted * std::sqrt(rel2);
+  const double combined_sd = std::hypot(width_sd, predicted_sd);
+  const double off = std::abs(width - predicted);
+  if (off > std::max(2.0 * combined_sd, 0.05 * predicted)) return;
+  const std::string by =
+      torque->channel->output() + ":" + torque->final_fit.effects[*friction].spec->name;
+  char note[420];
+  std::snprintf(note, sizeof note,
+                "the disc torque's %s seen through the speed loop: a friction of %.4g N m against "
+                "a proportional loop of time constant %.4g s on an inertia of %.4g kg m^2 holds "
+                "the speed %.4g +- %.2g rad/s below its command (F T_d / J), where this dead "
+                "zone is %.4g; not a dead zone of the drive",
+                torque->final_fit.effects[*friction].spec->name.c_str(), level, lag, inertia,
+                predicted, predicted_sd, width);
+  speed->explained.push_back(
+      {*dead_zone, ChannelReport::ExplainedBy::Relation::kThroughSpeedLoop, by, note});
 }
 
 FitReport analyse(const Recording& whole, const FitOptions& o) {
@@ -793,6 +855,7 @@ FitReport analyse(const Recording& whole, const FitOptions& o) {
     }
   }
   for (auto& c : rep.channels) judge_friction_hold(c);
+  judge_speed_loop_deficit(rep);
   return rep;
 }
 

@@ -87,15 +87,27 @@ struct ChannelReport {
   ChannelFit final_fit;
   // What the full rate said of a time-resolution parameter found on decimated rows.
   std::vector<std::string> refined;
-  // A stiction named beside a Coulomb or Stribeck friction whose breakaway is not above that
-  // friction's level at rest: the same friction holding the disc (a dry friction holds whatever
-  // the drive pushes below its level), not a static friction of its own. `stiction` indexes
-  // final_fit.effects; `note` says why.
-  struct FrictionHold {
-    std::size_t stiction = 0;
-    std::string friction, note;
+  // An effect named here that is another named effect seen from here, not a second finding:
+  // - a stiction beside a Coulomb or Stribeck friction whose breakaway is not above that
+  //   friction's level at rest: the same friction holding the disc (a dry friction holds
+  //   whatever the drive pushes below its level), not a static friction of its own
+  //   (judge_friction_hold; "hold_of" in fit.json);
+  // - a dead zone on the disc's speed whose width is what the disc torque's dry friction takes
+  //   off the speed through the speed loop (judge_speed_loop_deficit; "through_speed_loop_of").
+  // `effect` indexes final_fit.effects; `by` names the other effect as "output:effect";
+  // `note` gives the numbers.
+  struct ExplainedBy {
+    enum class Relation { kHoldAtRest, kThroughSpeedLoop };
+    std::size_t effect = 0;
+    Relation relation = Relation::kHoldAtRest;
+    std::string by, note;
   };
-  std::optional<FrictionHold> friction_hold;
+  std::vector<ExplainedBy> explained;
+  [[nodiscard]] const ExplainedBy* explained_by(std::size_t effect) const {
+    for (const auto& x : explained)
+      if (x.effect == effect) return &x;
+    return nullptr;
+  }
   std::string verdict;  // "no significant mismatch", "effect(s) found", "unexplained residual"
   bool unexplained = false;
   // The final fit's nominal parameters that ended at an edge of their range, as
@@ -161,6 +173,10 @@ std::string rejection(const Candidate& c, const FitOptions& o);
 
 // Throws RecordingError when no channel is observable. Glitches are excluded first
 // (glitches.h) and listed in the report.
+// Marks a dead zone on the disc's speed that the disc torque's dry friction explains through a
+// proportional speed loop (ChannelReport::ExplainedBy, kThroughSpeedLoop). analyse() calls it.
+void judge_speed_loop_deficit(FitReport& rep);
+
 FitReport analyse(const Recording& r, const FitOptions& o);
 // What the analysis works on: the recording without its glitches, decimated to at most
 // max_rows with the columns the channels read low-pass filtered first (decimation.h).

@@ -16,11 +16,15 @@ def main():
     case, expect = sys.argv[2], sys.argv[3]
     found = []
     by_output = {c["output"]: c for c in fit["channels"]}
+    named = {"%s:%s" % (c["output"], e["effect"]) for c in fit["channels"] for e in c["effects"]}
     for c in fit["channels"]:
         for e in c["effects"]:
-            # A stiction that is a dry friction's own hold at rest (its breakaway not above the
-            # friction's level, "hold_of") is that friction's, not a second name.
-            if e.get("hold_of") in [f["effect"] for f in c["effects"]]:
+            # An effect that is another named effect seen from this channel is that effect's,
+            # not a second name: a stiction that is a dry friction's own hold at rest
+            # ("hold_of"), a dead zone on the speed that is the disc torque's friction through
+            # the speed loop ("through_speed_loop_of"), each naming it as "output:effect".
+            by = e.get("hold_of") or e.get("through_speed_loop_of")
+            if by in named:
                 continue
             found.append("%s:%s" % (c["output"], e["effect"]))
     problems = []

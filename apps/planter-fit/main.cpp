@@ -66,18 +66,8 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
     std::printf("%-10s %-12s %-26s held-out RMS %.4g -> %.4g (noise %.3g)\n",
                 c.channel->subsystem().c_str(), c.channel->output().c_str(), c.verdict.c_str(),
                 c.nominal.rms_held_out, c.final_fit.rms_held_out, c.noise_rms);
-    for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e) {
-      const auto& fx = c.final_fit.effects[e];
-      std::printf("    %s:", fx.spec->name.c_str());
-      for (std::size_t k = 0; k < fx.values.size(); ++k) {
-        const double sd = e < c.final_fit.effect_sd.size() ? c.final_fit.effect_sd[e][k] : 0.0;
-        std::printf(" %s = %.4g", fx.spec->params[k].name.c_str(), fx.values[k]);
-        if (sd > 0) std::printf(" +- %.2g", sd);
-      }
-      std::printf("\n");
-      if (c.friction_hold && c.friction_hold->stiction == e)
-        std::printf("      %s\n", c.friction_hold->note.c_str());
-    }
+    for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
+      std::printf("    %s\n", effect_text(c, e).c_str());
     for (const auto& note : c.refined) std::printf("    %s\n", note.c_str());
     if (c.change) {
       std::printf("    a parameter changed at t = %.1f +- %.1f s:", c.change->at_s,

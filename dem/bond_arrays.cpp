@@ -15,10 +15,7 @@ void BondArrays::push_back(const Bond& b) {
   bending_y.push_back(b.bending_moment.y());
   bending_z.push_back(b.bending_moment.z());
   broken.push_back(b.broken ? 1.0 : 0.0);
-  for (auto* out : {&force_on_j_x, &force_on_j_y, &force_on_j_z, &torque_on_i_x, &torque_on_i_y,
-                    &torque_on_i_z, &torque_on_j_x, &torque_on_j_y, &torque_on_j_z, &loaded}) {
-    out->push_back(0.0);
-  }
+  loads.resize(i.size());
 }
 
 Bond BondArrays::bond(std::size_t k) const {
@@ -51,40 +48,6 @@ void ParticleMotion::assign(const std::vector<Particle>& particles) {
     radius_m[k] = p.radius_m;
     const double spin = p.w.norm();
     inv_spin[k] = spin > 0.0 ? 1.0 / spin : 0.0;
-  }
-}
-
-void add_bond_load(const BondArrays& b, std::size_t k, bool on_j, Particle& particle) {
-  if (b.loaded[k] == 0.0) return;
-  const Vec3 f(b.force_on_j_x[k], b.force_on_j_y[k], b.force_on_j_z[k]);
-  if (on_j) {
-    particle.f += f;
-    particle.tau += Vec3(b.torque_on_j_x[k], b.torque_on_j_y[k], b.torque_on_j_z[k]);
-  } else {
-    particle.f -= f;
-    particle.tau += Vec3(b.torque_on_i_x[k], b.torque_on_i_y[k], b.torque_on_i_z[k]);
-  }
-}
-
-void add_bond_loads(const BondArrays& b, const Incidence& bonds_of, std::size_t p,
-                    Particle& particle) {
-  const auto end = static_cast<std::size_t>(bonds_of.start[p + 1]);
-  for (auto e = static_cast<std::size_t>(bonds_of.start[p]); e < end; ++e) {
-    add_bond_load(b, static_cast<std::size_t>(bonds_of.pair[e]), bonds_of.is_j[e] != 0, particle);
-  }
-}
-
-void add_all_bond_loads(const BondArrays& b, std::vector<Particle>& particles) {
-  // add_bond_load's two sides with one test and one read of the force (10 % of a step here).
-  for (std::size_t k = 0; k < b.size(); ++k) {
-    if (b.loaded[k] == 0.0) continue;
-    Particle& pi = particles[static_cast<std::size_t>(b.i[k])];
-    Particle& pj = particles[static_cast<std::size_t>(b.j[k])];
-    const Vec3 f(b.force_on_j_x[k], b.force_on_j_y[k], b.force_on_j_z[k]);
-    pj.f += f;
-    pi.f -= f;
-    pj.tau += Vec3(b.torque_on_j_x[k], b.torque_on_j_y[k], b.torque_on_j_z[k]);
-    pi.tau += Vec3(b.torque_on_i_x[k], b.torque_on_i_y[k], b.torque_on_i_z[k]);
   }
 }
 

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "dem/incidence.h"
+#include "dem/pair_loads.h"
 #include "dem/parallel_bond.h"
 
 namespace planter::dem {
@@ -19,11 +19,7 @@ struct BondArrays {
   std::vector<double> shear_x, shear_y, shear_z;
   std::vector<double> bending_x, bending_y, bending_z;
   std::vector<double> broken;
-  // This step's loads on the particles, and whether the bond carried any (1) or not (0).
-  std::vector<double> force_on_j_x, force_on_j_y, force_on_j_z;
-  std::vector<double> torque_on_i_x, torque_on_i_y, torque_on_i_z;
-  std::vector<double> torque_on_j_x, torque_on_j_y, torque_on_j_z;
-  std::vector<double> loaded;
+  PairLoads loads;  // this step's, on the two particles
 
   [[nodiscard]] std::size_t size() const { return i.size(); }
   void push_back(const Bond& b);
@@ -36,15 +32,5 @@ struct ParticleMotion {
   std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz, radius_m, inv_spin;
   void assign(const std::vector<Particle>& particles);
 };
-
-// Adds bond k's loads on its j (`on_j`) or its i to `particle` (nothing if it carried none).
-void add_bond_load(const BondArrays& bonds, std::size_t k, bool on_j, Particle& particle);
-// Adds the loads of each bond particle `p` is in to `particle`, in bond order (the order is the
-// result's: floating-point sums are not associative). `bonds_of` is the bonds' incidence.
-void add_bond_loads(const BondArrays& bonds, const Incidence& bonds_of, std::size_t p,
-                    Particle& particle);
-// The same sums for every particle at once, in one pass over the bonds (one thread: the
-// arrays are read in order).
-void add_all_bond_loads(const BondArrays& bonds, std::vector<Particle>& particles);
 
 }  // namespace planter::dem

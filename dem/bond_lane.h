@@ -113,7 +113,7 @@ namespace planter::dem::lanes {
   b.by[k] = live ? by : by0;
   b.bz[k] = live ? bz : bz0;
   b.broken[k] = live & breaks ? 1.0 : was_broken;
-  b.loaded[k] = live & !breaks ? 1.0 : 0.0;
+  b.out.carried[k] = live & !breaks ? 1.0 : 0.0;
   // On j: the normal force along n and the shear force; the moments about n and in-plane, and
   // each force's moment about its particle's centre.
   const double fx = fn * nx + sx;
@@ -122,15 +122,16 @@ namespace planter::dem::lanes {
   const double mx = twist * nx + bx;
   const double my = twist * ny + by;
   const double mz = twist * nz + bz;
-  b.fx[k] = fx;
-  b.fy[k] = fy;
-  b.fz[k] = fz;
-  b.tj_x[k] = mx + (rjy * fz - rjz * fy);
-  b.tj_y[k] = my + (rjz * fx - rjx * fz);
-  b.tj_z[k] = mz + (rjx * fy - rjy * fx);
-  b.ti_x[k] = -mx - (riy * fz - riz * fy);
-  b.ti_y[k] = -my - (riz * fx - rix * fz);
-  b.ti_z[k] = -mz - (rix * fy - riy * fx);
+  // Stored as the force on i (exact negation: the sums' bits are a force-on-j pass's).
+  b.out.fx[k] = -fx;
+  b.out.fy[k] = -fy;
+  b.out.fz[k] = -fz;
+  b.out.tj_x[k] = mx + (rjy * fz - rjz * fy);
+  b.out.tj_y[k] = my + (rjz * fx - rjx * fz);
+  b.out.tj_z[k] = mz + (rjx * fy - rjy * fx);
+  b.out.ti_x[k] = -mx - (riy * fz - riz * fy);
+  b.out.ti_y[k] = -my - (riz * fx - rix * fz);
+  b.out.ti_z[k] = -mz - (rix * fy - riy * fx);
 }
 
 }  // namespace planter::dem::lanes

@@ -6,26 +6,8 @@ namespace {
 
 template <typename Fn>
 void each_array(ContactArrays& c, Fn&& fn) {
-  for (auto* a : {&c.rest_overlap_m,
-                  &c.e_star,
-                  &c.g_star,
-                  &c.r_star,
-                  &c.m_star,
-                  &c.beta,
-                  &c.shear_to_normal_root,
-                  &c.spring_x,
-                  &c.spring_y,
-                  &c.spring_z,
-                  &c.force_on_i_x,
-                  &c.force_on_i_y,
-                  &c.force_on_i_z,
-                  &c.torque_on_i_x,
-                  &c.torque_on_i_y,
-                  &c.torque_on_i_z,
-                  &c.torque_on_j_x,
-                  &c.torque_on_j_y,
-                  &c.torque_on_j_z,
-                  &c.touching}) {
+  for (auto* a : {&c.rest_overlap_m, &c.e_star, &c.g_star, &c.r_star, &c.m_star, &c.beta,
+                  &c.shear_to_normal_root, &c.spring_x, &c.spring_y, &c.spring_z}) {
     fn(*a);
   }
 }
@@ -37,6 +19,7 @@ void ContactArrays::clear() {
   j.clear();
   bond.clear();
   each_array(*this, [](std::vector<double>& a) { a.clear(); });
+  loads.clear();
 }
 
 void ContactArrays::push_back(int pi, int pj, int bond_index, double rest_overlap,
@@ -45,6 +28,7 @@ void ContactArrays::push_back(int pi, int pj, int bond_index, double rest_overla
   j.push_back(pj);
   bond.push_back(bond_index);
   each_array(*this, [](std::vector<double>& a) { a.push_back(0.0); });
+  loads.resize(i.size());
   const std::size_t k = i.size() - 1;
   rest_overlap_m[k] = rest_overlap;
   e_star[k] = p.e_star;
@@ -63,40 +47,5 @@ PairProperties ContactArrays::properties(std::size_t k) const {
 }
 
 Vec3 ContactArrays::spring(std::size_t k) const { return {spring_x[k], spring_y[k], spring_z[k]}; }
-
-void add_contact_load(const ContactArrays& c, std::size_t k, bool on_j, Particle& particle) {
-  if (c.touching[k] == 0.0) return;
-  const Vec3 f(c.force_on_i_x[k], c.force_on_i_y[k], c.force_on_i_z[k]);
-  if (on_j) {
-    particle.f -= f;
-    particle.tau += Vec3(c.torque_on_j_x[k], c.torque_on_j_y[k], c.torque_on_j_z[k]);
-  } else {
-    particle.f += f;
-    particle.tau += Vec3(c.torque_on_i_x[k], c.torque_on_i_y[k], c.torque_on_i_z[k]);
-  }
-}
-
-void add_contact_loads(const ContactArrays& c, const Incidence& contacts_of, std::size_t p,
-                       Particle& particle) {
-  const auto end = static_cast<std::size_t>(contacts_of.start[p + 1]);
-  for (auto e = static_cast<std::size_t>(contacts_of.start[p]); e < end; ++e) {
-    add_contact_load(c, static_cast<std::size_t>(contacts_of.pair[e]), contacts_of.is_j[e] != 0,
-                     particle);
-  }
-}
-
-void add_all_contact_loads(const ContactArrays& c, std::vector<Particle>& particles) {
-  // add_contact_load's two sides with one test and one read of the force.
-  for (std::size_t k = 0; k < c.size(); ++k) {
-    if (c.touching[k] == 0.0) continue;
-    Particle& a = particles[static_cast<std::size_t>(c.i[k])];
-    Particle& b = particles[static_cast<std::size_t>(c.j[k])];
-    const Vec3 f(c.force_on_i_x[k], c.force_on_i_y[k], c.force_on_i_z[k]);
-    a.f += f;
-    b.f -= f;
-    a.tau += Vec3(c.torque_on_i_x[k], c.torque_on_i_y[k], c.torque_on_i_z[k]);
-    b.tau += Vec3(c.torque_on_j_x[k], c.torque_on_j_y[k], c.torque_on_j_z[k]);
-  }
-}
 
 }  // namespace planter::dem

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "dem/hertz_mindlin.h"
-#include "dem/incidence.h"
+#include "dem/pair_loads.h"
 
 namespace planter::dem {
 
@@ -16,11 +16,7 @@ struct ContactArrays {
   std::vector<double> rest_overlap_m;  // the bonded pair's as-built overlap, else 0
   std::vector<double> e_star, g_star, r_star, m_star, beta, shear_to_normal_root;  // PairProperties
   std::vector<double> spring_x, spring_y, spring_z;  // tangential spring (history)
-  // This step's loads, and whether the pair touched (1) or not (0).
-  std::vector<double> force_on_i_x, force_on_i_y, force_on_i_z;
-  std::vector<double> torque_on_i_x, torque_on_i_y, torque_on_i_z;
-  std::vector<double> torque_on_j_x, torque_on_j_y, torque_on_j_z;
-  std::vector<double> touching;
+  PairLoads loads;  // this step's, on the two particles (carried: the pair touched)
 
   [[nodiscard]] std::size_t size() const { return i.size(); }
   void clear();
@@ -29,14 +25,5 @@ struct ContactArrays {
   [[nodiscard]] PairProperties properties(std::size_t k) const;
   [[nodiscard]] Vec3 spring(std::size_t k) const;
 };
-
-// Adds pair k's loads on its j (`on_j`) or its i to `particle` (nothing if it did not touch).
-void add_contact_load(const ContactArrays& contacts, std::size_t k, bool on_j, Particle& particle);
-// Adds the loads of each pair particle `p` is in to `particle`, in pair order (the order is
-// the result's). `contacts_of` is the pairs' incidence.
-void add_contact_loads(const ContactArrays& contacts, const Incidence& contacts_of, std::size_t p,
-                       Particle& particle);
-// The same sums for every particle at once, in one pass over the pairs.
-void add_all_contact_loads(const ContactArrays& contacts, std::vector<Particle>& particles);
 
 }  // namespace planter::dem

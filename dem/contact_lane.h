@@ -131,16 +131,16 @@ struct ContactLoads {
   c.sx[k] = sx;
   c.sy[k] = sy;
   c.sz[k] = sz;
-  c.fx[k] = l.fx;
-  c.fy[k] = l.fy;
-  c.fz[k] = l.fz;
-  c.ti_x[k] = l.ti_x;
-  c.ti_y[k] = l.ti_y;
-  c.ti_z[k] = l.ti_z;
-  c.tj_x[k] = l.tj_x;
-  c.tj_y[k] = l.tj_y;
-  c.tj_z[k] = l.tj_z;
-  c.touching[k] = l.touching ? 1.0 : 0.0;
+  c.out.fx[k] = l.fx;
+  c.out.fy[k] = l.fy;
+  c.out.fz[k] = l.fz;
+  c.out.ti_x[k] = l.ti_x;
+  c.out.ti_y[k] = l.ti_y;
+  c.out.ti_z[k] = l.ti_z;
+  c.out.tj_x[k] = l.tj_x;
+  c.out.tj_y[k] = l.tj_y;
+  c.out.tj_z[k] = l.tj_z;
+  c.out.carried[k] = l.touching ? 1.0 : 0.0;
 }
 
 }  // namespace planter::dem::lanes

@@ -172,8 +172,8 @@ void DemWorld::particle_step(std::size_t i, bool sum_pairs, double dt) {
   if (sum_pairs) {
     p.f.setZero();
     p.tau.setZero();
-    add_bond_loads(bonds_, bonds_of_, i, p);
-    add_contact_loads(candidates_, contacts_of_, i, p);
+    add_pair_loads(bonds_.loads, bonds_of_, i, p);
+    add_pair_loads(candidates_.loads, contacts_of_, i, p);
   }
   platen_contacts(i, p, dt);
   integrate(p, dt);
@@ -208,8 +208,8 @@ void DemWorld::step(double dt) {
       p.f.setZero();
       p.tau.setZero();
     }
-    add_all_bond_loads(bonds_, particles_);
-    add_all_contact_loads(candidates_, particles_);
+    add_all_pair_loads(bonds_.loads, bonds_.i, bonds_.j, particles_);
+    add_all_pair_loads(candidates_.loads, candidates_.i, candidates_.j, particles_);
   }
   auto particles = [&](int k) {
     const auto [p0, p1] = share(particles_.size(), k);

@@ -6,18 +6,22 @@
 
 namespace planter::dem::lanes {
 
+// A step's loads (PairLoads): the force on i, the torques on i and j, whether carried.
+struct LoadsView {
+  double *fx, *fy, *fz, *ti_x, *ti_y, *ti_z, *tj_x, *tj_y, *tj_z, *carried;
+};
 struct BondView {
   const int* i;
   const int* j;
   double *fn, *twist, *sx, *sy, *sz, *bx, *by, *bz, *broken;
-  double *fx, *fy, *fz, *ti_x, *ti_y, *ti_z, *tj_x, *tj_y, *tj_z, *loaded;
+  LoadsView out;
 };
 struct ContactView {
   const int* i;
   const int* j;
   const double *rest, *e_star, *g_star, *r_star, *m_star, *beta, *shear_to_normal_root;
   double *sx, *sy, *sz;
-  double *fx, *fy, *fz, *ti_x, *ti_y, *ti_z, *tj_x, *tj_y, *tj_z, *touching;
+  LoadsView out;
 };
 struct MotionView {
   const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r, *inv_spin;

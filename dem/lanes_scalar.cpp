@@ -5,54 +5,29 @@
 #include "dem/lane_paths.h"
 
 namespace planter::dem::lanes {
+namespace {
+
+LoadsView loads_view(PairLoads& l) {
+  return {l.force_on_i_x.data(),  l.force_on_i_y.data(),  l.force_on_i_z.data(),
+          l.torque_on_i_x.data(), l.torque_on_i_y.data(), l.torque_on_i_z.data(),
+          l.torque_on_j_x.data(), l.torque_on_j_y.data(), l.torque_on_j_z.data(),
+          l.carried.data()};
+}
+
+}  // namespace
 
 BondView view(BondArrays& b) {
-  return {b.i.data(),
-          b.j.data(),
-          b.normal_force_N.data(),
-          b.twist_moment.data(),
-          b.shear_x.data(),
-          b.shear_y.data(),
-          b.shear_z.data(),
-          b.bending_x.data(),
-          b.bending_y.data(),
-          b.bending_z.data(),
-          b.broken.data(),
-          b.force_on_j_x.data(),
-          b.force_on_j_y.data(),
-          b.force_on_j_z.data(),
-          b.torque_on_i_x.data(),
-          b.torque_on_i_y.data(),
-          b.torque_on_i_z.data(),
-          b.torque_on_j_x.data(),
-          b.torque_on_j_y.data(),
-          b.torque_on_j_z.data(),
-          b.loaded.data()};
+  return {b.i.data(),         b.j.data(),         b.normal_force_N.data(), b.twist_moment.data(),
+          b.shear_x.data(),   b.shear_y.data(),   b.shear_z.data(),        b.bending_x.data(),
+          b.bending_y.data(), b.bending_z.data(), b.broken.data(),         loads_view(b.loads)};
 }
 
 ContactView view(ContactArrays& c) {
-  return {c.i.data(),
-          c.j.data(),
-          c.rest_overlap_m.data(),
-          c.e_star.data(),
-          c.g_star.data(),
-          c.r_star.data(),
-          c.m_star.data(),
-          c.beta.data(),
-          c.shear_to_normal_root.data(),
-          c.spring_x.data(),
-          c.spring_y.data(),
-          c.spring_z.data(),
-          c.force_on_i_x.data(),
-          c.force_on_i_y.data(),
-          c.force_on_i_z.data(),
-          c.torque_on_i_x.data(),
-          c.torque_on_i_y.data(),
-          c.torque_on_i_z.data(),
-          c.torque_on_j_x.data(),
-          c.torque_on_j_y.data(),
-          c.torque_on_j_z.data(),
-          c.touching.data()};
+  return {c.i.data(),         c.j.data(),        c.rest_overlap_m.data(),
+          c.e_star.data(),    c.g_star.data(),   c.r_star.data(),
+          c.m_star.data(),    c.beta.data(),     c.shear_to_normal_root.data(),
+          c.spring_x.data(),  c.spring_y.data(), c.spring_z.data(),
+          loads_view(c.loads)};
 }
 
 MotionView view(const ParticleMotion& m) {

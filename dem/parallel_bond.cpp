@@ -50,7 +50,7 @@ void update_bond(Bond& b, const BondStep& s, Particle& pi, Particle& pj) {
   ParticleMotion motion;
   motion.assign(pair);
   update_bonds(VectorPath::kScalar, one, motion, s, 0, 1);
-  add_all_bond_loads(one, pair);
+  add_all_pair_loads(one.loads, one.i, one.j, pair);
   local = one.bond(0);
   local.i = b.i;
   local.j = b.j;

@@ -112,8 +112,8 @@ namespace planter::dem::lanes {
   b.bx[k] = live ? bx : bx0;
   b.by[k] = live ? by : by0;
   b.bz[k] = live ? bz : bz0;
-  b.broken[k] = live & breaks ? 1.0 : was_broken;
-  b.out.carried[k] = live & !breaks ? 1.0 : 0.0;
+  b.broken[k] = (live & breaks) ? 1.0 : was_broken;
+  b.out.carried[k] = (live & !breaks) ? 1.0 : 0.0;
   // On j: the normal force along n and the shear force; the moments about n and in-plane, and
   // each force's moment about its particle's centre.
   const double fx = fn * nx + sx;

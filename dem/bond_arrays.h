@@ -1,7 +1,6 @@
 #pragma once
-// The parallel bonds as a structure of arrays, and the particles' motion the bond step reads,
-// so that one bond per vector lane is computed (dem/bond_kernel.h). Flags are doubles (0 or 1)
-// to keep every lane one width.
+// The parallel bonds as a structure of arrays, so that one bond per vector lane is computed
+// (dem/bond_kernel.h). Flags are doubles (0 or 1) to keep every lane one width.
 #include <cstddef>
 #include <vector>
 
@@ -24,13 +23,6 @@ struct BondArrays {
   [[nodiscard]] std::size_t size() const { return i.size(); }
   void push_back(const Bond& b);
   [[nodiscard]] Bond bond(std::size_t k) const;
-};
-
-// Position, velocity, angular velocity and radius of every particle, one array per component,
-// and 1/|w| (0 for a particle that does not spin).
-struct ParticleMotion {
-  std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz, radius_m, inv_spin;
-  void assign(const std::vector<Particle>& particles);
 };
 
 }  // namespace planter::dem

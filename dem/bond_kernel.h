@@ -3,6 +3,7 @@
 #include <cstddef>
 
 #include "dem/bond_arrays.h"
+#include "dem/particle_motion.h"
 #include "dem/vector_path.h"
 
 namespace planter::dem {

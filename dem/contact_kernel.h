@@ -3,8 +3,8 @@
 // (dem/vector_path.h).
 #include <cstddef>
 
-#include "dem/bond_arrays.h"
 #include "dem/contact_arrays.h"
+#include "dem/particle_motion.h"
 #include "dem/vector_path.h"
 
 namespace planter::dem {

@@ -1,8 +1,8 @@
 #pragma once
 // The bonded-particle world: particles, parallel bonds, Hertz-Mindlin contacts (between
 // particles and with rigid platens), integrated with the symplectic (leapfrog) Euler step.
-// Single-threaded and deterministic: the same input gives bit-identical results, on every
-// vector path of the bonds' and contacts' steps (dem/vector_path.h).
+// Deterministic: the same input gives bit-identical results on every vector path of the bonds'
+// and contacts' steps (dem/vector_path.h) and on any number of threads (set_threads).
 #include <optional>
 #include <utility>
 #include <vector>
@@ -13,6 +13,7 @@
 #include "dem/contact_kernel.h"
 #include "dem/hertz_mindlin.h"
 #include "dem/parallel_bond.h"
+#include "dem/particle_motion.h"
 #include "dem/step_threads.h"
 
 namespace planter::dem {

@@ -51,18 +51,8 @@ double hertz_normal_force(const PairProperties& p, double overlap_m) {
 ContactResult hertz_mindlin(const ContactMaterial& m, const PairProperties& p, const Particle& i,
                             const Particle& j, double dt, Vec3& spring, double rest_overlap_m) {
   auto sphere = [](const Particle& q) {
-    const double spin = q.w.norm();
-    return lanes::Sphere{q.x.x(),
-                         q.x.y(),
-                         q.x.z(),
-                         q.v.x(),
-                         q.v.y(),
-                         q.v.z(),
-                         q.w.x(),
-                         q.w.y(),
-                         q.w.z(),
-                         q.radius_m,
-                         spin > 0.0 ? 1.0 / spin : 0.0};
+    return lanes::Sphere{q.x.x(), q.x.y(), q.x.z(), q.v.x(),    q.v.y(),          q.v.z(),
+                         q.w.x(), q.w.y(), q.w.z(), q.radius_m, inverse_spin(q.w)};
   };
   double sx = spring.x();
   double sy = spring.y();

@@ -3,6 +3,7 @@
 // once per step for the lane-wise kernels (dem/bond_lane.h, dem/contact_lane.h).
 #include "dem/bond_arrays.h"
 #include "dem/contact_arrays.h"
+#include "dem/particle_motion.h"
 
 namespace planter::dem::lanes {
 

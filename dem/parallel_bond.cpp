@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "dem/bond_kernel.h"
+#include "dem/particle_motion.h"
 
 namespace planter::dem {
 namespace {

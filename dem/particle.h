@@ -19,6 +19,13 @@ struct Particle {
   bool fixed = false;         // held in place (a clamp, a platen particle)
 };
 
+// 1/|w| of an angular velocity, 0 when it does not spin: the rolling torque's direction is w
+// times it (worked out once a step per particle, not once per contact).
+inline double inverse_spin(const Vec3& w) {
+  const double spin = w.norm();
+  return spin > 0.0 ? 1.0 / spin : 0.0;
+}
+
 // A particle of the material's density and the given radius, at rest.
 Particle make_particle(const Vec3& x, double radius_m, double density_kg_m3);
 

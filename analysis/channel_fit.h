@@ -31,6 +31,11 @@ struct ChannelFit {
   // the parameter that contributes most to it (an index into fitted_values(); -1: none).
   double held_out_prediction_sd = 0.0;
   int least_determined = -1;
+
+  // Effect e's parameter k's SD (a grid parameter's: its resolution), 0 where none was stated.
+  [[nodiscard]] double effect_sd_of(std::size_t e, std::size_t k) const {
+    return e < effect_sd.size() && k < effect_sd[e].size() ? effect_sd[e][k] : 0.0;
+  }
 };
 
 ChannelFit fit_channel(const ChannelModel& channel, const Recording& r, const Split& split,

@@ -95,7 +95,7 @@ std::string effect_text(const ChannelReport& report, std::size_t e) {
   const Effect& eff = f.effects[e];
   std::string out = eff.spec->name + ":";
   for (std::size_t k = 0; k < eff.values.size() && k < eff.spec->params.size(); ++k) {
-    const double sd = e < f.effect_sd.size() && k < f.effect_sd[e].size() ? f.effect_sd[e][k] : 0;
+    const double sd = f.effect_sd_of(e, k);
     char buf[96];
     std::snprintf(buf, sizeof buf, " %.4g +- %.2g", eff.values[k], sd);
     const std::string unit = concrete_unit(eff.spec->params[k].unit, c);

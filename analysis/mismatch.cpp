@@ -669,7 +669,6 @@ void refine_stribeck_at_full_rate(ChannelReport& c, const Recording& r, std::siz
 // the stiction is static friction of its own and stays named apart.
 void judge_friction_hold(ChannelReport& c) {
   const auto& fx = c.final_fit.effects;
-  const auto& sd = c.final_fit.effect_sd;
   std::optional<std::size_t> stiction, friction;
   for (std::size_t e = 0; e < fx.size(); ++e) {
     const EffectKind kind = fx[e].spec->kind;
@@ -682,8 +681,7 @@ void judge_friction_hold(ChannelReport& c) {
   const double level = f.values[0] + (stribeck ? f.values[1] : 0.0);
   double level_var = 0.0;
   for (std::size_t k = 0; k < (stribeck ? 2u : 1u); ++k)
-    if (*friction < sd.size() && k < sd[*friction].size())
-      level_var += sd[*friction][k] * sd[*friction][k];
+    level_var += std::pow(c.final_fit.effect_sd_of(*friction, k), 2);
   const double breakaway = fx[*stiction].values[1];
   const double bound = level + 2.0 * std::sqrt(level_var);
   if (breakaway > bound) return;
@@ -725,8 +723,7 @@ void judge_speed_loop_deficit(FitReport& rep) {
   }
   if (!dead_zone || !friction) return;
   auto value_sd = [](const ChannelFit& f, std::size_t e, std::size_t k) {
-    const double sd = e < f.effect_sd.size() && k < f.effect_sd[e].size() ? f.effect_sd[e][k] : 0;
-    return std::pair{f.effects[e].values[k], sd};
+    return std::pair{f.effects[e].values[k], f.effect_sd_of(e, k)};
   };
   auto nominal_sd = [](const ChannelFit& f, std::size_t k) {
     return std::pair{f.nominal[k], k < f.nominal_sd.size() ? f.nominal_sd[k] : 0.0};

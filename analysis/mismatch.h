@@ -171,12 +171,12 @@ struct FitReport {
 // it does. The analysis decides by this, and the report prints it.
 std::string rejection(const Candidate& c, const FitOptions& o);
 
-// Throws RecordingError when no channel is observable. Glitches are excluded first
-// (glitches.h) and listed in the report.
 // Marks a dead zone on the disc's speed that the disc torque's dry friction explains through a
 // proportional speed loop (ChannelReport::ExplainedBy, kThroughSpeedLoop). analyse() calls it.
 void judge_speed_loop_deficit(FitReport& rep);
 
+// Throws RecordingError when no channel is observable. Glitches are excluded first
+// (glitches.h) and listed in the report.
 FitReport analyse(const Recording& r, const FitOptions& o);
 // What the analysis works on: the recording without its glitches, decimated to at most
 // max_rows with the columns the channels read low-pass filtered first (decimation.h).

@@ -55,6 +55,9 @@ struct OutputContext {
   const std::vector<Effect>* effects = nullptr;  // all of the channel's (Prony terms act together)
   const std::vector<double>* displacement =
       nullptr;  // what hysteresis follows (the clamp's roller)
+  // Rows of `displacement` per row of the output: a thinned recording's is at its own rate
+  // (Recording::travel).
+  std::size_t displacement_stride = 1;
 };
 
 // One named effect, whole: what it is, its parameters and bounds, where and how it acts, and
@@ -107,6 +110,9 @@ class ChannelModel {
   // simulator's known_* columns, docs/recording-format.md): what the scenario varies on
   // purpose is then not a mismatch. A recording without them is fitted as before.
   [[nodiscard]] virtual std::vector<std::string> known_inputs() const { return {}; }
+  // The recorded displacement a rate-independent effect follows (the clamp's hysteresis
+  // follows its roller), or none. A thinned recording carries its path apart (Recording::travel).
+  [[nodiscard]] virtual std::string displacement() const { return {}; }
   [[nodiscard]] virtual std::vector<ParamSpec> nominal_params() const = 0;
   // The candidate effects that make sense on this channel, given the recording's columns (an
   // effect driven by another signal, such as sag by the draft, needs that signal).

@@ -468,6 +468,7 @@ class ClampChannel : public ChannelModel {
   std::string subsystem() const override { return "clamp"; }
   std::string output() const override { return "clamp_force"; }
   std::string input() const override { return "clamp_pos_mm"; }
+  std::string displacement() const override { return "clamp_pos_mm"; }
   std::vector<std::string> needs() const override { return {"clamp_pos_mm", "clamp_force"}; }
   std::vector<std::string> known_inputs() const override { return {"known_nip_mm"}; }
   std::vector<ParamSpec> nominal_params() const override {
@@ -516,7 +517,7 @@ class ClampChannel : public ChannelModel {
     const std::vector<double>& power = law_power(x, p[1], p[2]);
     y.resize(x.size());
     for (std::size_t k = 0; k < x.size(); ++k) y[k] = p[0] * power[k];
-    apply_output(r, fx, nullptr, nullptr, y, &r.at("clamp_pos_mm"));
+    apply_output(r, fx, nullptr, nullptr, y, displacement());
   }
 };
 

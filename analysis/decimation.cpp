@@ -12,26 +12,36 @@ namespace {
 
 constexpr double kPi = 3.141592653589793;
 
-// One second-order section, direct form II transposed.
+// One second-order section, direct form II transposed, with its state.
 struct Biquad {
   double b0, b1, b2, a1, a2;
-  // Runs over x in place, starting from the steady state of x's first value (no step at the
-  // start: the filter has always seen it).
-  void run(std::vector<double>& x) const {
-    if (x.empty()) return;
+  double z1 = 0.0, z2 = 0.0;
+  // Starts from the steady state of the input `x0`: no step at the start, the filter has always
+  // seen it. Returns the first output.
+  double start(double x0) {
     const double gain = (b0 + b1 + b2) / (1.0 + a1 + a2);  // 1 for a low-pass
-    const double y0 = gain * x[0];
-    double z1 = y0 - b0 * x[0];
-    double z2 = b2 * x[0] - a2 * y0;
-    for (double& v : x) {
-      const double in = v;
-      const double out = b0 * in + z1;
-      z1 = b1 * in - a1 * out + z2;
-      z2 = b2 * in - a2 * out;
-      v = out;
-    }
+    const double y0 = gain * x0;
+    z1 = y0 - b0 * x0;
+    z2 = b2 * x0 - a2 * y0;
+    return step(x0);
+  }
+  double step(double in) {
+    const double out = b0 * in + z1;
+    z1 = b1 * in - a1 * out + z2;
+    z2 = b2 * in - a2 * out;
+    return out;
   }
 };
+
+// Two sections in cascade over x in place, forwards (step +1) or backwards (-1). One loop runs
+// both: the second section's recurrence overlaps the first's on the next row (each is a chain
+// of dependent multiply-adds), the same operations in the same order as two passes.
+void run_cascade(Biquad first, Biquad second, std::vector<double>& x, bool forwards) {
+  const std::size_t n = x.size();
+  auto at = [&](std::size_t i) -> double& { return x[forwards ? i : n - 1 - i]; };
+  at(0) = second.start(first.start(at(0)));
+  for (std::size_t i = 1; i < n; ++i) at(i) = second.step(first.step(at(i)));
+}
 
 // Low-pass section with quality q, by the bilinear transform with pre-warping.
 Biquad lowpass(double cutoff_hz, double rate_hz, double q) {
@@ -47,12 +57,10 @@ void zero_phase_lowpass(std::vector<double>& x, double cutoff_hz, double rate_hz
   if (x.size() < 3 || cutoff_hz <= 0.0 || cutoff_hz >= 0.5 * rate_hz) return;
   // Fourth-order Butterworth: two sections with the poles' quality factors
   // 1 / (2 cos(pi/8)) and 1 / (2 cos(3 pi/8)).
-  const std::array<Biquad, 2> sections{lowpass(cutoff_hz, rate_hz, 0.5411961001461969),
-                                       lowpass(cutoff_hz, rate_hz, 1.3065629648763766)};
-  for (const Biquad& s : sections) s.run(x);
-  std::reverse(x.begin(), x.end());
-  for (const Biquad& s : sections) s.run(x);
-  std::reverse(x.begin(), x.end());
+  const Biquad first = lowpass(cutoff_hz, rate_hz, 0.5411961001461969);
+  const Biquad second = lowpass(cutoff_hz, rate_hz, 1.3065629648763766);
+  run_cascade(first, second, x, true);
+  run_cascade(first, second, x, false);
 }
 
 double sample_rate_hz(const Recording& r) {
@@ -70,13 +78,46 @@ double anti_alias_gain(const Recording& r, double f_hz) {
   return 1.0 / (1.0 + std::pow(ratio, 8));
 }
 
-Recording decimated(const Recording& r, std::size_t stride,
-                    const std::vector<std::string>& filter) {
+namespace {
+
+// Every stride-th row of `v`, each the average over its row's interval, centred on the row (no
+// delay; half weights at the ends of an even stride).
+std::vector<double> interval_averaged(const std::vector<double>& v, std::size_t stride) {
+  std::vector<double> o;
+  o.reserve(v.size() / stride + 1);
+  const double half = 0.5 * static_cast<double>(stride);
+  const auto reach = static_cast<std::size_t>(half);
+  for (std::size_t k = 0; k < v.size(); k += stride) {
+    double sum = 0.0, weight = 0.0;
+    const std::size_t from = k >= reach ? k - reach : 0;
+    const std::size_t to = std::min(v.size() - 1, k + reach);
+    for (std::size_t j = from; j <= to; ++j) {
+      const double distance = std::abs(static_cast<double>(j) - static_cast<double>(k));
+      const double w = distance < half ? 1.0 : 0.5;
+      sum += w * v[j];
+      weight += w;
+    }
+    o.push_back(sum / weight);
+  }
+  return o;
+}
+
+}  // namespace
+
+std::vector<double> thinned_as_filtered(std::vector<double> v, std::size_t stride, double rate_hz) {
+  zero_phase_lowpass(v, anti_alias_cutoff_hz(rate_hz / static_cast<double>(stride)), rate_hz);
+  std::vector<double> o;
+  o.reserve(v.size() / stride + 1);
+  for (std::size_t k = 0; k < v.size(); k += stride) o.push_back(v[k]);
+  return o;
+}
+
+Recording decimated(const Recording& r, std::size_t stride, const std::vector<std::string>& filter,
+                    const std::vector<std::string>& travel) {
   if (stride <= 1) return r;
   Recording out = without_rows(r);
   out.decimation_stride = r.decimation_stride * stride;
   const double rate = sample_rate_hz(r);
-  const double cutoff = anti_alias_cutoff_hz(rate / static_cast<double>(stride));
   for (std::size_t k = 0; k < r.size(); k += stride) out.t.push_back(r.t[k]);
   for (const auto& [name, v] : r.signals) {
     auto& o = out.signals[name];
@@ -87,29 +128,15 @@ Recording decimated(const Recording& r, std::size_t stride,
     } else if (decl != nullptr && decl->commanded != nullptr) {
       // A command is a staircase the controller held: the low-pass filter rings at its
       // steps (a play or a dead zone then reads the ringing: a 6 mm play read 8.5 mm, issue
-      // 32), so it is averaged over each kept row's interval instead, centred on the row
-      // (no delay; half weights at the ends of an even stride). The actuator integrates the
-      // staircase; the average keeps that integral.
-      const double half = 0.5 * static_cast<double>(stride);
-      const auto reach = static_cast<std::size_t>(half);
-      for (std::size_t k = 0; k < v.size(); k += stride) {
-        double sum = 0.0, weight = 0.0;
-        const std::size_t from = k >= reach ? k - reach : 0;
-        const std::size_t to = std::min(v.size() - 1, k + reach);
-        for (std::size_t j = from; j <= to; ++j) {
-          const double distance = std::abs(static_cast<double>(j) - static_cast<double>(k));
-          const double w = distance < half ? 1.0 : 0.5;
-          sum += w * v[j];
-          weight += w;
-        }
-        o.push_back(sum / weight);
-      }
+      // 32), so it is averaged over each kept row's interval instead. The actuator integrates
+      // the staircase; the average keeps that integral.
+      o = interval_averaged(v, stride);
     } else {
       out.full_rate_noise.emplace(name, white_noise_rms(v, v.size()));
       out.full_rate_grid.emplace(name, value_grid(v));
-      std::vector<double> smooth = v;
-      zero_phase_lowpass(smooth, cutoff, rate);
-      for (std::size_t k = 0; k < smooth.size(); k += stride) o.push_back(smooth[k]);
+      o = thinned_as_filtered(v, stride, rate);
+      if (r.decimation_stride == 1 && std::find(travel.begin(), travel.end(), name) != travel.end())
+        out.travel.emplace(name, v);
     }
   }
   for (std::size_t k = 0; k < r.state.size(); k += stride) out.state.push_back(r.state[k]);

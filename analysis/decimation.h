@@ -26,8 +26,14 @@ void zero_phase_lowpass(std::vector<double>& x, double cutoff_hz, double rate_hz
 // Every `stride`-th row; the named columns first filtered below kAntiAliasCutoffShare of the new
 // Nyquist frequency, except a command (the signal table's commanded columns), which is averaged
 // over each kept row's interval: the filter would ring at its steps. Other columns and the
-// state are only thinned (a flag has no spectrum).
-Recording decimated(const Recording& r, std::size_t stride, const std::vector<std::string>& filter);
+// state are only thinned (a flag has no spectrum). A filtered column named in `travel` is also
+// kept whole at its own rate (Recording::travel), for rate-independent effects.
+Recording decimated(const Recording& r, std::size_t stride, const std::vector<std::string>& filter,
+                    const std::vector<std::string>& travel = {});
+
+// A column at a recording's own rate `rate_hz`, filtered and thinned as decimated() does the
+// columns it filters: what a row of the thinned recording holds of it.
+std::vector<double> thinned_as_filtered(std::vector<double> v, std::size_t stride, double rate_hz);
 
 // What the anti-alias filter leaves of a sinusoid of `f_hz` in a recording thinned by
 // decimated() (1 when it was not thinned): the zero-phase filter's magnitude, the Butterworth's

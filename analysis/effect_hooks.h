@@ -1,5 +1,6 @@
 #pragma once
 // Where the candidate effects act in a channel's simulation (see channel_model.h).
+#include <string>
 #include <vector>
 
 #include "analysis/channel_model.h"
@@ -15,9 +16,11 @@ void shift_in_time(const Recording& r, double shift_s, std::vector<double>& u);
 // Delay, dead zone and play, applied to a recorded input.
 std::vector<double> transform_input(const Recording& r, const std::vector<double>& u,
                                     const std::vector<Effect>& fx);
-// Everything that acts on the output; `load` (N) for sag and slip, `speed` for friction.
+// Everything that acts on the output; `load` (N) for sag and slip, `speed` for friction, and
+// the column a rate-independent effect follows (`displacement`; at its own rate when the
+// recording was thinned: Recording::travel).
 void apply_output(const Recording& r, const std::vector<Effect>& fx,
                   const std::vector<double>* load, const std::vector<double>* speed,
-                  std::vector<double>& y, const std::vector<double>* displacement = nullptr);
+                  std::vector<double>& y, const std::string& displacement = {});
 
 }  // namespace planter::analysis

@@ -146,12 +146,13 @@ void hysteresis(const OutputContext& c, const std::vector<double>& p, std::vecto
   if (c.displacement == nullptr || p[0] == 0.0) return;
   const std::vector<double>& x = *c.displacement;
   const double height = p[0], delta = p[1];
-  double z = 0.0;
-  for (std::size_t k = 1; k < y.size(); ++k) {
+  std::vector<double> z(x.size(), 0.0);
+  for (std::size_t k = 1; k < x.size(); ++k) {
     const double dx = x[k] - x[k - 1];
+    z[k] = z[k - 1];
     if (dx != 0.0) {
       const double s = dx > 0.0 ? 1.0 : -1.0;
-      double u = s * z, travel = std::abs(dx);  // u: z along the move
+      double u = s * z[k], travel = std::abs(dx);  // u: z along the move
       if (u < 0.0) {
         const double to_zero = -u * delta;
         if (travel <= to_zero) {
@@ -163,10 +164,13 @@ void hysteresis(const OutputContext& c, const std::vector<double>& p, std::vecto
         }
       }
       if (travel > 0.0) u = 1.0 - (1.0 - u) * std::exp(-travel / delta);
-      z = s * u;
+      z[k] = s * u;
     }
-    y[k] += height * z;
   }
+  // Followed at the recording's own rate, then filtered and thinned as the output was (only
+  // the ratio of cut-off to rate matters, hence rate 1).
+  if (c.displacement_stride > 1) z = thinned_as_filtered(std::move(z), c.displacement_stride, 1.0);
+  for (std::size_t k = 0; k < y.size() && k < z.size(); ++k) y[k] += height * z[k];
 }
 
 void sag(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
@@ -451,8 +455,13 @@ std::vector<double> transform_input(const Recording& r, const std::vector<double
 
 void apply_output(const Recording& r, const std::vector<Effect>& fx,
                   const std::vector<double>* load, const std::vector<double>* speed,
-                  std::vector<double>& y, const std::vector<double>* displacement) {
-  const OutputContext context{r, load, speed, &fx, displacement};
+                  std::vector<double>& y, const std::string& displacement) {
+  OutputContext context{r, load, speed, &fx};
+  if (!displacement.empty()) {
+    const auto full_rate = r.travel.find(displacement);
+    context.displacement = full_rate != r.travel.end() ? &full_rate->second : &r.at(displacement);
+    if (full_rate != r.travel.end()) context.displacement_stride = r.decimation_stride;
+  }
   for (const EffectSpec& spec : library()) {
     if (spec.on_output == nullptr) continue;
     if (const Effect* e = find_effect(fx, spec.kind)) spec.on_output(context, e->values, y);

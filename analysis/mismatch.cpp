@@ -501,7 +501,10 @@ Recording analysed_recording(const Recording& full, const FitOptions& o,
   // rather than aliased (it is looked for at the recording's own rate: fast_tones.h).
   const std::size_t stride = (full.size() + o.max_rows - 1) / o.max_rows;
   const Recording& clean = glitches.empty() ? full : without_glitches(full, glitches);
-  Recording out = decimated(clean, stride, channel_columns());
+  std::vector<std::string> travel;
+  for (const ChannelModel* ch : all_channels())
+    if (!ch->displacement().empty()) travel.push_back(ch->displacement());
+  Recording out = decimated(clean, stride, channel_columns(), travel);
   if (!clean.has("v_wheel")) return out;
   // The standstills at the full rate, kept row by row: the filter leaves no exact zero in the
   // wheel's speed. Carried at the full rate too: the fits simulate only up to the calibration

@@ -145,6 +145,11 @@ Recording first_rows(const Recording& r, std::size_t rows) {
   out.t = first(r.t);
   out.state = first(r.state);
   for (const auto& [name, v] : r.signals) out.signals.emplace(name, first(v));
+  for (const auto& [name, v] : r.travel) {
+    const std::size_t full = std::min(v.size(), rows * r.decimation_stride);
+    out.travel.emplace(
+        name, std::vector<double>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(full)));
+  }
   return out;
 }
 

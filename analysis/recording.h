@@ -39,6 +39,13 @@ struct Recording {
   // Each low-pass filtered column's value grid (a quantised sensor's step: value_grid()), found
   // before decimation: the filtered averages fill the grid in.
   std::map<std::string, double> full_rate_grid;
+  // A thinned recording's displacement columns (a channel's displacement()) at the recording's
+  // own rate, unfiltered: decimation_stride rows for each row here. A rate-independent effect
+  // runs on this path and is then filtered and thinned as the recorded output was
+  // (decimation.h). Run on the filtered column, it saw the filter's ringing at each move's ends:
+  // on the outside generator's clamp the roller reversed 3507 times where it had 42, each
+  // reversal reset the Bouc-Wen state part way, and the hysteresis height read 4-5 % high.
+  std::map<std::string, std::vector<double>> travel;
   [[nodiscard]] bool has(const std::string& name) const { return signals.count(name) != 0; }
   [[nodiscard]] const std::vector<double>& at(const std::string& name) const {
     return signals.at(name);

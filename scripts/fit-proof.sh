@@ -140,7 +140,7 @@ for noise in 1 4; do
     --noise $noise --seed 12 --relaxation 0.3 2.0
 done
 # Hysteresis of the clamp (Bouc-Wen, 6 N over 0.5 mm); its height is checked, its shape delta
-# is printed in fit.json (it reads about 0.63 mm: see docs/planter-fit.md).
+# is printed in fit.json (0.49 mm for 0.5 on the seed below).
 for noise in 1 4; do
   run_outside "outside-hysteresis-noise-$noise" \
     "clamp_force:hysteresis of the clamp (Bouc-Wen):height=6" \

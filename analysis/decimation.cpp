@@ -33,7 +33,7 @@ struct Biquad {
   }
 };
 
-// Two sections in cascade over x in place, forwards (step +1) or backwards (-1). One loop runs
+// Two sections in cascade over x in place, forwards or backwards. One loop runs
 // both: the second section's recurrence overlaps the first's on the next row (each is a chain
 // of dependent multiply-adds), the same operations in the same order as two passes.
 void run_cascade(Biquad first, Biquad second, std::vector<double>& x, bool forwards) {

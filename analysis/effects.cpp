@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "analysis/decimation.h"
@@ -142,10 +143,20 @@ void relaxation(const OutputContext& c, const std::vector<double>& p, std::vecto
 // beta = gamma = 1 / (2 delta): z' = (x' - |x'| z / 2 - x' |z| / 2) / delta. Along a move in one
 // direction it is solved exactly: against the move z recovers linearly (d|z|/dx = 1/delta),
 // with it z approaches +-1 as 1 - exp(-travel / delta). It adds H z.
-void hysteresis(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
-  if (c.displacement == nullptr || p[0] == 0.0) return;
-  const std::vector<double>& x = *c.displacement;
-  const double height = p[0], delta = p[1];
+// The Bouc-Wen state along the path `x` for one delta, filtered and thinned as the output was
+// when `stride` > 1 (only the ratio of cut-off to rate matters, hence rate 1). The solver moves
+// one parameter at a time and only a change of delta or of the path changes the state: it is
+// kept while they stay (a step in the height, the law's or another effect's parameter reuses
+// it). One cache per thread: channels are analysed on several.
+const std::vector<double>& hysteresis_state(const std::vector<double>& x, double delta,
+                                            std::size_t stride) {
+  struct Cache {
+    std::vector<double> x, z;
+    double delta = std::numeric_limits<double>::quiet_NaN();
+    std::size_t stride = 0;
+  };
+  thread_local Cache c;
+  if (delta == c.delta && stride == c.stride && x == c.x) return c.z;
   std::vector<double> z(x.size(), 0.0);
   for (std::size_t k = 1; k < x.size(); ++k) {
     const double dx = x[k] - x[k - 1];
@@ -167,9 +178,17 @@ void hysteresis(const OutputContext& c, const std::vector<double>& p, std::vecto
       z[k] = s * u;
     }
   }
-  // Followed at the recording's own rate, then filtered and thinned as the output was (only
-  // the ratio of cut-off to rate matters, hence rate 1).
-  if (c.displacement_stride > 1) z = thinned_as_filtered(std::move(z), c.displacement_stride, 1.0);
+  c.z = stride > 1 ? thinned_as_filtered(std::move(z), stride, 1.0) : std::move(z);
+  c.x = x;
+  c.delta = delta;
+  c.stride = stride;
+  return c.z;
+}
+
+void hysteresis(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
+  if (c.displacement == nullptr || p[0] == 0.0) return;
+  const double height = p[0];
+  const std::vector<double>& z = hysteresis_state(*c.displacement, p[1], c.displacement_stride);
   for (std::size_t k = 0; k < y.size() && k < z.size(); ++k) y[k] += height * z[k];
 }
 

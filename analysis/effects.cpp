@@ -476,10 +476,11 @@ void apply_output(const Recording& r, const std::vector<Effect>& fx,
                   const std::vector<double>* load, const std::vector<double>* speed,
                   std::vector<double>& y, const std::string& displacement) {
   OutputContext context{r, load, speed, &fx};
-  if (!displacement.empty()) {
-    const auto full_rate = r.travel.find(displacement);
-    context.displacement = full_rate != r.travel.end() ? &full_rate->second : &r.at(displacement);
-    if (full_rate != r.travel.end()) context.displacement_stride = r.decimation_stride;
+  if (const auto full_rate = r.travel.find(displacement); full_rate != r.travel.end()) {
+    context.displacement = &full_rate->second;
+    context.displacement_stride = r.decimation_stride;
+  } else if (!displacement.empty()) {
+    context.displacement = &r.at(displacement);
   }
   for (const EffectSpec& spec : library()) {
     if (spec.on_output == nullptr) continue;

@@ -186,7 +186,6 @@ double robust_scale(const std::vector<double>& pred, const std::vector<double>& 
 // prediction, its errors and the parameter count.
 void finish(const ChannelModel& ch, const Recording& r, const Split& split,
             const std::vector<double>& sd, double resolution, ChannelFit& fit) {
-  const std::vector<double>& y = r.at(ch.output());
   std::size_t k = 0;
   fit.nominal_sd.assign(fit.nominal.size(), 0.0);
   for (auto& v : fit.nominal_sd) v = sd.size() > k ? sd[k++] : 0.0;
@@ -197,9 +196,7 @@ void finish(const ChannelModel& ch, const Recording& r, const Split& split,
       s.push_back(p.grid ? resolution : (sd.size() > k ? sd[k++] : 0.0));
     fit.effect_sd.push_back(s);
   }
-  ch.simulate(r, fit.nominal, fit.effects, fit.prediction);
-  fit.rms_calibration = rms_between(fit.prediction, y, 0, split.calibration_end);
-  fit.rms_held_out = rms_between(fit.prediction, y, split.calibration_end, y.size());
+  predict(ch, r, split, fit);
   fit.parameters = static_cast<int>(fit.nominal.size());
   for (const auto& e : fit.effects) fit.parameters += static_cast<int>(e.values.size());
 }
@@ -207,6 +204,21 @@ void finish(const ChannelModel& ch, const Recording& r, const Split& split,
 }  // namespace
 
 std::size_t fitted_rows(const Split& split) { return rows(split).size(); }
+
+void predict(const ChannelModel& ch, const Recording& r, const Split& split, ChannelFit& fit) {
+  const std::vector<double>& y = r.at(ch.output());
+  ch.simulate(r, fit.nominal, fit.effects, fit.prediction);
+  fit.rms_calibration = rms_between(fit.prediction, y, 0, split.calibration_end);
+  fit.rms_held_out = rms_between(fit.prediction, y, split.calibration_end, y.size());
+}
+
+double rms_on_fitted_rows(const std::vector<double>& pred, const std::vector<double>& y,
+                          const Split& split) {
+  double sum = 0.0;
+  const std::vector<std::size_t> at = rows(split);
+  for (std::size_t k : at) sum += (pred[k] - y[k]) * (pred[k] - y[k]);
+  return at.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(at.size()));
+}
 
 ParameterLayout fitted_layout(const ChannelModel& ch, ChannelFit& f) {
   return layout(f.nominal, f.effects, ch.nominal_params(), false);

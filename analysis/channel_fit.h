@@ -41,6 +41,10 @@ struct ChannelFit {
 ChannelFit fit_channel(const ChannelModel& channel, const Recording& r, const Split& split,
                        const std::vector<double>& nominal_start, std::vector<Effect> effects);
 
+// The fit's prediction over all of `r`'s rows and its RMS on either side of the split, from
+// its values as they are (after they were refined on other rows than `r`'s).
+void predict(const ChannelModel& channel, const Recording& r, const Split& split, ChannelFit& fit);
+
 // `fit` refitted on the calibration rows `split` keeps (a fold left out), from its own values,
 // the grid parameters kept; with standard deviations, the prediction over all samples and its
 // RMS on the held-out part. `rss` (if given) gets the RSS over the fitted rows.
@@ -69,6 +73,11 @@ void bounds_for_output(std::vector<ParamSpec>& specs, const std::vector<double>&
 
 // How many calibration rows a fit on `split` compares (the n of its BIC).
 std::size_t fitted_rows(const Split& split);
+
+// The RMS of pred - y on the rows a fit on `split` compares (a long recording's fit compares
+// every k-th calibration row): two fits on the same split are ranked on what they minimised.
+double rms_on_fitted_rows(const std::vector<double>& pred, const std::vector<double>& y,
+                          const Split& split);
 
 // The fit refitted with a fold left out (split.fold_from..fold_to), starting from `fit`, the
 // grid parameters kept; returns the RMS error it then makes on the fold.

@@ -33,28 +33,38 @@ int error_line(const std::string& text, const std::string& expect) {
   return -1;
 }
 
-// A clamp run: the roller steps between positions; the force follows the nominal law
-// (k 12 N/mm^1.3 above x0 = 1 mm), optionally relaxing, plus sensor noise.
-// From `stiffer_at_s` on, the clamp is 40 % stiffer (a new seedling batch).
+// A clamp run: the force follows the nominal law (k 12 N/mm^1.3 above x0 = 1 mm), optionally
+// relaxing (a Maxwell branch of `relax_fraction` over `relax_tau_s`), plus sensor noise. The
+// roller steps between positions every 8 s; or, `closed_loop`, a PI controller moves it on the
+// load cell's last reading towards a force that steps every 8 s, as the machine runs it, so the
+// roller carries the force's past noise. From `stiffer_at_s` on, the clamp is 40 % stiffer (a
+// new seedling batch).
 Recording clamp_recording(double relax_fraction, double noise_N, unsigned seed,
-                          double stiffer_at_s = 1e9) {
+                          double stiffer_at_s = 1e9, double relax_tau_s = 3.0,
+                          bool closed_loop = false) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, noise_N);
-  std::uniform_real_distribution<double> level(3.0, 9.0);
+  std::uniform_real_distribution<double> level(closed_loop ? 40.0 : 3.0, closed_loop ? 120.0 : 9.0);
   Recording r;
   r.file = "synthetic";
   auto& x = r.signals["clamp_pos_mm"];
   auto& f = r.signals["clamp_force"];
-  double pos = 5.0, relaxed = 0.0;
+  double pos = 5.0, relaxed = 0.0, target_N = 60.0, integral = 0.0, measured = 0.0;
   for (int k = 0; k < 18000; ++k) {  // 180 s at 100 Hz
     const double t = 0.01 * k;
-    if (k % 800 == 0) pos = level(rng);
+    if (k % 800 == 0) (closed_loop ? target_N : pos) = level(rng);
+    if (closed_loop) {
+      const double error = target_N - measured;
+      integral = std::clamp(integral + error * 0.01, -50.0, 50.0);
+      pos = std::clamp(pos + std::clamp(0.02 * error + 0.002 * integral, -0.4, 0.4), 1.0, 12.0);
+    }
     const double k_c = t >= stiffer_at_s ? 1.4 * 12.0 : 12.0;
     const double elastic = k_c * std::pow(std::max(0.0, pos - 1.0), 1.3);
-    relaxed += (relax_fraction * elastic - relaxed) * 0.01 / 3.0;
+    relaxed += (relax_fraction * elastic - relaxed) * 0.01 / relax_tau_s;
+    measured = elastic - relaxed + noise(rng);
     r.t.push_back(t);
     x.push_back(pos);
-    f.push_back(elastic - relaxed + noise(rng));
+    f.push_back(measured);
   }
   return r;
 }
@@ -150,34 +160,6 @@ TEST(Analysis, HiddenClampRelaxationIsNamedAndFitted) {
   for (std::size_t k = 0; k < y.size(); k += 97) EXPECT_NEAR(y[k], c.final_fit.prediction[k], 1e-6);
 }
 
-// The clamp in closed loop, as the machine runs it: a PI controller moves the roller on the
-// load cell's last reading towards a force that steps every 8 s, so the roller carries the
-// force's past noise. A Maxwell branch (fraction 0.2, tau 1 s) relaxes the force.
-Recording closed_loop_clamp_recording(double noise_N, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> noise(0.0, noise_N);
-  std::uniform_real_distribution<double> level(40.0, 120.0);
-  Recording r;
-  r.file = "synthetic";
-  auto& x = r.signals["clamp_pos_mm"];
-  auto& f = r.signals["clamp_force"];
-  double pos = 5.0, relaxed = 0.0, target = 60.0, integral = 0.0, measured = 0.0;
-  for (int k = 0; k < 18000; ++k) {  // 180 s at 100 Hz
-    if (k % 800 == 0) target = level(rng);
-    const double error = target - measured;
-    integral += error * 0.01;
-    pos = std::clamp(pos + std::clamp(0.02 * error + 0.002 * integral, -0.4, 0.4), 1.0, 12.0);
-    integral = std::clamp(integral, -50.0, 50.0);
-    const double elastic = 12.0 * std::pow(std::max(0.0, pos - 1.0), 1.3);
-    relaxed += (0.2 * elastic - relaxed) * 0.01 / 1.0;
-    measured = elastic - relaxed + noise(rng);
-    r.t.push_back(0.01 * k);
-    x.push_back(pos);
-    f.push_back(measured);
-  }
-  return r;
-}
-
 // On the thinned rows the anti-alias filter spreads each row's noise over its neighbours, which
 // the roller already carries: the decimated fit reads tau about 47 % long and the fraction 13 %
 // short (six noise draws at 4 N). Refitted at the recording's own rate, their means are within
@@ -186,7 +168,7 @@ TEST(Analysis, ARelaxationSeenThroughTheClampsLoopIsReadAtTheFullRate) {
   double fraction = 0.0, tau_s = 0.0, thinned_fraction = 0.0, thinned_tau_s = 0.0;
   const std::vector<unsigned> seeds{1, 2, 3, 4, 5, 6};
   for (unsigned seed : seeds) {
-    const FitReport rep = analyse(closed_loop_clamp_recording(4.0, seed), quick());
+    const FitReport rep = analyse(clamp_recording(0.2, 4.0, seed, 1e9, 1.0, true), quick());
     const ChannelReport& c = rep.channels[0];
     // (One draw of the six also gets a play named beside it: the loop's bias on the thinned
     // rows, left for now; the relaxation is what is judged here.)

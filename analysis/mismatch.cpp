@@ -842,6 +842,13 @@ void judge_speed_loop_deficit(FitReport& rep) {
       {*dead_zone, ChannelReport::ExplainedBy::Relation::kThroughSpeedLoop, by, note});
 }
 
+Recording analysed_rows_of(const Recording& whole, const FitReport& rep) {
+  if (rep.stopped_rows == 0 || rep.stopped_rows >= whole.size())
+    return analysed_recording(whole, rep.options, rep.glitches);
+  return analysed_recording(first_rows(whole, whole.size() - rep.stopped_rows), rep.options,
+                            rep.glitches);
+}
+
 FitReport analyse(const Recording& whole, const FitOptions& o) {
   FitReport rep;
   rep.options = o;

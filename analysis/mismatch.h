@@ -182,6 +182,10 @@ FitReport analyse(const Recording& r, const FitOptions& o);
 // max_rows with the columns the channels read low-pass filtered first (decimation.h).
 Recording analysed_recording(const Recording& r, const FitOptions& o,
                              const std::vector<Glitch>& glitches);
+// The rows a report's predictions cover, as analyse() analysed them: `whole` up to its first
+// fault (FitReport::stopped_rows left out), without its glitches, decimated. The report's plots
+// read these with the predictions, row for row.
+Recording analysed_rows_of(const Recording& whole, const FitReport& rep);
 // The columns the channels read, each once.
 std::vector<std::string> channel_columns();
 

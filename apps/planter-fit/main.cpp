@@ -169,7 +169,7 @@ int main(int argc, char** argv) {
     if (!model.empty()) o.start_model = load_augmented_model(model);
     FitReport rep = analyse(rec, o);
     if (reader.more()) rep.day = track_day(reader, rec, rep, o);
-    const Recording analysed = analysed_recording(rec, o, rep.glitches);
+    const Recording analysed = analysed_rows_of(rec, rep);
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // One nominal simulation pass of every analysed channel over the whole recording (all its

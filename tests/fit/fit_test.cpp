@@ -198,6 +198,22 @@ TEST(Analysis, ARelaxationSeenThroughTheClampsLoopIsReadAtTheFullRate) {
   EXPECT_NEAR(fraction, 0.2, 0.02);
 }
 
+// A recording that ends in a fault: the rows from there on are left out of the analysis, and
+// the report's plots read the same rows as the predictions (they read past them once, seen by
+// AddressSanitizer on hil-node-silent).
+TEST(Analysis, TheReportOfARecordingThatFaultedReadsTheRowsAnalysed) {
+  Recording r = clamp_recording(0.3, 1.0, 11);
+  r.state.assign(r.size(), "running");
+  for (std::size_t k = 9000; k < r.size(); ++k) r.state[k] = "fault";
+  const FitReport rep = analyse(r, quick());
+  EXPECT_EQ(rep.stopped_rows, 9000u);
+  const Recording shown = analysed_rows_of(r, rep);
+  ASSERT_EQ(rep.channels.size(), 1u);
+  EXPECT_EQ(rep.channels[0].nominal.prediction.size(), shown.size());
+  EXPECT_EQ(rep.channels[0].final_fit.prediction.size(), shown.size());
+  EXPECT_NE(fit_report_html(rep, shown).find("clamp_force"), std::string::npos);
+}
+
 // A play that starts at one end of its gap, as a gear train's does at power-up (issue 32, item
 // 4): named, with its gap, from either end. On the command side (the coupling before the
 // actuator) or after the actuator (between it and the opener): the fit says which.

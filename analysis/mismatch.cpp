@@ -648,7 +648,10 @@ void refine_delay_at_full_rate(ChannelReport& c, const Recording& r, std::size_t
 //   about the noise's variance (closed-loop identification: Ljung, "System Identification",
 //   2nd ed., 1999, sec. 13.4). At the full rate a row's noise is not yet in the roller, so the
 //   estimate is not biased (a fast branch of 0.2 read 0.193 on the decimated rows at noise 2).
-// The refined effects' values and their SDs come from that one fit; the rest is kept.
+//   The clamp's hysteresis is read through the same loop.
+// - A vibration's frequency and phase are time-resolution parameters too.
+// The whole fit (the nominal's values moved with the effects' on the thinned rows) and its SDs
+// come from that one refit; the grid parameters stay where they were found.
 void refine_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held_out) {
   static constexpr std::array kRefined = {EffectKind::kStribeck, EffectKind::kRelaxation,
                                           EffectKind::kRelaxation2, EffectKind::kHysteresis,
@@ -660,8 +663,6 @@ void refine_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held_
       refined.push_back(e);
   if (refined.empty() || c.change || held_out < 2 || held_out >= r.size()) return;
   const std::vector<double>& y = r.at(c.channel->output());
-  // The whole fit is solved again at this rate (the nominal's values moved with the effects'
-  // on the thinned rows), the grid parameters kept where they were found.
   ChannelFit start = c.final_fit;
   c.channel->simulate(r, start.nominal, start.effects, start.prediction);
   Split split;
@@ -706,7 +707,8 @@ void refine_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held_
 // play beside its relaxation that made the full-rate held-out RMS 14 % worse. The rule asks
 // less than the thinned rows' (an RMS fall of min_improvement): at the full rate the noise the
 // filter removed is back in both RMS. The delay has its own rule (refine_delay_at_full_rate),
-// and an effect another one needs (a Prony series' first term) is judged with it.
+// an effect another one needs (a Prony series' first term) is judged with it, and an effect
+// given as known (--model) is not judged here.
 void confirm_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held_out,
                           const Recording& analysed, std::size_t analysed_held_out) {
   const auto& fx = c.final_fit.effects;
@@ -731,7 +733,10 @@ void confirm_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held
     const bool needed = std::any_of(fx.begin(), fx.end(), [&](const Effect& other) {
       return other.spec->needs && *other.spec->needs == kind;
     });
-    if (kind == EffectKind::kDelay || needed) continue;
+    const bool named = std::any_of(c.chosen.begin(), c.chosen.end(), [&](const Candidate& k) {
+      return k.effect == fx[e].spec->name;
+    });
+    if (kind == EffectKind::kDelay || needed || !named) continue;
     const double without_rms = held_out_rms_without(e);
     if (without_rms > with_rms) continue;
     char note[300];

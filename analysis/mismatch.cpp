@@ -636,6 +636,20 @@ void refine_delay_at_full_rate(ChannelReport& c, const Recording& r, std::size_t
   leave_out({index}, c, analysed, analysed_held_out);
 }
 
+// The channel's final fit solved again on `r` (the recording's own rate) from its values, the
+// grid parameters kept, without effect `skip` (none when skip is past the effects).
+ChannelFit refitted_at_rate(const ChannelReport& c, const Recording& r, const Split& split,
+                            std::size_t skip = std::numeric_limits<std::size_t>::max()) {
+  ChannelFit start = c.final_fit;
+  if (skip < start.effects.size()) {
+    start.effects.erase(start.effects.begin() + static_cast<std::ptrdiff_t>(skip));
+    if (skip < start.effect_sd.size())
+      start.effect_sd.erase(start.effect_sd.begin() + static_cast<std::ptrdiff_t>(skip));
+  }
+  c.channel->simulate(r, start.nominal, start.effects, start.prediction);
+  return refit(*c.channel, r, split, start);
+}
+
 // Some values are taken from a fit at the recording's own rate, started from the decimated fit,
 // on the same calibration rows; the effects earned their place on the decimated rows.
 // - Stribeck's characteristic speed is a time-resolution parameter: after a breakaway the disc
@@ -651,8 +665,10 @@ void refine_delay_at_full_rate(ChannelReport& c, const Recording& r, std::size_t
 //   The clamp's hysteresis is read through the same loop.
 // - A vibration's frequency and phase are time-resolution parameters too.
 // The whole fit (the nominal's values moved with the effects' on the thinned rows) and its SDs
-// come from that one refit; the grid parameters stay where they were found.
-void refine_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held_out) {
+// come from that one refit; the grid parameters stay where they were found. `refitted` is that
+// refit when confirm_at_full_rate already made it.
+void refine_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held_out,
+                         const std::optional<ChannelFit>& refitted) {
   static constexpr std::array kRefined = {EffectKind::kStribeck, EffectKind::kRelaxation,
                                           EffectKind::kRelaxation2, EffectKind::kHysteresis,
                                           EffectKind::kPeriodic};
@@ -663,14 +679,14 @@ void refine_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held_
       refined.push_back(e);
   if (refined.empty() || c.change || held_out < 2 || held_out >= r.size()) return;
   const std::vector<double>& y = r.at(c.channel->output());
-  ChannelFit start = c.final_fit;
-  c.channel->simulate(r, start.nominal, start.effects, start.prediction);
+  std::vector<double> start;
+  c.channel->simulate(r, c.final_fit.nominal, fx, start);
   Split split;
   split.calibration_end = held_out;
-  const ChannelFit at_rate = refit(*c.channel, r, split, start);
+  const ChannelFit at_rate = refitted ? *refitted : refitted_at_rate(c, r, split);
   // Ranked on the rows the fit compared: over all calibration rows a fit on every k-th row
   // may end a hair above its start (by about p/n of the noise's variance) without being worse.
-  const double start_rms = rms_on_fitted_rows(start.prediction, y, split);
+  const double start_rms = rms_on_fitted_rows(start, y, split);
   const double end_rms = rms_on_fitted_rows(at_rate.prediction, y, split);
   char note[300];
   if (!(end_rms <= start_rms) || at_rate.effects.size() != fx.size() ||
@@ -708,26 +724,14 @@ void refine_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held_
 // less than the thinned rows' (an RMS fall of min_improvement): at the full rate the noise the
 // filter removed is back in both RMS. The delay has its own rule (refine_delay_at_full_rate),
 // an effect another one needs (a Prony series' first term) is judged with it, and an effect
-// given as known (--model) is not judged here.
-void confirm_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held_out,
-                          const Recording& analysed, std::size_t analysed_held_out) {
+// given as known (--model) is not judged here. Returns the refit with every effect when it made
+// one and left nothing out (refine_at_full_rate takes its values from it).
+std::optional<ChannelFit> confirm_at_full_rate(ChannelReport& c, const Recording& r,
+                                               std::size_t held_out, const Recording& analysed,
+                                               std::size_t analysed_held_out) {
   const auto& fx = c.final_fit.effects;
-  if (fx.empty() || c.change || held_out < 2 || held_out >= r.size()) return;
-  Split split;
-  split.calibration_end = held_out;
-  // The channel refitted at this rate without effect `skip` (none: fx.size()).
-  auto held_out_rms_without = [&](std::size_t skip) {
-    ChannelFit start = c.final_fit;
-    if (skip < start.effects.size()) {
-      start.effects.erase(start.effects.begin() + static_cast<std::ptrdiff_t>(skip));
-      if (skip < start.effect_sd.size())
-        start.effect_sd.erase(start.effect_sd.begin() + static_cast<std::ptrdiff_t>(skip));
-    }
-    c.channel->simulate(r, start.nominal, start.effects, start.prediction);
-    return refit(*c.channel, r, split, start).rms_held_out;
-  };
-  const double with_rms = held_out_rms_without(fx.size());
-  std::vector<std::size_t> out;
+  if (fx.empty() || c.change || held_out < 2 || held_out >= r.size()) return std::nullopt;
+  std::vector<std::size_t> judged;
   for (std::size_t e = 0; e < fx.size(); ++e) {
     const EffectKind kind = fx[e].spec->kind;
     const bool needed = std::any_of(fx.begin(), fx.end(), [&](const Effect& other) {
@@ -736,19 +740,28 @@ void confirm_at_full_rate(ChannelReport& c, const Recording& r, std::size_t held
     const bool named = std::any_of(c.chosen.begin(), c.chosen.end(), [&](const Candidate& k) {
       return k.effect == fx[e].spec->name;
     });
-    if (kind == EffectKind::kDelay || needed || !named) continue;
-    const double without_rms = held_out_rms_without(e);
-    if (without_rms > with_rms) continue;
+    if (kind != EffectKind::kDelay && !needed && named) judged.push_back(e);
+  }
+  if (judged.empty()) return std::nullopt;
+  Split split;
+  split.calibration_end = held_out;
+  ChannelFit with = refitted_at_rate(c, r, split);
+  std::vector<std::size_t> out;
+  for (std::size_t e : judged) {
+    const double without_rms = refitted_at_rate(c, r, split, e).rms_held_out;
+    if (without_rms > with.rms_held_out) continue;
     char note[300];
     std::snprintf(note, sizeof note,
                   "%s, named on the decimated rows, is left out: at the full rate the channel "
                   "without it predicts the held-out rows as well (RMS %.4g without it, %.4g with "
                   "it)",
-                  fx[e].spec->name.c_str(), without_rms, with_rms);
+                  fx[e].spec->name.c_str(), without_rms, with.rms_held_out);
     c.refined.push_back(note);
     out.push_back(e);
   }
-  if (!out.empty()) leave_out(out, c, analysed, analysed_held_out);
+  if (out.empty()) return with;
+  leave_out(out, c, analysed, analysed_held_out);
+  return std::nullopt;
 }
 
 // A stiction beside a dry friction on the same channel: the friction's level at rest
@@ -938,8 +951,9 @@ FitReport analyse(const Recording& whole, const FitOptions& o) {
         at_rate.t.begin());
     for (auto& c : rep.channels) {
       refine_delay_at_full_rate(c, at_rate, held_out, r, rep.split.calibration_end, o);
-      confirm_at_full_rate(c, at_rate, held_out, r, rep.split.calibration_end);
-      refine_at_full_rate(c, at_rate, held_out);
+      const std::optional<ChannelFit> confirmed =
+          confirm_at_full_rate(c, at_rate, held_out, r, rep.split.calibration_end);
+      refine_at_full_rate(c, at_rate, held_out, confirmed);
       // The refined values' prediction on the analysed rows (the report's figures and plots).
       predict(*c.channel, r, rep.split, c.final_fit);
       std::vector<double> pred;

@@ -342,6 +342,31 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
     while (g < grid.size() && ++idx[g] == grid[g].values.size()) idx[g++] = 0;
     if (g == grid.size()) break;
   }
+  // A single grid parameter best at its grid's top goes on upwards, a grid step at a time (at
+  // most 32 more), to its own bound: the top is where the data's spans guessed the physics
+  // would end, not where it must. A speed loop's friction held the disc 0.154 rad/s short of a
+  // command spanning 0.498 (31 %), beyond a band's grid of 30 %; left at the top, the fit's
+  // other parameters bent around it and a second effect took the credit for moving it on.
+  if (grid.size() == 1 && grid[0].values.size() > 1) {
+    GridParam& g = grid[0];
+    const ParamSpec& p = effects[g.effect].spec->params[g.index];
+    const double step = g.values[1] - g.values[0];
+    const double limit = p.upper > p.lower ? p.upper : std::numeric_limits<double>::infinity();
+    for (int more = 0; more < 32 && step > 0.0; ++more) {
+      const double top = g.values.back();
+      if (best_effects[g.effect].values[g.index] != top || top + step > limit) break;
+      std::vector<double> nom = nominal_start;
+      std::vector<Effect> fx = effects;
+      fx[g.effect].values[g.index] = top + step;
+      g.values.push_back(top + step);
+      const double rss = solve(ch, r, split, nom, fx, huber, nullptr);
+      if (rss < best_rss) {
+        best_rss = rss;
+        best_nominal = nom;
+        best_effects = fx;
+      }
+    }
+  }
   // A single grid parameter is refined below its grid: the step is halved three times around
   // the best value (a delay of 80 ms on a 31 ms grid), then placed between its last neighbours
   // by the parabola through their calibration RSS (successive parabolic interpolation, Brent,

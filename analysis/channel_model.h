@@ -41,6 +41,7 @@ enum class EffectKind {
   kRelaxation2,     // a second branch beside it: a two-term Prony series
   kHysteresis,      // + H z, z the Bouc-Wen state of the input's displacement
   kSag,             // - c * load / 1 kN (compliance under the channel's load)
+  kLoopFriction,    // under a speed loop: the speed w short of its command, held at rest
   kStiction,        // at standstill: the drive's effort K * command, held up to F_s
 };
 

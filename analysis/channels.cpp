@@ -31,19 +31,33 @@ std::vector<const EffectSpec*> specs(const Recording& r, std::initializer_list<E
   return out;
 }
 
-// First-order lag y' = (u - y) / T, u limited to +-u_max, y' to the rate limit if any.
+// First-order lag y' = (u - y) / T, u limited to +-u_max, y' to the rate limit if any. A dry
+// friction under the loop (EffectKind::kLoopFriction, effects.cpp) takes its band w off the
+// target in the direction of motion, holds the state at rest while |u| <= w, and stops it where
+// it would cross zero (the next row starts it again if the command is beyond the band).
 void lag(const Recording& r, const std::vector<double>& u, double tau, double u_max,
          const std::vector<Effect>& fx, double y0, std::vector<double>& y) {
   const Effect* rate = find_effect(fx, EffectKind::kRateLimit);
+  const Effect* dry = find_effect(fx, EffectKind::kLoopFriction);
+  const double band = dry != nullptr ? std::max(0.0, dry->values[0]) : 0.0;
   y.assign(u.size(), y0);
   double state = y0;
   for (std::size_t k = 1; k < u.size(); ++k) {
     const double dt = r.t[k] - r.t[k - 1];
-    const double target = std::clamp(u[k - 1], -u_max, u_max);
+    double target = std::clamp(u[k - 1], -u_max, u_max);
+    if (band > 0.0) {
+      const double moving = state != 0.0 ? state : (std::abs(target) > band ? target : 0.0);
+      if (moving == 0.0) {  // held at rest
+        y[k] = state;
+        continue;
+      }
+      target -= std::copysign(band, moving);
+    }
     const double a = 1.0 - std::exp(-dt / tau);  // exact for a held input
     double step = a * (target - state);
     if (rate) step = std::clamp(step, -rate->values[0] * dt, rate->values[0] * dt);
-    state += step;
+    const double next = state + step;
+    state = band > 0.0 && state != 0.0 && next * state < 0.0 ? 0.0 : next;
     y[k] = state;
   }
 }
@@ -325,8 +339,8 @@ class DiscSpeedChannel : public ChannelModel {
   }
   std::vector<const EffectSpec*> candidates(const Recording&) const override {
     return specs({EffectKind::kDelay, EffectKind::kBacklash, EffectKind::kBacklashOutput,
-                  EffectKind::kDeadZone, EffectKind::kRateLimit, EffectKind::kGain,
-                  EffectKind::kOffset, EffectKind::kPeriodic});
+                  EffectKind::kDeadZone, EffectKind::kLoopFriction, EffectKind::kRateLimit,
+                  EffectKind::kGain, EffectKind::kOffset, EffectKind::kPeriodic});
   }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {

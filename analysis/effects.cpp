@@ -46,6 +46,9 @@ const ParamSpec kPlayStart{"start", "1 (-1 low end, +1 high end)", 0.0, -1.0, 1.
 double play_upper(double in_span, double out_span, const std::vector<double>&) {
   return 0.5 * std::max(in_span, out_span);
 }
+// The widest band searched (a dead zone, a speed loop's friction deficit): 30 % of the
+// command's span.
+double band_upper(double in_span, double, const std::vector<double>&) { return 0.3 * in_span; }
 
 // ---- How each effect acts (forms: control-engineering textbook nonlinearities, e.g.
 // Slotine & Li, "Applied Nonlinear Control", ch. 5; friction after Armstrong-Helouvry; the
@@ -283,8 +286,7 @@ const std::vector<EffectSpec>& library() {
          .signature = "no response to small inputs, the band missing from larger ones",
          .params = {{"width", "input units", 0.0, 0.0, 0.0, true}},
          .on_input = dead_zone,
-         .grid_upper = [](double in_span, double,
-                          const std::vector<double>&) { return 0.3 * in_span; },
+         .grid_upper = band_upper,
          .separating_experiment = "a slow ramp of the command up from zero: a dead zone answers "
                                   "only past its band, and then short by the band"});
     add({.kind = EffectKind::kBacklash,
@@ -425,6 +427,21 @@ const std::vector<EffectSpec>& library() {
          .params = {{"rate_per_s", "output units/s", 1.0, 1e-3, 1e4}},
          .separating_experiment = "a large step of the command: a rate limit ramps at one slope "
                                   "whatever the step's size"});
+    // A dry friction F under a proportional speed loop of stiffness K holds the speed F / K short
+    // of its command while it moves (the loop's steady-state error for a constant load; Ogata,
+    // "Modern Control Engineering", ch. 5, type-0 systems) and holds it at rest while the
+    // command's effort is within F (Armstrong-Helouvry, Dupont & Canudas de Wit, Automatica
+    // 30(7), 1994: Coulomb friction with sticking). Moving, it is a dead zone of width F / K; a
+    // stop tells them apart: the friction brings the speed to rest in a finite time, a dead
+    // zone lets it decay towards zero. Applied inside the speed channel's lag (channels.cpp).
+    add({.kind = EffectKind::kLoopFriction,
+         .name = "dry friction under the speed loop",
+         .signature = "the speed short of its command by one band, and stops sooner than the lag",
+         .params = {{"width", "input units", 0.0, 0.0, 0.0, true}},
+         .grid_upper = band_upper,
+         .separating_experiment =
+             "a stop from speed: friction brings the disc to rest in a finite time, a dead zone of "
+             "the drive lets the speed decay towards zero with the loop's lag"});
     add({.kind = EffectKind::kStiction,
          .name = "stiction (the disc held by static friction)",
          .signature = "torque while the speed is zero and the command is not",

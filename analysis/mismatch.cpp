@@ -800,15 +800,16 @@ void judge_friction_hold(ChannelReport& c) {
                          c.channel->output() + ":" + f.spec->name, note});
 }
 
-// A dead zone on the disc's speed beside a dry friction on its torque. A speed loop that is
-// proportional (with any feedforward) closes on the disc's inertia J as a first-order lag of
-// time constant T_d = J / K, K its stiffness in torque per unit of speed error (the speed
-// channel's nominal form); a constant load torque F then holds the speed F / K = F T_d / J
-// below its command (the loop's steady-state error; Ogata, Modern Control Engineering, ch. 5,
-// type-0 systems). A dead zone of that width is the friction seen through the loop, not a
-// dead zone of the drive: said so when the width is within two SDs (or 5 %) of F T_d / J,
-// with F the friction's moving level, J the torque channel's inertia and T_d the speed
-// channel's lag, each as fitted. An integrating loop leaves no such deficit, so no dead zone.
+// A dead zone (or the friction band, EffectKind::kLoopFriction) on the disc's speed beside a
+// dry friction on its torque. A speed loop that is proportional (with any feedforward) closes
+// on the disc's inertia J as a first-order lag of time constant T_d = J / K, K its stiffness in
+// torque per unit of speed error (the speed channel's nominal form); a constant load torque F
+// then holds the speed F / K = F T_d / J below its command (the loop's steady-state error;
+// Ogata, Modern Control Engineering, ch. 5, type-0 systems). A band of that width is the
+// friction seen through the loop, not an effect of its own: said so when the width is within
+// two SDs (or 5 %) of F T_d / J, with F the friction's moving level, J the torque channel's
+// inertia and T_d the speed channel's lag, each as fitted. An integrating loop leaves no such
+// deficit, so no band.
 void judge_speed_loop_deficit(FitReport& rep) {
   ChannelReport* speed = nullptr;
   const ChannelReport* torque = nullptr;
@@ -818,8 +819,10 @@ void judge_speed_loop_deficit(FitReport& rep) {
   }
   if (speed == nullptr || torque == nullptr) return;
   std::optional<std::size_t> dead_zone, friction;
-  for (std::size_t e = 0; e < speed->final_fit.effects.size(); ++e)
-    if (speed->final_fit.effects[e].spec->kind == EffectKind::kDeadZone) dead_zone = e;
+  for (std::size_t e = 0; e < speed->final_fit.effects.size(); ++e) {
+    const EffectKind kind = speed->final_fit.effects[e].spec->kind;
+    if (kind == EffectKind::kDeadZone || kind == EffectKind::kLoopFriction) dead_zone = e;
+  }
   for (std::size_t e = 0; e < torque->final_fit.effects.size(); ++e) {
     const EffectKind kind = torque->final_fit.effects[e].spec->kind;
     if (kind == EffectKind::kCoulomb || kind == EffectKind::kStribeck) friction = e;
@@ -848,14 +851,17 @@ void judge_speed_loop_deficit(FitReport& rep) {
   if (off > std::max(2.0 * combined_sd, 0.05 * predicted)) return;
   const std::string by =
       torque->channel->output() + ":" + torque->final_fit.effects[*friction].spec->name;
-  char note[420];
+  const bool band_is_dead_zone =
+      speed->final_fit.effects[*dead_zone].spec->kind == EffectKind::kDeadZone;
+  char note[440];
   std::snprintf(note, sizeof note,
                 "the disc torque's %s seen through the speed loop: a friction of %.4g N m against "
                 "a proportional loop of time constant %.4g s on an inertia of %.4g kg m^2 holds "
-                "the speed %.4g +- %.2g rad/s below its command (F T_d / J), where this dead "
-                "zone is %.4g; not a dead zone of the drive",
+                "the speed %.4g +- %.2g rad/s below its command (F T_d / J), where this band "
+                "is %.4g%s",
                 torque->final_fit.effects[*friction].spec->name.c_str(), level, lag, inertia,
-                predicted, predicted_sd, width);
+                predicted, predicted_sd, width,
+                band_is_dead_zone ? "; not a dead zone of the drive" : "; the same friction");
   speed->explained.push_back(
       {*dead_zone, ChannelReport::ExplainedBy::Relation::kThroughSpeedLoop, by, note});
 }

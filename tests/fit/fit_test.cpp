@@ -577,6 +577,70 @@ DiscMotion turning_and_resting(double t) {
 }
 }  // namespace
 
+namespace {
+// The disc's speed loop, as a drive runs it: a proportional loop of stiffness K = J / T_d on
+// the disc's inertia (J 0.6 kg m^2, T_d 0.05 s), stepped at 1 ms, the command held for each
+// 10 ms row. Either a dry friction `friction_Nm` opposes the motion and holds the disc at rest
+// while the loop's effort is within it, or the drive's command has a dead zone `dead_zone_radps`.
+// The command steps between 0.3 and 0.5 rad/s every 6 s and stops for 3 s every third step.
+Recording speed_loop_recording(double friction_Nm, double dead_zone_radps, unsigned seed) {
+  constexpr double kInertia = 0.6, kLag_s = 0.05, kStiffness = kInertia / kLag_s;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 2e-4);
+  std::uniform_real_distribution<double> level(0.3, 0.5);
+  Recording r;
+  r.file = "synthetic";
+  auto& cmd = r.signals["omega_cmd"];
+  auto& w = r.signals["omega"];
+  double omega = 0.0, command = 0.0;
+  for (int k = 0; k < 12000; ++k) {  // 120 s at 100 Hz
+    for (int sub = 0; k > 0 && sub < 10; ++sub) {
+      double target = command;
+      if (dead_zone_radps > 0.0)
+        target = std::abs(target) <= dead_zone_radps
+                     ? 0.0
+                     : target - std::copysign(dead_zone_radps, target);
+      const double effort = kStiffness * (target - omega);
+      const bool held = omega == 0.0 && std::abs(effort) <= friction_Nm;
+      const double dry =
+          omega != 0.0 ? std::copysign(friction_Nm, omega) : std::copysign(friction_Nm, effort);
+      const double next = held ? 0.0 : omega + (effort - dry) / kInertia * 1e-3;
+      omega = omega != 0.0 && next * omega < 0.0 && friction_Nm > 0.0 ? 0.0 : next;
+    }
+    const int segment = k / 600;
+    if (k % 600 == 0) command = segment % 3 == 2 ? 0.0 : level(rng);
+    r.t.push_back(0.01 * k);
+    cmd.push_back(command);
+    w.push_back(omega + noise(rng));
+  }
+  return r;
+}
+}  // namespace
+
+// A dry friction under the speed loop holds the disc F / K short of its command and stops it in
+// a finite time; a dead zone of the drive takes the same band off a moving command but lets the
+// speed decay towards zero. Each is named as itself, with its band, and nothing beside it. The
+// band (0.175 rad/s) is 35 % of the command's span, beyond the band grid's first 30 %.
+TEST(Analysis, FrictionUnderTheSpeedLoopIsToldFromADeadZone) {
+  const double band = 0.175;
+  for (const bool friction : {true, false}) {
+    const Recording r =
+        speed_loop_recording(friction ? band * 0.6 / 0.05 : 0.0, friction ? 0.0 : band, 21);
+    const FitReport rep = analyse(r, quick());
+    ASSERT_EQ(rep.channels.size(), 1u);
+    const ChannelReport& c = rep.channels[0];
+    ASSERT_EQ(c.chosen.size(), 1u)
+        << c.verdict << (c.chosen.empty() ? "" : ": " + c.chosen[0].effect)
+        << (c.chosen.size() > 1 ? ", " + c.chosen[1].effect : "");
+    EXPECT_EQ(c.chosen[0].spec->kind, friction ? EffectKind::kLoopFriction : EffectKind::kDeadZone)
+        << c.chosen[0].effect;
+    const double width = c.final_fit.effects[0].values[0];
+    EXPECT_LT(std::abs(width - band), 1.96 * c.final_fit.effect_sd_of(0, 0) + 1e-4)
+        << width << " +- " << c.final_fit.effect_sd_of(0, 0);
+    EXPECT_EQ(c.verdict, "effect(s) found");
+  }
+}
+
 // A torque offset on a disc that never stops trades with the viscous term b omega: it is not
 // named, and the rejection says what to record. With the disc at rest for a while, it is.
 TEST(Analysis, ATorqueOffsetIsNamedOnlyWithTheDiscAtRest) {

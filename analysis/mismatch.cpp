@@ -446,18 +446,30 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       }
     }
   }
-  const std::vector<ParamSpec> specs = ch.nominal_params();
-  for (std::size_t i = 0; i < specs.size() && i < rep.final_fit.nominal.size(); ++i) {
-    const ParamSpec& p = specs[i];
-    const double v = rep.final_fit.nominal[i], tolerance = 1e-6 * (p.upper - p.lower);
+  // A value that ended at an edge of its range: the nominal's, or a named effect's (its bounds
+  // as the fit had them, scaled to the output where they are; a grid parameter only at its own
+  // bound, where the grid could go no further).
+  auto at_edge = [&](const ParamSpec& p, double v, const std::string& owner,
+                     const char* structure) {
+    const double tolerance = 1e-6 * (p.upper - p.lower);
+    if (!(p.upper > p.lower)) return;  // unbounded (a grid's top comes from the data)
     // A lower bound of 0 is the physics' own limit (no lag, no inertia): ending there is an
     // answer, not a sign of a wrong structure.
-    const bool at_lower = v <= p.lower + tolerance && p.lower != 0.0;
-    if (p.grid || (!at_lower && v < p.upper - tolerance)) continue;
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "%s = %.4g %s (range %.4g to %.4g)", p.name.c_str(), v,
-                  p.unit.c_str(), p.lower, p.upper);
+    const bool at_lower = !p.grid && v <= p.lower + tolerance && p.lower != 0.0;
+    if (!at_lower && v < p.upper - tolerance) return;
+    char buf[300];
+    std::snprintf(buf, sizeof buf, "%s%s = %.4g %s (range %.4g to %.4g): %s may be wrong here",
+                  owner.c_str(), p.name.c_str(), v, p.unit.c_str(), p.lower, p.upper, structure);
     rep.at_range_edge.emplace_back(buf);
+  };
+  const std::vector<ParamSpec> specs = ch.nominal_params();
+  for (std::size_t i = 0; i < specs.size() && i < rep.final_fit.nominal.size(); ++i)
+    if (!specs[i].grid) at_edge(specs[i], rep.final_fit.nominal[i], "", "the nominal structure");
+  for (const Effect& named : rep.final_fit.effects) {
+    std::vector<ParamSpec> bounds = named.spec->params;
+    bounds_for_output(bounds, y);
+    for (std::size_t k = 0; k < bounds.size() && k < named.values.size(); ++k)
+      at_edge(bounds[k], named.values[k], named.spec->name + ": ", "the effect's form");
   }
   if (rep.chosen.empty() && !rep.change)
     rep.verdict = rep.unexplained ? "unexplained residual" : "no significant mismatch";

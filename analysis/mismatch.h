@@ -111,8 +111,9 @@ struct ChannelReport {
   std::string verdict;  // "no significant mismatch", "effect(s) found", "unexplained residual"
   bool unexplained = false;
   // The final fit's nominal parameters that ended at an edge of their range, as
-  // "name = value (range lo to hi)": the nominal structure may be wrong there, and a residual
-  // beside it is not evidence of a missing effect (issue 32, item 1).
+  // "[effect: ]name = value (range lo to hi): the nominal structure (or the effect's form) may
+  // be wrong here", and a residual beside it is not evidence of a missing effect (issue 32,
+  // item 1).
   std::vector<std::string> at_range_edge;
 };
 

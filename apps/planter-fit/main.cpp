@@ -108,8 +108,7 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
           "part shows within the calibration part to determine it\n",
           c.undetermined.c_str());
     for (const std::string& edge : c.at_range_edge)
-      std::printf("    at the edge of its range: %s: the nominal structure may be wrong here\n",
-                  edge.c_str());
+      std::printf("    at the edge of its range: %s\n", edge.c_str());
     if (c.unexplained) {
       std::printf(
           "    unexplained: worst window at %.0f s (%.1fx), input correlation %.2f, "

@@ -600,12 +600,15 @@ DiscMotion turning_and_resting(double t) {
 
 namespace {
 // The disc's speed loop, as a drive runs it: a proportional loop of stiffness K = J / T_d on
-// the disc's inertia (J 0.6 kg m^2, T_d 0.05 s), stepped at 1 ms, the command held for each
-// 10 ms row. Either a dry friction `friction_Nm` opposes the motion and holds the disc at rest
-// while the loop's effort is within it, or the drive's command has a dead zone `dead_zone_radps`.
-// The command steps between 0.3 and 0.5 rad/s every 6 s and stops for 3 s every third step.
-Recording speed_loop_recording(double friction_Nm, double dead_zone_radps, unsigned seed) {
-  constexpr double kInertia = 0.6, kLag_s = 0.05, kStiffness = kInertia / kLag_s;
+// the disc's inertia (J 0.6 kg m^2, T_d `lag_s`), stepped at 1 ms, the command held for each
+// 10 ms row (`delay_rows` rows late). A dry friction `friction_Nm` may oppose the motion and
+// hold the disc at rest while the loop's effort is within it, and the drive's command may have
+// a dead zone `dead_zone_radps`. The command steps between 0.3 and 0.5 rad/s every 6 s and is
+// 0 for every third step.
+Recording speed_loop_recording(double friction_Nm, double dead_zone_radps, unsigned seed,
+                               double lag_s = 0.05, int delay_rows = 0) {
+  constexpr double kInertia = 0.6;
+  const double stiffness = kInertia / lag_s;
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, 2e-4);
   std::uniform_real_distribution<double> level(0.3, 0.5);
@@ -615,13 +618,16 @@ Recording speed_loop_recording(double friction_Nm, double dead_zone_radps, unsig
   auto& w = r.signals["omega"];
   double omega = 0.0, command = 0.0;
   for (int k = 0; k < 12000; ++k) {  // 120 s at 100 Hz
+    // The drive acts on the command recorded `delay_rows` rows before the last.
+    const int acted_row = k - 1 - delay_rows;
+    const double acting = acted_row >= 0 ? cmd[static_cast<std::size_t>(acted_row)] : 0.0;
     for (int sub = 0; k > 0 && sub < 10; ++sub) {
-      double target = command;
+      double target = acting;
       if (dead_zone_radps > 0.0)
         target = std::abs(target) <= dead_zone_radps
                      ? 0.0
                      : target - std::copysign(dead_zone_radps, target);
-      const double effort = kStiffness * (target - omega);
+      const double effort = stiffness * (target - omega);
       const bool held = omega == 0.0 && std::abs(effort) <= friction_Nm;
       const double dry =
           omega != 0.0 ? std::copysign(friction_Nm, omega) : std::copysign(friction_Nm, effort);
@@ -660,6 +666,31 @@ TEST(Analysis, FrictionUnderTheSpeedLoopIsToldFromADeadZone) {
         << width << " +- " << c.final_fit.effect_sd_of(0, 0);
     EXPECT_EQ(c.verdict, "effect(s) found");
   }
+}
+
+// A value that ends at an edge of its range is said, with what may be wrong: a speed loop's
+// lag of 8 s against the nominal's range up to 5 s, a command delay of 0.8 s against the
+// delay's up to 0.5 s. A loop inside both ranges says nothing of the kind.
+TEST(Analysis, AValueAtTheEdgeOfItsRangeIsSaid) {
+  auto edges = [](const Recording& r) {
+    FitOptions o = quick();
+    o.max_rows = 3000;
+    const FitReport rep = analyse(r, o);
+    EXPECT_EQ(rep.channels.size(), 1u);
+    std::string all;
+    for (const std::string& e : rep.channels.at(0).at_range_edge) all += e + "\n";
+    return all;
+  };
+  const std::string slow = edges(speed_loop_recording(0.0, 0.0, 3, 8.0));
+  EXPECT_NE(slow.find("T_d = 5 s (range 0.005 to 5): the nominal structure may be wrong here"),
+            std::string::npos)
+      << slow;
+  const std::string late = edges(speed_loop_recording(0.0, 0.0, 3, 0.05, 80));
+  EXPECT_NE(late.find("transport delay: delay_s = 0.5 s (range 0 to 0.5): the effect's form may "
+                      "be wrong here"),
+            std::string::npos)
+      << late;
+  EXPECT_EQ(edges(speed_loop_recording(0.0, 0.0, 3, 0.05, 20)), "");
 }
 
 // A torque offset on a disc that never stops trades with the viscous term b omega: it is not

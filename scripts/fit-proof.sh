@@ -191,6 +191,14 @@ for kind in statistical grid; do
   done
   if [ "$kind" = statistical ]; then
     echo "stated 95 % intervals (+-1.96 SD) holding the hidden value: $covered of $checked parameters"
+    # How far that count is from 95 %, in its own terms: the binomial chance of a count as low.
+    if [ "$checked" -gt 0 ]; then
+      chance=$(/usr/bin/python3 -c 'import math, sys
+n, k = int(sys.argv[1]), int(sys.argv[2])
+print("%.0f" % (100 * sum(math.comb(n, i) * 0.95**i * 0.05**(n - i) for i in range(k + 1))))' \
+        "$checked" "$covered")
+      echo "  (intervals right 95 % of the time hold $covered or fewer of $checked in $chance % of proofs)"
+    fi
   else
     echo "grid parameters within their stated resolution of the hidden value: $covered of $checked"
   fi

@@ -13,4 +13,23 @@ void update_contacts(VectorPath path, ContactArrays& contacts, const ParticleMot
   kPaths.pick(path)(lanes::view(contacts), lanes::view(motion), step, begin, end);
 }
 
+void update_platen_contacts(VectorPath path, PlatenArrays& platens, std::size_t platen,
+                            const Vec3& point, const Vec3& normal, const Vec3& velocity,
+                            const ParticleMotion& motion, double friction, double rolling_friction,
+                            double dt, std::size_t begin, std::size_t end) {
+  constexpr PathTable<lanes::PlatensFn> kPaths{lanes::platens_scalar, lanes::platens_baseline,
+                                               lanes::platens_avx2, lanes::platens_avx512};
+  const lanes::PlatenStep step{{friction, rolling_friction, dt},
+                               point.x(),
+                               point.y(),
+                               point.z(),
+                               normal.x(),
+                               normal.y(),
+                               normal.z(),
+                               velocity.x(),
+                               velocity.y(),
+                               velocity.z()};
+  kPaths.pick(path)(lanes::view(platens, platen), lanes::view(motion), step, begin, end);
+}
+
 }  // namespace planter::dem

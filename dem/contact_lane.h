@@ -143,4 +143,46 @@ struct ContactLoads {
   c.out.carried[k] = l.touching ? 1.0 : 0.0;
 }
 
+// Particle k against one platen: a wall is a sphere of infinite radius and mass at the
+// particle's foot point (radius 1 m stands in: R* below treats it as flat), and only a particle
+// within its radius of the platen is in contact; the others' springs are released.
+[[gnu::always_inline]] inline void platen_lane(const PlatenView& c, const MotionView& m,
+                                               const PlatenStep& s, std::size_t k) {
+  constexpr double kWallRadius = 1.0;
+  const double h = (m.x[k] - s.px) * s.nx + (m.y[k] - s.py) * s.ny + (m.z[k] - s.pz) * s.nz;
+  const bool near = h < m.r[k];
+  const double foot = h + kWallRadius;
+  const Sphere i{m.x[k],  m.y[k],  m.z[k],  m.vx[k], m.vy[k],      m.vz[k],
+                 m.wx[k], m.wy[k], m.wz[k], m.r[k],  m.inv_spin[k]};
+  const Sphere wall{m.x[k] - foot * s.nx,
+                    m.y[k] - foot * s.ny,
+                    m.z[k] - foot * s.nz,
+                    s.vx,
+                    s.vy,
+                    s.vz,
+                    0.0,
+                    0.0,
+                    0.0,
+                    kWallRadius,
+                    0.0};
+  const PairProperties p{c.e_star[k], c.g_star[k], c.r_star[k],
+                         c.m_star[k], c.beta[k],   c.shear_to_normal_root[k]};
+  double sx = c.sx[k];
+  double sy = c.sy[k];
+  double sz = c.sz[k];
+  const ContactLoads l = contact_lane(s.contact.friction, s.contact.rolling_friction, p, i, wall,
+                                      s.contact.dt, 0.0, sx, sy, sz);
+  c.sx[k] = near ? sx : 0.0;
+  c.sy[k] = near ? sy : 0.0;
+  c.sz[k] = near ? sz : 0.0;
+  c.fx[k] = near ? l.fx : 0.0;
+  c.fy[k] = near ? l.fy : 0.0;
+  c.fz[k] = near ? l.fz : 0.0;
+  c.tx[k] = near ? l.ti_x : 0.0;
+  c.ty[k] = near ? l.ti_y : 0.0;
+  c.tz[k] = near ? l.ti_z : 0.0;
+  c.normal_N[k] = near ? l.normal_N : 0.0;
+  c.near[k] = near ? 1.0 : 0.0;
+}
+
 }  // namespace planter::dem::lanes

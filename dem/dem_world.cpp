@@ -112,45 +112,29 @@ void DemWorld::rebuild_neighbours() {
   }
   x_at_rebuild_.resize(particles_.size());
   for (std::size_t k = 0; k < particles_.size(); ++k) x_at_rebuild_[k] = particles_[k].x;
-  platen_springs_.resize(platens_.size() * particles_.size(), Vec3::Zero());
-  platen_normal_N_.assign(platens_.size() * particles_.size(), 0.0);
   bonds_of_.build(particles_.size(), bonds_.i, bonds_.j);
   contacts_of_.build(particles_.size(), candidates_.i, candidates_.j);
   // Every platen is the same steel: one pair per particle, not one per contact and step.
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  platen_props_.clear();
+  std::vector<PairProperties> against_platen;
+  against_platen.reserve(particles_.size());
   for (const auto& p : particles_) {
-    platen_props_.push_back(pair_properties(material_, platen_material_,
-                                            platen_material_.restitution, p.radius_m, kInf,
-                                            p.mass_kg, kInf));
+    against_platen.push_back(pair_properties(material_, platen_material_,
+                                             platen_material_.restitution, p.radius_m, kInf,
+                                             p.mass_kg, kInf));
   }
+  platen_contacts_.resize(platens_.size(), against_platen);
   neighbours_valid_ = true;
   ++rebuilds_;
 }
 
-void DemWorld::platen_contacts(std::size_t i, Particle& p, double dt) {
-  // A wall is a sphere of infinite radius and mass at the particle's foot point.
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  const std::size_t n = particles_.size();
+void DemWorld::add_platen_loads(std::size_t i, Particle& p) const {
+  const PlatenArrays& c = platen_contacts_;
   for (std::size_t k = 0; k < platens_.size(); ++k) {
-    const Platen& w = platens_[k];
-    Vec3& spring = platen_springs_[k * n + i];
-    double& normal_N = platen_normal_N_[k * n + i];
-    normal_N = 0.0;
-    const double h = (p.x - w.point).dot(w.normal);
-    if (h >= p.radius_m) {
-      spring.setZero();
-      continue;
-    }
-    Particle wall;
-    wall.radius_m = 1.0;  // geometry only: R* below treats the wall as flat
-    wall.x = p.x - (h + wall.radius_m) * w.normal;
-    wall.v = w.velocity;
-    wall.mass_kg = kInf;
-    const ContactResult r = hertz_mindlin(platen_material_, platen_props_[i], p, wall, dt, spring);
-    p.f += r.force_on_i;
-    p.tau += r.torque_on_i;
-    normal_N = r.normal_force_N;
+    const std::size_t at = k * c.particles + i;
+    if (c.near[at] == 0.0) continue;  // no contact: nothing added (not even a zero)
+    p.f += Vec3(c.fx[at], c.fy[at], c.fz[at]);
+    p.tau += Vec3(c.tx[at], c.ty[at], c.tz[at]);
   }
 }
 
@@ -175,7 +159,7 @@ void DemWorld::particle_step(std::size_t i, bool sum_pairs, double dt) {
     add_pair_loads(bonds_.loads, bonds_of_, i, p);
     add_pair_loads(candidates_.loads, contacts_of_, i, p);
   }
-  platen_contacts(i, p, dt);
+  add_platen_loads(i, p);
   integrate(p, dt);
 }
 
@@ -198,6 +182,13 @@ void DemWorld::step(double dt) {
     const auto [c0, c1] = share(candidates_.size(), k);
     update_contacts(vector_path_, candidates_, motion_, material_.friction,
                     material_.rolling_friction, dt, c0, c1);
+    const auto [p0, p1] = share(particles_.size(), k);
+    for (std::size_t w = 0; w < platens_.size(); ++w) {
+      update_platen_contacts(vector_path_, platen_contacts_, w, platens_[w].point,
+                             platens_[w].normal, platens_[w].velocity, motion_,
+                             platen_material_.friction, platen_material_.rolling_friction, dt, p0,
+                             p1);
+    }
   };
   threads_->run(pairs);
   // On one thread the pairs' loads are added in one pass over the pairs (the arrays read in
@@ -221,7 +212,7 @@ void DemWorld::step(double dt) {
   for (std::size_t k = 0; k < platens_.size(); ++k) {
     Platen& w = platens_[k];
     w.force_N = 0.0;
-    for (std::size_t i = 0; i < n; ++i) w.force_N += platen_normal_N_[k * n + i];
+    for (std::size_t i = 0; i < n; ++i) w.force_N += platen_contacts_.normal_N[k * n + i];
     w.point += w.velocity * dt;
   }
   ++steps_;

@@ -76,7 +76,8 @@ class DemWorld {
   // Particle i's pair loads summed (`sum_pairs`; else they were), its platen contacts, and its
   // motion advanced.
   void particle_step(std::size_t i, bool sum_pairs, double dt);
-  void platen_contacts(std::size_t i, Particle& p, double dt);
+  // Particle i's platen loads (update_platen_contacts left them), added after its pairs'.
+  void add_platen_loads(std::size_t i, Particle& p) const;
   void integrate(Particle& p, double dt) const;
 
   ContactMaterial material_;
@@ -99,9 +100,7 @@ class DemWorld {
   std::vector<Vec3> x_at_rebuild_;
   double skin_m_ = 0.0;
   bool neighbours_valid_ = false;
-  std::vector<Vec3> platen_springs_;          // [platen * n + particle]
-  std::vector<PairProperties> platen_props_;  // [particle], against the platen material
-  std::vector<double> platen_normal_N_;       // [platen * n + particle], this step's
+  PlatenArrays platen_contacts_;  // every particle against every platen
   long steps_ = 0;
   long rebuilds_ = 0;
 };

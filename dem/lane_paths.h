@@ -12,6 +12,8 @@ using BondsFn = void (*)(const BondView&, const MotionView&, const BondStep&, st
                          std::size_t);
 using ContactsFn = void (*)(const ContactView&, const MotionView&, const ContactStep&, std::size_t,
                             std::size_t);
+using PlatensFn = void (*)(const PlatenView&, const MotionView&, const PlatenStep&, std::size_t,
+                           std::size_t);
 
 void bonds_scalar(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,
                   std::size_t end);
@@ -30,5 +32,14 @@ void contacts_avx2(const ContactView& c, const MotionView& m, const ContactStep&
                    std::size_t begin, std::size_t end);
 void contacts_avx512(const ContactView& c, const MotionView& m, const ContactStep& s,
                      std::size_t begin, std::size_t end);
+
+void platens_scalar(const PlatenView& c, const MotionView& m, const PlatenStep& s,
+                    std::size_t begin, std::size_t end);
+void platens_baseline(const PlatenView& c, const MotionView& m, const PlatenStep& s,
+                      std::size_t begin, std::size_t end);
+void platens_avx2(const PlatenView& c, const MotionView& m, const PlatenStep& s, std::size_t begin,
+                  std::size_t end);
+void platens_avx512(const PlatenView& c, const MotionView& m, const PlatenStep& s,
+                    std::size_t begin, std::size_t end);
 
 }  // namespace planter::dem::lanes

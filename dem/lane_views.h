@@ -4,6 +4,7 @@
 #include "dem/bond_arrays.h"
 #include "dem/contact_arrays.h"
 #include "dem/particle_motion.h"
+#include "dem/platen_arrays.h"
 
 namespace planter::dem::lanes {
 
@@ -33,8 +34,22 @@ struct ContactStep {
   double rolling_friction;
   double dt;
 };
+// One platen's contacts with every particle: the particles' constants against it, and its
+// springs and loads (offset to that platen's rows).
+struct PlatenView {
+  const double *e_star, *g_star, *r_star, *m_star, *beta, *shear_to_normal_root;
+  double *sx, *sy, *sz, *fx, *fy, *fz, *tx, *ty, *tz, *normal_N, *near;
+};
+// What a platen's step shares: the platen material's friction, the time step, and the platen
+// (a point on it, its unit normal towards the particles, its velocity).
+struct PlatenStep {
+  ContactStep contact;
+  double px, py, pz, nx, ny, nz, vx, vy, vz;
+};
 BondView view(BondArrays& b);
 ContactView view(ContactArrays& c);
 MotionView view(const ParticleMotion& m);
+// Platen `platen`'s rows of the arrays.
+PlatenView view(PlatenArrays& a, std::size_t platen);
 
 }  // namespace planter::dem::lanes

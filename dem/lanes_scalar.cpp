@@ -35,6 +35,16 @@ MotionView view(const ParticleMotion& m) {
           m.wx.data(), m.wy.data(), m.wz.data(), m.radius_m.data(), m.inv_spin.data()};
 }
 
+PlatenView view(PlatenArrays& a, std::size_t platen) {
+  const std::size_t at = platen * a.particles;
+  return {a.e_star.data(),        a.g_star.data(),        a.r_star.data(),
+          a.m_star.data(),        a.beta.data(),          a.shear_to_normal_root.data(),
+          a.spring_x.data() + at, a.spring_y.data() + at, a.spring_z.data() + at,
+          a.fx.data() + at,       a.fy.data() + at,       a.fz.data() + at,
+          a.tx.data() + at,       a.ty.data() + at,       a.tz.data() + at,
+          a.normal_N.data() + at, a.near.data() + at};
+}
+
 void bonds_scalar(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,
                   std::size_t end) {
   for (std::size_t k = begin; k < end; ++k) bond_lane(b, m, s, k);
@@ -43,6 +53,11 @@ void bonds_scalar(const BondView& b, const MotionView& m, const BondStep& s, std
 void contacts_scalar(const ContactView& c, const MotionView& m, const ContactStep& s,
                      std::size_t begin, std::size_t end) {
   for (std::size_t k = begin; k < end; ++k) contact_pair_lane(c, m, s, k);
+}
+
+void platens_scalar(const PlatenView& c, const MotionView& m, const PlatenStep& s,
+                    std::size_t begin, std::size_t end) {
+  for (std::size_t k = begin; k < end; ++k) platen_lane(c, m, s, k);
 }
 
 }  // namespace planter::dem::lanes

@@ -61,4 +61,19 @@ void contacts_avx512(const ContactView& c, const MotionView& m, const ContactSte
   each_lane<contact_pair_lane>(c, m, s, begin, end);
 }
 
+void platens_baseline(const PlatenView& c, const MotionView& m, const PlatenStep& s,
+                      std::size_t begin, std::size_t end) {
+  each_lane<platen_lane>(c, m, s, begin, end);
+}
+PLANTER_DEM_TARGET("avx2")
+void platens_avx2(const PlatenView& c, const MotionView& m, const PlatenStep& s, std::size_t begin,
+                  std::size_t end) {
+  each_lane<platen_lane>(c, m, s, begin, end);
+}
+PLANTER_DEM_TARGET("avx512f")
+void platens_avx512(const PlatenView& c, const MotionView& m, const PlatenStep& s,
+                    std::size_t begin, std::size_t end) {
+  each_lane<platen_lane>(c, m, s, begin, end);
+}
+
 }  // namespace planter::dem::lanes

@@ -7,6 +7,7 @@
 
 #include "dem/hertz_mindlin.h"
 #include "dem/pair_loads.h"
+#include "dem/pair_property_columns.h"
 
 namespace planter::dem {
 
@@ -14,7 +15,7 @@ struct ContactArrays {
   std::vector<int> i, j;
   std::vector<int> bond;               // index into the bonds for a pair bonded at build, or -1
   std::vector<double> rest_overlap_m;  // the bonded pair's as-built overlap, else 0
-  std::vector<double> e_star, g_star, r_star, m_star, beta, shear_to_normal_root;  // PairProperties
+  PairPropertyColumns constants;       // the pairs' PairProperties
   std::vector<double> spring_x, spring_y, spring_z;  // tangential spring (history)
   PairLoads loads;  // this step's, on the two particles (carried: the pair touched)
 

@@ -121,8 +121,7 @@ struct ContactLoads {
                  m.wx[a], m.wy[a], m.wz[a], m.r[a],  m.inv_spin[a]};
   const Sphere j{m.x[b],  m.y[b],  m.z[b],  m.vx[b], m.vy[b],      m.vz[b],
                  m.wx[b], m.wy[b], m.wz[b], m.r[b],  m.inv_spin[b]};
-  const PairProperties p{c.e_star[k], c.g_star[k], c.r_star[k],
-                         c.m_star[k], c.beta[k],   c.shear_to_normal_root[k]};
+  const PairProperties p = c.constants.at(k);
   double sx = c.sx[k];
   double sy = c.sy[k];
   double sz = c.sz[k];
@@ -165,8 +164,7 @@ struct ContactLoads {
                     0.0,
                     kWallRadius,
                     0.0};
-  const PairProperties p{c.e_star[k], c.g_star[k], c.r_star[k],
-                         c.m_star[k], c.beta[k],   c.shear_to_normal_root[k]};
+  const PairProperties p = c.constants.at(k);
   double sx = c.sx[k];
   double sy = c.sy[k];
   double sz = c.sz[k];

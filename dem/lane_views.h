@@ -18,10 +18,18 @@ struct BondView {
   double *fn, *twist, *sx, *sy, *sz, *bx, *by, *bz, *broken;
   LoadsView out;
 };
+// PairPropertyColumns, row by row.
+struct PropertiesView {
+  const double *e_star, *g_star, *r_star, *m_star, *beta, *shear_to_normal_root;
+  [[gnu::always_inline]] PairProperties at(std::size_t k) const {
+    return {e_star[k], g_star[k], r_star[k], m_star[k], beta[k], shear_to_normal_root[k]};
+  }
+};
 struct ContactView {
   const int* i;
   const int* j;
-  const double *rest, *e_star, *g_star, *r_star, *m_star, *beta, *shear_to_normal_root;
+  const double* rest;
+  PropertiesView constants;
   double *sx, *sy, *sz;
   LoadsView out;
 };
@@ -37,7 +45,7 @@ struct ContactStep {
 // One platen's contacts with every particle: the particles' constants against it, and its
 // springs and loads (offset to that platen's rows).
 struct PlatenView {
-  const double *e_star, *g_star, *r_star, *m_star, *beta, *shear_to_normal_root;
+  PropertiesView constants;
   double *sx, *sy, *sz, *fx, *fy, *fz, *tx, *ty, *tz, *normal_N, *near;
 };
 // What a platen's step shares: the platen material's friction, the time step, and the platen
@@ -49,6 +57,7 @@ struct PlatenStep {
 BondView view(BondArrays& b);
 ContactView view(ContactArrays& c);
 MotionView view(const ParticleMotion& m);
+PropertiesView view(const PairPropertyColumns& c);
 // Platen `platen`'s rows of the arrays.
 PlatenView view(PlatenArrays& a, std::size_t platen);
 

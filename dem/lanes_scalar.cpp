@@ -23,11 +23,13 @@ BondView view(BondArrays& b) {
 }
 
 ContactView view(ContactArrays& c) {
-  return {c.i.data(),         c.j.data(),        c.rest_overlap_m.data(),
-          c.e_star.data(),    c.g_star.data(),   c.r_star.data(),
-          c.m_star.data(),    c.beta.data(),     c.shear_to_normal_root.data(),
-          c.spring_x.data(),  c.spring_y.data(), c.spring_z.data(),
-          loads_view(c.loads)};
+  return {c.i.data(),        c.j.data(),        c.rest_overlap_m.data(), view(c.constants),
+          c.spring_x.data(), c.spring_y.data(), c.spring_z.data(),       loads_view(c.loads)};
+}
+
+PropertiesView view(const PairPropertyColumns& c) {
+  return {c.e_star.data(), c.g_star.data(), c.r_star.data(),
+          c.m_star.data(), c.beta.data(),   c.shear_to_normal_root.data()};
 }
 
 MotionView view(const ParticleMotion& m) {
@@ -37,12 +39,9 @@ MotionView view(const ParticleMotion& m) {
 
 PlatenView view(PlatenArrays& a, std::size_t platen) {
   const std::size_t at = platen * a.particles;
-  return {a.e_star.data(),        a.g_star.data(),        a.r_star.data(),
-          a.m_star.data(),        a.beta.data(),          a.shear_to_normal_root.data(),
-          a.spring_x.data() + at, a.spring_y.data() + at, a.spring_z.data() + at,
-          a.fx.data() + at,       a.fy.data() + at,       a.fz.data() + at,
-          a.tx.data() + at,       a.ty.data() + at,       a.tz.data() + at,
-          a.normal_N.data() + at, a.near.data() + at};
+  return {view(a.constants), a.spring_x.data() + at, a.spring_y.data() + at, a.spring_z.data() + at,
+          a.fx.data() + at,  a.fy.data() + at,       a.fz.data() + at,       a.tx.data() + at,
+          a.ty.data() + at,  a.tz.data() + at,       a.normal_N.data() + at, a.near.data() + at};
 }
 
 void bonds_scalar(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,

@@ -6,13 +6,13 @@
 #include <vector>
 
 #include "dem/hertz_mindlin.h"
+#include "dem/pair_property_columns.h"
 
 namespace planter::dem {
 
 struct PlatenArrays {
   std::size_t particles = 0;
-  // [particle]: PairProperties against the platen material.
-  std::vector<double> e_star, g_star, r_star, m_star, beta, shear_to_normal_root;
+  PairPropertyColumns constants;  // [particle]: PairProperties against the platen material
   // [platen * particles + particle]: the tangential spring (history), kept across rebuilds.
   std::vector<double> spring_x, spring_y, spring_z;
   // [platen * particles + particle], this step's: the force and torque on the particle, the

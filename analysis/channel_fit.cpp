@@ -325,19 +325,25 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
   double best_rss = std::numeric_limits<double>::infinity();
   std::vector<double> best_nominal = nominal;
   std::vector<Effect> best_effects = effects;
-  // Grid over every combination (at most two grid parameters in practice).
-  std::vector<std::size_t> idx(grid.size(), 0);
-  while (true) {
+  // The smooth parameters solved from the nominal's start beside effects `fx` (their grid
+  // values set), the best kept; returns the calibration RSS.
+  auto solve_keeping_best = [&](std::vector<Effect> fx) {
     std::vector<double> nom = nominal_start;
-    std::vector<Effect> fx = effects;
-    for (std::size_t g = 0; g < grid.size(); ++g)
-      fx[grid[g].effect].values[grid[g].index] = grid[g].values[idx[g]];
     const double rss = solve(ch, r, split, nom, fx, huber, nullptr);
     if (rss < best_rss) {
       best_rss = rss;
-      best_nominal = nom;
-      best_effects = fx;
+      best_nominal = std::move(nom);
+      best_effects = std::move(fx);
     }
+    return rss;
+  };
+  // Grid over every combination (at most two grid parameters in practice).
+  std::vector<std::size_t> idx(grid.size(), 0);
+  while (true) {
+    std::vector<Effect> fx = effects;
+    for (std::size_t g = 0; g < grid.size(); ++g)
+      fx[grid[g].effect].values[grid[g].index] = grid[g].values[idx[g]];
+    solve_keeping_best(std::move(fx));
     std::size_t g = 0;
     while (g < grid.size() && ++idx[g] == grid[g].values.size()) idx[g++] = 0;
     if (g == grid.size()) break;
@@ -355,16 +361,10 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
     for (int more = 0; more < 32 && step > 0.0; ++more) {
       const double top = g.values.back();
       if (best_effects[g.effect].values[g.index] != top || top + step > limit) break;
-      std::vector<double> nom = nominal_start;
       std::vector<Effect> fx = effects;
       fx[g.effect].values[g.index] = top + step;
       g.values.push_back(top + step);
-      const double rss = solve(ch, r, split, nom, fx, huber, nullptr);
-      if (rss < best_rss) {
-        best_rss = rss;
-        best_nominal = nom;
-        best_effects = fx;
-      }
+      solve_keeping_best(std::move(fx));
     }
   }
   // A single grid parameter is refined below its grid: the step is halved three times around
@@ -387,15 +387,9 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
       for (const auto& [at, rss] : solved) {
         if (at == v) return rss;
       }
-      std::vector<double> nom = nominal_start;
       std::vector<Effect> fx = best_effects;
       fx[g.effect].values[g.index] = v;
-      const double rss = solve(ch, r, split, nom, fx, huber, nullptr);
-      if (rss < best_rss) {
-        best_rss = rss;
-        best_nominal = nom;
-        best_effects = std::move(fx);
-      }
+      const double rss = solve_keeping_best(std::move(fx));
       solved.emplace_back(v, rss);
       return rss;
     };

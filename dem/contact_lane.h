@@ -17,6 +17,12 @@ struct Sphere {
   double x, y, z, vx, vy, vz, wx, wy, wz, r, inv_spin;
 };
 
+// Particle k's sphere from the particles' motion.
+[[gnu::always_inline]] inline Sphere sphere_of(const MotionView& m, std::size_t k) {
+  return {m.x[k],  m.y[k],  m.z[k],  m.vx[k], m.vy[k],      m.vz[k],
+          m.wx[k], m.wy[k], m.wz[k], m.r[k],  m.inv_spin[k]};
+}
+
 // The loads of one contact: the force on i, the torques on i and j, the normal force.
 struct ContactLoads {
   double fx, fy, fz, ti_x, ti_y, ti_z, tj_x, tj_y, tj_z, normal_N;
@@ -115,12 +121,8 @@ struct ContactLoads {
 // back into the arrays.
 [[gnu::always_inline]] inline void contact_pair_lane(const ContactView& c, const MotionView& m,
                                                      const ContactStep& s, std::size_t k) {
-  const int a = c.i[k];
-  const int b = c.j[k];
-  const Sphere i{m.x[a],  m.y[a],  m.z[a],  m.vx[a], m.vy[a],      m.vz[a],
-                 m.wx[a], m.wy[a], m.wz[a], m.r[a],  m.inv_spin[a]};
-  const Sphere j{m.x[b],  m.y[b],  m.z[b],  m.vx[b], m.vy[b],      m.vz[b],
-                 m.wx[b], m.wy[b], m.wz[b], m.r[b],  m.inv_spin[b]};
+  const Sphere i = sphere_of(m, static_cast<std::size_t>(c.i[k]));
+  const Sphere j = sphere_of(m, static_cast<std::size_t>(c.j[k]));
   const PairProperties p = c.constants.at(k);
   double sx = c.sx[k];
   double sy = c.sy[k];
@@ -151,8 +153,7 @@ struct ContactLoads {
   const double h = (m.x[k] - s.px) * s.nx + (m.y[k] - s.py) * s.ny + (m.z[k] - s.pz) * s.nz;
   const bool near = h < m.r[k];
   const double foot = h + kWallRadius;
-  const Sphere i{m.x[k],  m.y[k],  m.z[k],  m.vx[k], m.vy[k],      m.vz[k],
-                 m.wx[k], m.wy[k], m.wz[k], m.r[k],  m.inv_spin[k]};
+  const Sphere i = sphere_of(m, k);
   const Sphere wall{m.x[k] - foot * s.nx,
                     m.y[k] - foot * s.ny,
                     m.z[k] - foot * s.nz,

@@ -89,6 +89,9 @@ signalled() {  # signalled NAME STATE [SCANCEL ARGS...]
   # scancel exits non-zero after signalling a batch task with --full (seen: 229); what counts
   # is the task's end, checked below.
   scancel "$@" "$task" || true
+  # The array's tasks still pending would run one at a time, 14 runs of 300 m (about 25 s) that
+  # say nothing more here: they are cancelled too, and are reported with the signalled one.
+  scancel -t PENDING "$job" || true
   wait "$follower" || status=$?
   [ "$status" -ne 0 ] || fail "$name: a sweep with a $name task exited 0"
   grep -q "task $task ended $state without its result" "$work/$name.err" ||

@@ -31,13 +31,12 @@ namespace planter::dem::lanes {
   c = keep ? c : pc * scale;
 }
 
-[[gnu::always_inline]] inline void bond_lane(const BondView& b, const MotionView& m,
+// Bond k of the arrays, its particles' spheres `i` and `j`.
+[[gnu::always_inline]] inline void bond_lane(const BondView& b, const Sphere& i, const Sphere& j,
                                              const BondStep& s, std::size_t k) {
-  const int pi = b.i[k];
-  const int pj = b.j[k];
-  const double dx = m.x[pj] - m.x[pi];
-  const double dy = m.y[pj] - m.y[pi];
-  const double dz = m.z[pj] - m.z[pi];
+  const double dx = j.x - i.x;
+  const double dy = j.y - i.y;
+  const double dz = j.z - i.z;
   const double dist = std::sqrt(dx * dx + dy * dy + dz * dz);
   // A broken bond, or two particles at one point (no direction), carries nothing and keeps
   // its stored loads.
@@ -48,7 +47,7 @@ namespace planter::dem::lanes {
   const double ny = dy * inv_dist;
   const double nz = dz * inv_dist;
   // Contact point halfway across the gap between the surfaces.
-  const double to_contact_i = m.r[pi] + 0.5 * (dist - m.r[pi] - m.r[pj]);
+  const double to_contact_i = i.r + 0.5 * (dist - i.r - j.r);
   const double rix = to_contact_i * nx;
   const double riy = to_contact_i * ny;
   const double riz = to_contact_i * nz;
@@ -56,16 +55,16 @@ namespace planter::dem::lanes {
   const double rjy = riy - dy;
   const double rjz = riz - dz;
   // Velocity of j's contact point against i's: v + w x r on each side.
-  const double vcx = (m.vx[pj] + (m.wy[pj] * rjz - m.wz[pj] * rjy)) -
-                     (m.vx[pi] + (m.wy[pi] * riz - m.wz[pi] * riy));
-  const double vcy = (m.vy[pj] + (m.wz[pj] * rjx - m.wx[pj] * rjz)) -
-                     (m.vy[pi] + (m.wz[pi] * rix - m.wx[pi] * riz));
-  const double vcz = (m.vz[pj] + (m.wx[pj] * rjy - m.wy[pj] * rjx)) -
-                     (m.vz[pi] + (m.wx[pi] * riy - m.wy[pi] * rix));
+  const double vcx = (j.vx + (j.wy * rjz - j.wz * rjy)) -
+                     (i.vx + (i.wy * riz - i.wz * riy));
+  const double vcy = (j.vy + (j.wz * rjx - j.wx * rjz)) -
+                     (i.vy + (i.wz * rix - i.wx * riz));
+  const double vcz = (j.vz + (j.wx * rjy - j.wy * rjx)) -
+                     (i.vz + (i.wx * riy - i.wy * rix));
   const double vn = vcx * nx + vcy * ny + vcz * nz;
-  const double wrx = m.wx[pj] - m.wx[pi];
-  const double wry = m.wy[pj] - m.wy[pi];
-  const double wrz = m.wz[pj] - m.wz[pi];
+  const double wrx = j.wx - i.wx;
+  const double wry = j.wy - i.wy;
+  const double wrz = j.wz - i.wz;
   const double wn = wrx * nx + wry * ny + wrz * nz;
   const double sx0 = b.sx[k];
   const double sy0 = b.sy[k];

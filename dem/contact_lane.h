@@ -11,18 +11,6 @@
 
 namespace planter::dem::lanes {
 
-// A sphere's centre, velocity, angular velocity, radius, and 1/|w| (0 when it does not spin:
-// the rolling torque's direction, worked out once a step per particle, not per contact).
-struct Sphere {
-  double x, y, z, vx, vy, vz, wx, wy, wz, r, inv_spin;
-};
-
-// Particle k's sphere from the particles' motion.
-[[gnu::always_inline]] inline Sphere sphere_of(const MotionView& m, std::size_t k) {
-  return {m.x[k],  m.y[k],  m.z[k],  m.vx[k], m.vy[k],      m.vz[k],
-          m.wx[k], m.wy[k], m.wz[k], m.r[k],  m.inv_spin[k]};
-}
-
 // The loads of one contact: the force on i, the torques on i and j, the normal force.
 struct ContactLoads {
   double fx, fy, fz, ti_x, ti_y, ti_z, tj_x, tj_y, tj_z, normal_N;
@@ -117,12 +105,11 @@ struct ContactLoads {
   return out;
 }
 
-// Candidate pair k of the arrays: its spheres from the particles' motion, its loads and spring
-// back into the arrays.
-[[gnu::always_inline]] inline void contact_pair_lane(const ContactView& c, const MotionView& m,
-                                                     const ContactStep& s, std::size_t k) {
-  const Sphere i = sphere_of(m, static_cast<std::size_t>(c.i[k]));
-  const Sphere j = sphere_of(m, static_cast<std::size_t>(c.j[k]));
+// Candidate pair k of the arrays, its particles' spheres `i` and `j`: its loads and spring back
+// into the arrays.
+[[gnu::always_inline]] inline void contact_pair_lane(const ContactView& c, const Sphere& i,
+                                                     const Sphere& j, const ContactStep& s,
+                                                     std::size_t k) {
   const PairProperties p = c.constants.at(k);
   double sx = c.sx[k];
   double sy = c.sy[k];

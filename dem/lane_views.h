@@ -35,6 +35,7 @@ struct ContactView {
 };
 struct MotionView {
   const double *x, *y, *z, *vx, *vy, *vz, *wx, *wy, *wz, *r, *inv_spin;
+  const double* rows;  // ParticleMotion::rows
 };
 // What every candidate pair's step shares.
 struct ContactStep {
@@ -54,6 +55,18 @@ struct PlatenStep {
   ContactStep contact;
   double px, py, pz, nx, ny, nz, vx, vy, vz;
 };
+// A sphere's centre, velocity, angular velocity, radius, and 1/|w| (0 when it does not spin:
+// the rolling torque's direction, worked out once a step per particle, not per contact).
+struct Sphere {
+  double x, y, z, vx, vy, vz, wx, wy, wz, r, inv_spin;
+};
+
+// Particle k's sphere from the particles' motion.
+[[gnu::always_inline]] inline Sphere sphere_of(const MotionView& m, std::size_t k) {
+  return {m.x[k],  m.y[k],  m.z[k],  m.vx[k], m.vy[k],      m.vz[k],
+          m.wx[k], m.wy[k], m.wz[k], m.r[k],  m.inv_spin[k]};
+}
+
 BondView view(BondArrays& b);
 ContactView view(ContactArrays& c);
 MotionView view(const ParticleMotion& m);

@@ -34,7 +34,8 @@ PropertiesView view(const PairPropertyColumns& c) {
 
 MotionView view(const ParticleMotion& m) {
   return {m.x.data(),  m.y.data(),  m.z.data(),  m.vx.data(),       m.vy.data(),      m.vz.data(),
-          m.wx.data(), m.wy.data(), m.wz.data(), m.radius_m.data(), m.inv_spin.data()};
+          m.wx.data(), m.wy.data(), m.wz.data(), m.radius_m.data(), m.inv_spin.data(),
+          m.rows.data()};
 }
 
 PlatenView view(PlatenArrays& a, std::size_t platen) {
@@ -46,12 +47,18 @@ PlatenView view(PlatenArrays& a, std::size_t platen) {
 
 void bonds_scalar(const BondView& b, const MotionView& m, const BondStep& s, std::size_t begin,
                   std::size_t end) {
-  for (std::size_t k = begin; k < end; ++k) bond_lane(b, m, s, k);
+  for (std::size_t k = begin; k < end; ++k) {
+    bond_lane(b, sphere_of(m, static_cast<std::size_t>(b.i[k])),
+              sphere_of(m, static_cast<std::size_t>(b.j[k])), s, k);
+  }
 }
 
 void contacts_scalar(const ContactView& c, const MotionView& m, const ContactStep& s,
                      std::size_t begin, std::size_t end) {
-  for (std::size_t k = begin; k < end; ++k) contact_pair_lane(c, m, s, k);
+  for (std::size_t k = begin; k < end; ++k) {
+    contact_pair_lane(c, sphere_of(m, static_cast<std::size_t>(c.i[k])),
+                      sphere_of(m, static_cast<std::size_t>(c.j[k])), s, k);
+  }
 }
 
 void platens_scalar(const PlatenView& c, const MotionView& m, const PlatenStep& s,

@@ -2,6 +2,7 @@
 // The particles' motion as the pair steps read it: one array per component, so that a vector
 // lane gathers its pair's two particles (dem/lane_views.h). Copied from the particles once a
 // step, before the pairs.
+#include <cstddef>
 #include <vector>
 
 #include "dem/particle.h"
@@ -11,7 +12,11 @@ namespace planter::dem {
 // Position, velocity, angular velocity and radius of every particle, one array per component,
 // and 1/|w| (0 for a particle that does not spin).
 struct ParticleMotion {
+  // Values per particle in `rows`: the 11 above, in that order, then zeros to 16 (two rows of
+  // a 512-bit vector: the AVX-512 lanes load a particle whole and transpose, dem/lanes_simd.cpp).
+  static constexpr std::size_t kRowWidth = 16;
   std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz, radius_m, inv_spin;
+  std::vector<double> rows;
   void assign(const std::vector<Particle>& particles);
 };
 

@@ -55,12 +55,9 @@ namespace planter::dem::lanes {
   const double rjy = riy - dy;
   const double rjz = riz - dz;
   // Velocity of j's contact point against i's: v + w x r on each side.
-  const double vcx = (j.vx + (j.wy * rjz - j.wz * rjy)) -
-                     (i.vx + (i.wy * riz - i.wz * riy));
-  const double vcy = (j.vy + (j.wz * rjx - j.wx * rjz)) -
-                     (i.vy + (i.wz * rix - i.wx * riz));
-  const double vcz = (j.vz + (j.wx * rjy - j.wy * rjx)) -
-                     (i.vz + (i.wx * riy - i.wy * rix));
+  const double vcx = (j.vx + (j.wy * rjz - j.wz * rjy)) - (i.vx + (i.wy * riz - i.wz * riy));
+  const double vcy = (j.vy + (j.wz * rjx - j.wx * rjz)) - (i.vy + (i.wz * rix - i.wx * riz));
+  const double vcz = (j.vz + (j.wx * rjy - j.wy * rjx)) - (i.vz + (i.wx * riy - i.wy * rix));
   const double vn = vcx * nx + vcy * ny + vcz * nz;
   const double wrx = j.wx - i.wx;
   const double wry = j.wy - i.wy;

@@ -33,9 +33,9 @@ PropertiesView view(const PairPropertyColumns& c) {
 }
 
 MotionView view(const ParticleMotion& m) {
-  return {m.x.data(),  m.y.data(),  m.z.data(),  m.vx.data(),       m.vy.data(),      m.vz.data(),
-          m.wx.data(), m.wy.data(), m.wz.data(), m.radius_m.data(), m.inv_spin.data(),
-          m.rows.data()};
+  return {m.x.data(),  m.y.data(),        m.z.data(),        m.vx.data(),
+          m.vy.data(), m.vz.data(),       m.wx.data(),       m.wy.data(),
+          m.wz.data(), m.radius_m.data(), m.inv_spin.data(), m.rows.data()};
 }
 
 PlatenView view(PlatenArrays& a, std::size_t platen) {

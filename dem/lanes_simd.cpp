@@ -110,8 +110,8 @@ PLANTER_DEM_TARGET("avx512f")
 
 // Rows q..q+7 of `to` from the particles p[0..7].
 PLANTER_DEM_TARGET("avx512f")
-[[gnu::always_inline]] inline void transpose_eight(const double* rows, const int* p,
-                                                   std::size_t q, SphereColumns& to) {
+[[gnu::always_inline]] inline void transpose_eight(const double* rows, const int* p, std::size_t q,
+                                                   SphereColumns& to) {
   __m512d c[8];
   transposed(rows, p, 0, c);
   _mm512_store_pd(to.x + q, c[0]);

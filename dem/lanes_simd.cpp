@@ -64,11 +64,14 @@ template <auto Lane, typename View, typename Step>
 // not computed: the results' bits are the other paths'.
 struct SphereColumns {
   static constexpr std::size_t kRows = 64;
-  alignas(64) double x[kRows], y[kRows], z[kRows], vx[kRows], vy[kRows], vz[kRows];
-  alignas(64) double wx[kRows], wy[kRows], wz[kRows], r[kRows], inv_spin[kRows];
+  // column[v][q]: value v of a particle's row (ParticleMotion::rows' order) for pair q.
+  alignas(64) double column[ParticleMotion::kRowValues][kRows];
 
+  // A row's values are a Sphere's fields in order.
+  static_assert(sizeof(Sphere) == ParticleMotion::kRowValues * sizeof(double));
   [[gnu::always_inline]] Sphere at(std::size_t q) const {
-    return {x[q], y[q], z[q], vx[q], vy[q], vz[q], wx[q], wy[q], wz[q], r[q], inv_spin[q]};
+    return {column[0][q], column[1][q], column[2][q], column[3][q], column[4][q], column[5][q],
+            column[6][q], column[7][q], column[8][q], column[9][q], column[10][q]};
   }
 };
 
@@ -114,18 +117,11 @@ PLANTER_DEM_TARGET("avx512f")
                                                    SphereColumns& to) {
   __m512d c[8];
   transposed(rows, p, 0, c);
-  _mm512_store_pd(to.x + q, c[0]);
-  _mm512_store_pd(to.y + q, c[1]);
-  _mm512_store_pd(to.z + q, c[2]);
-  _mm512_store_pd(to.vx + q, c[3]);
-  _mm512_store_pd(to.vy + q, c[4]);
-  _mm512_store_pd(to.vz + q, c[5]);
-  _mm512_store_pd(to.wx + q, c[6]);
-  _mm512_store_pd(to.wy + q, c[7]);
+  for (std::size_t v = 0; v < 8; ++v) _mm512_store_pd(to.column[v] + q, c[v]);
   transposed(rows, p, 8, c);
-  _mm512_store_pd(to.wz + q, c[0]);
-  _mm512_store_pd(to.r + q, c[1]);
-  _mm512_store_pd(to.inv_spin + q, c[2]);
+  for (std::size_t v = 8; v < ParticleMotion::kRowValues; ++v) {
+    _mm512_store_pd(to.column[v] + q, c[v - 8]);
+  }
 }
 
 // each_pair on AVX-512, a block of pairs at a time: their spheres transposed into columns
@@ -148,17 +144,9 @@ PLANTER_DEM_TARGET("avx512f")
     for (; q < n; ++q) {
       for (auto [to, p] : {std::pair{&i, v.i[first + q]}, std::pair{&j, v.j[first + q]}}) {
         const double* row = m.rows + static_cast<std::size_t>(p) * w;
-        to->x[q] = row[0];
-        to->y[q] = row[1];
-        to->z[q] = row[2];
-        to->vx[q] = row[3];
-        to->vy[q] = row[4];
-        to->vz[q] = row[5];
-        to->wx[q] = row[6];
-        to->wy[q] = row[7];
-        to->wz[q] = row[8];
-        to->r[q] = row[9];
-        to->inv_spin[q] = row[10];
+        for (std::size_t value = 0; value < ParticleMotion::kRowValues; ++value) {
+          to->column[value][q] = row[value];
+        }
       }
     }
 #pragma omp simd

@@ -12,8 +12,10 @@ namespace planter::dem {
 // Position, velocity, angular velocity and radius of every particle, one array per component,
 // and 1/|w| (0 for a particle that does not spin).
 struct ParticleMotion {
-  // Values per particle in `rows`: the 11 above, in that order, then zeros to 16 (two rows of
-  // a 512-bit vector: the AVX-512 lanes load a particle whole and transpose, dem/lanes_simd.cpp).
+  // Per particle in `rows`: the kRowValues values below in their order (x ... inv_spin), then
+  // zeros to kRowWidth: two 512-bit vectors, so that the AVX-512 lanes load a particle whole
+  // and transpose eight (dem/lanes_simd.cpp).
+  static constexpr std::size_t kRowValues = 11;
   static constexpr std::size_t kRowWidth = 16;
   std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz, radius_m, inv_spin;
   std::vector<double> rows;

@@ -165,7 +165,7 @@ void DemWorld::particle_step(std::size_t i, bool sum_pairs, double dt) {
 
 void DemWorld::step(double dt) {
   if (neighbours_stale()) rebuild_neighbours();
-  motion_.assign(particles_);
+  motion_.assign(particles_, reads_motion_rows(vector_path_));
   const BondStep bond_constants = bond_step(bond_params_, dt);
   const auto parts = static_cast<std::size_t>(threads_->threads());
   // Part k of n things: an equal share.

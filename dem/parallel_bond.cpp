@@ -49,7 +49,7 @@ void update_bond(Bond& b, const BondStep& s, Particle& pi, Particle& pj) {
   one.push_back(local);
   std::vector<Particle> pair{pi, pj};
   ParticleMotion motion;
-  motion.assign(pair);
+  motion.assign(pair, reads_motion_rows(VectorPath::kScalar));
   update_bonds(VectorPath::kScalar, one, motion, s, 0, 1);
   add_all_pair_loads(one.loads, one.i, one.j, pair);
   local = one.bond(0);

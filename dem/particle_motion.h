@@ -2,6 +2,7 @@
 // The particles' motion as the pair steps read it: one array per component, so that a vector
 // lane gathers its pair's two particles (dem/lane_views.h). Copied from the particles once a
 // step, before the pairs.
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -18,8 +19,14 @@ struct ParticleMotion {
   static constexpr std::size_t kRowValues = 11;
   static constexpr std::size_t kRowWidth = 16;
   std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz, radius_m, inv_spin;
-  std::vector<double> rows;
-  void assign(const std::vector<Particle>& particles);
+  std::vector<double> rows;  // filled only when asked for (with_rows), else empty
+  void assign(const std::vector<Particle>& particles, bool with_rows);
+
+ private:
+  // The columns in a row's order.
+  std::array<std::vector<double>*, kRowValues> columns() {
+    return {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz, &radius_m, &inv_spin};
+  }
 };
 
 }  // namespace planter::dem

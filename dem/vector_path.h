@@ -20,6 +20,9 @@ enum class VectorPath {
 [[nodiscard]] bool host_runs(VectorPath p);
 // `p` if the host runs it, else the widest it does (never an illegal instruction).
 [[nodiscard]] VectorPath runnable(VectorPath p);
+// Whether the pair steps on path `p` read the particles' motion as rows (ParticleMotion::rows:
+// the AVX-512 lanes' transposes), so that the other paths are spared copying them.
+[[nodiscard]] constexpr bool reads_motion_rows(VectorPath p) { return p == VectorPath::kAvx512; }
 
 // One function per path; pick() returns the one for a path the host runs.
 template <typename Fn>

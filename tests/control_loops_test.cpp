@@ -13,13 +13,51 @@ TEST(SigmaLoop, FollowsDistanceNotTime) {
   SigmaLoop loop(cfg);
   loop.engage(1.0, 2.0);
   // Steady: the feed-forward alone is sigma * v / R.
-  EXPECT_NEAR(loop.update(1.0, 0.06, 2.0), 1.5 * 0.06 / 0.3, 1e-12);
+  EXPECT_NEAR(loop.update(1.0, 0.06, 2.0, 0.01), 1.5 * 0.06 / 0.3, 1e-12);
   // The machine stopped after 0.1 m more; the disc lags 0.01 rad: a correction, no feed-forward.
-  const double cmd = loop.update(1.1, 0.0, 2.0 + 1.5 * 0.1 / 0.3 - 0.01);
+  const double cmd = loop.update(1.1, 0.0, 2.0 + 1.5 * 0.1 / 0.3 - 0.01, 0.01);
   EXPECT_NEAR(cmd, cfg.angle_gain_per_s * 0.01, 1e-9);
   // Ahead of the reference: the disc waits rather than running backwards.
-  EXPECT_EQ(loop.update(1.1, 0.0, 3.0), 0.0);
-  EXPECT_LE(loop.update(100.0, 5.0, 0.0), cfg.omega_max_radps);
+  EXPECT_EQ(loop.update(1.1, 0.0, 3.0, 0.01), 0.0);
+  EXPECT_LE(loop.update(100.0, 5.0, 0.0, 0.01), cfg.omega_max_radps);
+}
+
+TEST(SigmaLoop, ADiscThatCannotKeepUpDoesNotRaceAfterwards) {
+  SigmaLoopConfig cfg;
+  SigmaLoop loop(cfg);
+  loop.engage(0.0, 0.0);
+  // 0.30 m/s for 60 s with the disc at its top speed: the reference would run 30 rad ahead.
+  double angle = 0, distance = 0;
+  for (int i = 0; i < 6000; ++i) {
+    distance += 0.30 * 0.01;
+    angle += loop.update(distance, 0.30, angle, 0.01) * 0.01;
+    EXPECT_LE(loop.angle_error_rad(), cfg.max_lag_rad + 1e-12);
+  }
+  EXPECT_TRUE(loop.status().too_fast);
+  // The machine slows to 0.06 m/s: the disc goes back to sigma v / R within a few seconds,
+  // not at its top speed for the 12 m it had fallen behind.
+  double cmd = 0;
+  for (int i = 0; i < 500; ++i) {
+    distance += 0.06 * 0.01;
+    cmd = loop.update(distance, 0.06, angle, 0.01);
+    angle += cmd * 0.01;
+  }
+  EXPECT_FALSE(loop.status().too_fast);
+  EXPECT_NEAR(cmd, 1.5 * 0.06 / 0.3, 0.02);
+}
+
+TEST(SigmaLoop, IntegralTakesOutADraggingDrivesLag) {
+  SigmaLoopConfig cfg;
+  SigmaLoop loop(cfg);
+  loop.engage(0.0, 0.0);
+  // A drive that turns 0.05 rad/s slower than commanded (friction): P alone would leave a
+  // steady lag of 0.05 / 3 rad; the integral takes it out.
+  double angle = 0, distance = 0;
+  for (int i = 0; i < 6000; ++i) {
+    distance += 0.06 * 0.01;
+    angle += std::max(0.0, loop.update(distance, 0.06, angle, 0.01) - 0.05) * 0.01;
+  }
+  EXPECT_LT(std::abs(loop.angle_error_rad()), 0.002);
 }
 
 TEST(ClampForceLoop, NeverCommandsPastTheCeiling) {
@@ -27,24 +65,49 @@ TEST(ClampForceLoop, NeverCommandsPastTheCeiling) {
   ClampForceLoop loop(cfg);
   // A load cell that reads far too low (broken wire): the PI would wind up without limit.
   double cmd = 0;
-  for (int i = 0; i < 10000; ++i) cmd = loop.update(0.0, 0.01, true);
-  EXPECT_LE(cmd, loop.model_position_mm(0.97 * cfg.ceiling_N) + loop.trim_mm() + 1e-9);
-  // The model position for the ceiling, with the trim the integrator could reach, stays bounded.
+  for (int i = 0; i < 10000; ++i) cmd = loop.update(0.0, cmd, 0.01, true);
+  // The second path: the roller never past where the law gives the ceiling's guard.
+  EXPECT_LE(cmd, loop.model_position_mm(0.97 * cfg.ceiling_N) + 1e-9);
   EXPECT_LE(cmd, cfg.position_max_mm);
   // Anti-windup: once the reading is right the loop comes off the limit within a few steps.
   const double x90 = loop.model_position_mm(90.0);
-  for (int i = 0; i < 300; ++i)
-    cmd = loop.update(cfg.model_k_N * std::pow(std::max(0.0, cmd - cfg.model_x0_mm), cfg.model_n),
-                      0.01, true);
+  for (int i = 0; i < 300; ++i) cmd = loop.update(loop.model_force_N(cmd), cmd, 0.01, true);
   EXPECT_NEAR(cmd, x90, 0.2);
+}
+
+TEST(ClampForceLoop, StifferLipsDoNotLatchTheClampOpen) {
+  // Lips twice as stiff as the loop's law: the force overshoots, the loop backs off, and
+  // must then settle at the set-point (the old loop sat at 0 N for 32 s).
+  ClampLoopConfig cfg;
+  ClampForceLoop loop(cfg);
+  const auto lips_N = [&](double x) { return 2.0 * loop.model_force_N(x); };
+  double cmd = 0, roller = 0;
+  for (int i = 0; i < 1000; ++i) {
+    roller += (cmd - roller) * 0.2;  // the roller's 0.05 s lag at 10 ms
+    cmd = loop.update(lips_N(roller), roller, 0.01, true);
+  }
+  EXPECT_NEAR(lips_N(roller), 90.0, 2.0);
+}
+
+TEST(ClampForceLoop, ALoadCellReadingLowCannotPushPastTheCeiling) {
+  ClampLoopConfig cfg;
+  ClampForceLoop loop(cfg);
+  double cmd = 0, roller = 0;
+  for (int i = 0; i < 3000; ++i) {
+    roller += (cmd - roller) * 0.2;
+    cmd = loop.update(0.6 * loop.model_force_N(roller) - 10.0, roller, 0.01, true);
+  }
+  EXPECT_LE(loop.model_force_N(roller), 0.97 * cfg.ceiling_N + 1e-6);
+  EXPECT_TRUE(loop.status().at_travel);
 }
 
 TEST(ClampForceLoop, BacksOffAboveCeiling) {
   ClampLoopConfig cfg;
   ClampForceLoop loop(cfg);
-  for (int i = 0; i < 500; ++i) loop.update(90.0, 0.01, true);
-  const double before = loop.update(90.0, 0.01, true);
-  const double after = loop.update(125.0, 0.01, true);
+  double roller = 0;
+  for (int i = 0; i < 500; ++i) roller = loop.update(90.0, roller, 0.01, true);
+  const double before = loop.update(90.0, roller, 0.01, true);
+  const double after = loop.update(125.0, before, 0.01, true);
   EXPECT_TRUE(loop.ceiling_active());
   EXPECT_LT(after, before - 0.1);
 }
@@ -52,8 +115,8 @@ TEST(ClampForceLoop, BacksOffAboveCeiling) {
 TEST(ClampForceLoop, ReleasesWhenDisabled) {
   ClampLoopConfig cfg;
   ClampForceLoop loop(cfg);
-  loop.update(50.0, 0.01, true);
-  EXPECT_EQ(loop.update(50.0, 0.01, false), cfg.release_position_mm);
+  loop.update(50.0, 4.0, 0.01, true);
+  EXPECT_EQ(loop.update(50.0, 4.0, 0.01, false), cfg.release_position_mm);
 }
 
 TEST(FurrowDepthLoop, RateLimitedRampAndTrim) {
@@ -69,4 +132,27 @@ TEST(FurrowDepthLoop, RateLimitedRampAndTrim) {
     depth = cmd - 3.0;
   }
   EXPECT_NEAR(depth, cfg.target_mm, 0.05);
+}
+
+TEST(FurrowDepthLoop, TheTrimReachesTheEndStopAndSaysSo) {
+  DepthLoopConfig cfg;
+  FurrowDepthLoop loop(cfg);
+  loop.reset(0.0);
+  // A sag of 25 mm (hard soil): more than the old 15 mm cap, within the travel.
+  double depth = 0, cmd = 0;
+  for (int i = 0; i < 6000; ++i) {
+    cmd = loop.update(depth, 0.01, true);
+    depth = cmd - 25.0;
+  }
+  EXPECT_NEAR(depth, cfg.target_mm, 0.05);
+  EXPECT_FALSE(loop.status().at_end_stop);
+  // A target 5 mm short of the end stop with 25 mm of sag: held at the stop, and said.
+  loop.set_target_mm(cfg.max_mm - 5.0);
+  for (int i = 0; i < 6000; ++i) {
+    cmd = loop.update(depth, 0.01, true);
+    depth = cmd - 25.0;
+  }
+  EXPECT_EQ(cmd, cfg.max_mm);
+  EXPECT_TRUE(loop.status().at_end_stop);
+  EXPECT_NEAR(loop.status().error_mm, 20.0, 0.05);
 }

@@ -21,6 +21,7 @@
 #include "apps/planter-sim/live.h"
 #endif
 #include "apps/planter-sim/monte_carlo.h"
+#include "apps/planter-sim/robustness.h"
 #include "apps/planter-sim/sensitivity.h"
 #include "apps/planter-sim/sweep.h"
 #include "sim/hil/realtime_devices.h"
@@ -285,6 +286,18 @@ int main(int argc, char** argv) {
   monte_carlo->add_option("--runs", monte_carlo_options.runs, "runs (seasons) to draw")
       ->capture_default_str()
       ->check(planter::config::finite_range(2, 100000));
+  RobustnessOptions robustness_options;
+  auto* robustness = add_study(
+      app, "robustness",
+      "the controller under disturbance: each loop held, alarmed or silent, case by case, "
+      "beside the paper's drive",
+      scenario, out, robustness_options.force, robustness_options.distance_m,
+      robustness_options.jobs, robustness_options.executor);
+  robustness
+      ->add_option("--combinations", robustness_options.combinations,
+                   "random combinations of disturbances (Latin hypercube)")
+      ->capture_default_str()
+      ->check(planter::config::finite_range(0, 10000));
 #endif
   std::string plan_path;
   std::size_t plan_index = 0;
@@ -362,6 +375,7 @@ int main(int argc, char** argv) {
     }
     if (*sensitivity) return run_sensitivity(scenario, out, sensitivity_options);
     if (*monte_carlo) return run_monte_carlo(scenario, out, monte_carlo_options);
+    if (*robustness) return run_robustness(scenario, out, robustness_options);
 #endif
     if (*plan_run) {
       execute_planned_run(plan_path, plan_index, planter::apps::version());

@@ -8,7 +8,7 @@ namespace planter {
 void ClampForceLoop::reset() {
   ramped_setpoint_N_ = 0.0;
   integral_mm_ = 0.0;
-  ceiling_active_ = false;
+  status_ = ClampStatus{};
 }
 
 double ClampForceLoop::model_position_mm(double force_N) const {
@@ -16,35 +16,49 @@ double ClampForceLoop::model_position_mm(double force_N) const {
   return cfg_.model_x0_mm + std::pow(force_N / cfg_.model_k_N, 1.0 / cfg_.model_n);
 }
 
-double ClampForceLoop::update(double force_N, double dt_s, bool enabled) {
+double ClampForceLoop::model_force_N(double position_mm) const {
+  const double compression = position_mm - cfg_.model_x0_mm;
+  return compression > 0.0 ? cfg_.model_k_N * std::pow(compression, cfg_.model_n) : 0.0;
+}
+
+double ClampForceLoop::update(double force_N, double roller_mm, double dt_s, bool enabled) {
   if (!enabled) {
     reset();
     return cfg_.release_position_mm;
   }
-  // Never aim closer than 5 % below the ceiling.
+  // Never aim closer than 5 % below the ceiling; back off from 3 % below it.
   const double target = std::min(cfg_.setpoint_N, 0.95 * cfg_.ceiling_N);
+  const double guard_N = 0.97 * cfg_.ceiling_N;
   ramped_setpoint_N_ = std::min(target, ramped_setpoint_N_ + cfg_.ramp_N_per_s * dt_s);
   const double error = ramped_setpoint_N_ - force_N;
-
   const double feed_forward = model_position_mm(ramped_setpoint_N_);
-  // The ceiling as a position: the model's ceiling position corrected by the learned trim.
-  const double ceiling_position = model_position_mm(0.97 * cfg_.ceiling_N) + integral_mm_;
+
+  // The ceiling's second path: the roller never goes past where the law gives the guard force,
+  // whatever the load cell says. A fixed position: it does not move with the trim.
+  const double upper = std::min(cfg_.position_max_mm, model_position_mm(guard_N));
+  const double lower = cfg_.position_min_mm;
   double command = feed_forward + integral_mm_ + cfg_.kp_mm_per_N * error;
-  const double upper = std::min(cfg_.position_max_mm, ceiling_position);
-  const bool saturated_high = command >= upper;
-  const bool saturated_low = command <= cfg_.position_min_mm;
-  // Conditional integration: do not wind up into a limit.
-  if (!(saturated_high && error > 0.0) && !(saturated_low && error < 0.0)) {
+  // The first path: the load cell (or the law at the measured position) above the guard backs
+  // the roller off from where it is, by the law's slope for the excess.
+  const double model_N = model_force_N(roller_mm);
+  const double seen_N = std::max(force_N, model_N);
+  const bool ceiling = seen_N > guard_N;
+  if (ceiling) {
+    const double slope_N_per_mm =
+        cfg_.model_k_N * cfg_.model_n *
+        std::pow(std::max(0.1, roller_mm - cfg_.model_x0_mm), cfg_.model_n - 1.0);
+    command = std::min(command, roller_mm - (seen_N - guard_N) / slope_N_per_mm);
+  }
+  const double limited = std::clamp(command, lower, std::max(lower, upper));
+  const bool at_travel = command >= upper && error > 0.0;
+  if (limited != command || ceiling) {
+    // Back-calculation: the integral is what gives the limited command (no windup, no latch).
+    integral_mm_ = limited - feed_forward - cfg_.kp_mm_per_N * error;
+  } else {
     integral_mm_ += cfg_.ki_mm_per_Ns * error * dt_s;
   }
-  ceiling_active_ = force_N > 0.97 * cfg_.ceiling_N;
-  if (ceiling_active_) {
-    // Measured force near the ceiling: back off at once, proportionally to the excess.
-    const double excess = force_N - 0.97 * cfg_.ceiling_N;
-    integral_mm_ -= 0.02 * excess + 0.05;
-    command = std::min(command, feed_forward + integral_mm_);
-  }
-  return std::clamp(command, cfg_.position_min_mm, std::max(cfg_.position_min_mm, upper));
+  status_ = {true, ramped_setpoint_N_ >= target - 1e-9, at_travel, ceiling, model_N, force_N};
+  return limited;
 }
 
 }  // namespace planter

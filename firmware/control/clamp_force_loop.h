@@ -1,7 +1,10 @@
 #pragma once
-// Roller clamp force: feed-forward through the nominal clamp model plus PI trim on the load
-// cell, conditional-integration anti-windup, and a hard ceiling that the command can never
-// be driven past (the ceiling is below the seedling's damage threshold; config checks it).
+// Roller clamp force: feed-forward through the nominal clamp law plus PI trim on the load
+// cell, and a ceiling held on two paths: the load cell, and the roller's position through the
+// clamp law (so a load cell that reads low cannot push the lips past the ceiling).
+// Anti-windup by back-calculation (Astrom and Hagglund, Advanced PID Control, 2006, Sec. 3.5):
+// when the command is limited, the integral is set to what gives the limited command, so the
+// loop neither winds up into a limit nor latches at one.
 
 namespace planter {
 
@@ -9,15 +12,28 @@ struct ClampLoopConfig {
   double setpoint_N = 90.0;
   double ceiling_N = 120.0;
   double ramp_N_per_s = 60.0;  // set-point ramp at start
-  double kp_mm_per_N = 0.01;
-  double ki_mm_per_Ns = 0.08;
+  // PI gains, set for a crossover near 8 rad/s on the nominal law's stiffness at 90 N
+  // (29 N/mm): well above the seedlings' passing (2 Hz at the paper's speed) and below the
+  // roller's 0.05 s lag and the two ticks of the load cell's path (docs/control.md).
+  double kp_mm_per_N = 0.017;
+  double ki_mm_per_Ns = 0.28;
   double position_min_mm = 0.0;
   double position_max_mm = 12.0;
   double release_position_mm = 0.0;  // roller position when not clamping
-  // Nominal clamp model used for feed-forward and the ceiling guard: F = k (x - x0)^n.
+  // Nominal clamp model used for feed-forward and the ceiling's second path: F = k (x - x0)^n.
   double model_k_N = 14.85;
   double model_x0_mm = 2.0;
   double model_n = 1.3;
+};
+
+// What the loop saw this tick, for the alarms (firmware/supervisor/loop_alarms.h).
+struct ClampStatus {
+  bool clamping = false;
+  bool ramped = false;       // the set-point has reached its target
+  bool at_travel = false;    // the command is held at the roller's travel or the law's ceiling
+  bool ceiling = false;      // either path above the ceiling's margin
+  double model_force_N = 0;  // the clamp law at the roller's measured position
+  double measured_N = 0;
 };
 
 class ClampForceLoop {
@@ -26,22 +42,24 @@ class ClampForceLoop {
 
   void reset();
   // Returns the roller position command in mm. `enabled` false -> release position.
-  double update(double force_measured_N, double dt_s, bool enabled);
+  double update(double force_measured_N, double roller_mm, double dt_s, bool enabled);
 
   [[nodiscard]] double setpoint_N() const { return ramped_setpoint_N_; }
   // The force to clamp at (an increase ramps, a decrease is taken at once).
   void set_target_N(double target_N) { cfg_.setpoint_N = target_N; }
   [[nodiscard]] double target_N() const { return cfg_.setpoint_N; }
   [[nodiscard]] double trim_mm() const { return integral_mm_; }
-  [[nodiscard]] bool ceiling_active() const { return ceiling_active_; }
-  // Position at which the nominal model gives `force_N`.
+  [[nodiscard]] bool ceiling_active() const { return status_.ceiling; }
+  [[nodiscard]] const ClampStatus& status() const { return status_; }
+  // Position at which the nominal model gives `force_N`, and the model's force at a position.
   [[nodiscard]] double model_position_mm(double force_N) const;
+  [[nodiscard]] double model_force_N(double position_mm) const;
 
  private:
   ClampLoopConfig cfg_;
   double ramped_setpoint_N_ = 0.0;
   double integral_mm_ = 0.0;
-  bool ceiling_active_ = false;
+  ClampStatus status_;
 };
 
 }  // namespace planter

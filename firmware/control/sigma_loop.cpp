@@ -8,16 +8,32 @@ namespace planter {
 void SigmaLoop::engage(double distance_m, double disc_angle_rad) {
   distance0_m_ = distance_m;
   angle0_rad_ = disc_angle_rad;
-  angle_error_rad_ = 0.0;
+  integral_radps_ = 0.0;
+  status_ = SigmaStatus{};
 }
 
-double SigmaLoop::update(double distance_m, double ground_speed_mps, double disc_angle_rad) {
+double SigmaLoop::update(double distance_m, double ground_speed_mps, double disc_angle_rad,
+                         double dt_s) {
   const double k = cfg_.sigma / cfg_.disc_radius_m;
-  const double angle_ref = angle0_rad_ + k * (distance_m - distance0_m_);
-  angle_error_rad_ = angle_ref - disc_angle_rad;
   const double feed_forward = k * std::max(0.0, ground_speed_mps);
-  return std::clamp(feed_forward + cfg_.angle_gain_per_s * angle_error_rad_, 0.0,
-                    cfg_.omega_max_radps);
+  status_.too_fast = feed_forward > cfg_.omega_max_radps;
+  if (cfg_.fixed_ratio) return std::clamp(feed_forward, 0.0, cfg_.omega_max_radps);
+  double error = angle0_rad_ + k * (distance_m - distance0_m_) - disc_angle_rad;
+  // The reference governor: beyond max_lag the reference slides along with the disc.
+  status_.lag_held = error > cfg_.max_lag_rad;
+  if (status_.lag_held) {
+    angle0_rad_ -= error - cfg_.max_lag_rad;
+    error = cfg_.max_lag_rad;
+  }
+  status_.lag_rad = error;
+  const double command = feed_forward + cfg_.angle_gain_per_s * error + integral_radps_;
+  const double limited = std::clamp(command, 0.0, cfg_.omega_max_radps);
+  // Conditional integration: not while limited in the direction the error pushes.
+  const bool pushing_limit =
+      (command > limited && error > 0.0) || (command < limited && error < 0.0);
+  if (!pushing_limit && !status_.lag_held)
+    integral_radps_ += cfg_.angle_integral_per_s2 * error * dt_s;
+  return limited;
 }
 
 double SigmaLoop::sigma_seen(double omega_radps, double ground_speed_mps) const {

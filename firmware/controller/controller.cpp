@@ -12,7 +12,8 @@ Controller::Controller(const ControllerConfig& config)
       clamp_loop_(config.clamp),
       depth_loop_(config.depth),
       link_recovery_(config.link_recovery),
-      monitor_(config.monitor) {}
+      monitor_(config.monitor),
+      alarms_(config.alarms) {}
 
 const MachineCommand& Controller::update(const MachineState& in, std::int64_t now_ns,
                                          std::int64_t dt_ns) {
@@ -39,12 +40,22 @@ const MachineCommand& Controller::update(const MachineState& in, std::int64_t no
       sigma_loop_.engage(in.distance_m, in.disc_angle_rad);
       clamp_loop_.reset();
       depth_loop_.reset(in.depth_mm);
+      alarms_.reset();
     }
     previous_state_ = state;
   }
   decide_outputs(in, state, static_cast<double>(dt_ns) * 1e-9);
   monitor_.update(in, state == SupervisorState::kRunning || state == SupervisorState::kStopping);
-  warnings_ = monitor_.figures().empty_belt ? warning::kEmptyBelt : 0u;
+  LoopAlarmInputs alarm_in;
+  alarm_in.running = state == SupervisorState::kRunning;
+  alarm_in.dt_s = static_cast<double>(dt_ns) * 1e-9;
+  alarm_in.disc_angle_rad = in.disc_angle_rad;
+  alarm_in.clamp_setpoint_N = clamp_loop_.setpoint_N();
+  alarm_in.sigma = sigma_loop_.status();
+  alarm_in.clamp = clamp_loop_.status();
+  alarm_in.depth = depth_loop_.status();
+  alarm_in.empty_belt = monitor_.figures().empty_belt;
+  warnings_ = alarms_.update(alarm_in);
   faults_seen_ = supervisor_.latched_faults() | sv.faults;
   return command_;
 }
@@ -119,11 +130,11 @@ void Controller::decide_outputs(const MachineState& in, SupervisorState state, d
   double clamp_pos_cmd = cfg_.clamp.release_position_mm;
   double depth_cmd = cfg_.depth.raised_mm;
   if (state == SupervisorState::kRunning) {
-    omega_cmd = sigma_loop_.update(in.distance_m, in.v_wheel_mps, in.disc_angle_rad);
-    clamp_pos_cmd = clamp_loop_.update(in.clamp_force_N, dt_s, true);
+    omega_cmd = sigma_loop_.update(in.distance_m, in.v_wheel_mps, in.disc_angle_rad, dt_s);
+    clamp_pos_cmd = clamp_loop_.update(in.clamp_force_N, in.clamp_pos_mm, dt_s, true);
     depth_cmd = depth_loop_.update(in.depth_mm, dt_s, true);
   } else if (state == SupervisorState::kStopping) {
-    clamp_pos_cmd = clamp_loop_.update(in.clamp_force_N, dt_s, true);
+    clamp_pos_cmd = clamp_loop_.update(in.clamp_force_N, in.clamp_pos_mm, dt_s, true);
     depth_cmd = depth_loop_.update(in.depth_mm, dt_s, true);
   } else if (state == SupervisorState::kFault || state == SupervisorState::kEStop) {
     // Safe outputs: every drive quick-stops where it is; commands are held at the measured values.

@@ -13,6 +13,7 @@
 #include "firmware/io/process_image.h"
 #include "firmware/sensing/planting_monitor.h"
 #include "firmware/supervisor/link_recovery.h"
+#include "firmware/supervisor/loop_alarms.h"
 #include "firmware/supervisor/supervisor.h"
 
 namespace planter {
@@ -57,6 +58,7 @@ class Controller {
   Supervisor supervisor_;
   LinkRecovery link_recovery_;
   PlantingMonitor monitor_;
+  LoopAlarms alarms_;
   MachineCommand command_;
   std::uint32_t warnings_ = 0;
 

@@ -10,6 +10,7 @@
 #include "firmware/io/io_config.h"
 #include "firmware/sensing/planting_monitor.h"
 #include "firmware/supervisor/link_recovery.h"
+#include "firmware/supervisor/loop_alarms.h"
 #include "firmware/supervisor/supervisor.h"
 
 namespace planter {
@@ -24,6 +25,7 @@ struct ControllerConfig {
   SupervisorConfig supervisor;
   LinkRecoveryConfig link_recovery;  // off unless the board or planterd turns it on
   PlantingMonitorConfig monitor;
+  LoopAlarmConfig alarms;
   bool estop_active_low = true;
 
   [[nodiscard]] const NodeConfig& node(NodeRole r) const {

@@ -10,7 +10,17 @@ const char* fault::name(int bit) {
 }
 
 const char* warning::name(int bit) {
-  static constexpr const char* kNames[kCount] = {"empty belt: clamps passing with no seedling"};
+  // What the operator reads, and what to do: the words are the alarm's documentation too
+  // (docs/recording-format.md lists them by bit).
+  static constexpr const char* kNames[kCount] = {
+      "empty belt: clamps passing with no seedling, refill the belt",
+      "too fast for the disc: slow down",
+      "disc lagging the ground: check the disc drive for drag",
+      "clamp cannot reach its force: the roller is at its travel, check the lips",
+      "load cell disagrees with the roller: check the load cell and the lips",
+      "clamp force held at its ceiling: stems too thick or lips too stiff",
+      "seedlings falling from the clamp: the grip is too weak",
+      "opener at its end stop: the depth cannot be reached"};
   return bit >= 0 && bit < kCount ? kNames[bit] : "";
 }
 

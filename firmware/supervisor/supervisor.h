@@ -36,7 +36,20 @@ const char* name(int bit);
 // What the operator should see but the machine may go on with (bit set).
 namespace warning {
 constexpr std::uint32_t kEmptyBelt = 1u << 0;  // the photo-eye saw N clamps pass empty in a row
-constexpr int kCount = 1;
+// A loop that cannot hold its goal (firmware/control/loop_goals.h) says which and why.
+constexpr std::uint32_t kTooFastForDisc = 1u << 1;     // sigma v / R above the disc's top speed
+constexpr std::uint32_t kDiscLagging = 1u << 2;        // the disc behind its angle reference
+constexpr std::uint32_t kClampShort = 1u << 3;         // the roller at its travel, force short
+constexpr std::uint32_t kLoadCellDisagrees = 1u << 4;  // load cell against roller position
+constexpr std::uint32_t kClampAtCeiling = 1u << 5;     // force held back at the ceiling
+constexpr std::uint32_t kSeedlingsFalling = 1u << 6;   // empty clamps after a weak grip
+constexpr std::uint32_t kDepthUnreachable = 1u << 7;   // the opener at its end stop, depth short
+constexpr int kCount = 8;
+// Which alarms speak for which loop (the disturbance suite's verdicts read these).
+constexpr std::uint32_t kSigmaAlarms = kTooFastForDisc | kDiscLagging;
+constexpr std::uint32_t kClampAlarms =
+    kClampShort | kLoadCellDisagrees | kClampAtCeiling | kSeedlingsFalling;
+constexpr std::uint32_t kDepthAlarms = kDepthUnreachable;
 // The name of warning bit `bit` (0-based), in the operator's words; "" past the last.
 const char* name(int bit);
 }  // namespace warning

@@ -1,6 +1,7 @@
 #include "sim/runner/lockstep_runner.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 namespace planter::sim {
@@ -16,6 +17,11 @@ LockstepRunner::LockstepRunner(const Scenario& scenario)
   controller_ = std::make_unique<ControlCycle>(cfg, *hal_);
   machine_ = std::make_unique<SimulatedMachine>(scenario_, bus_);
   summary_.configure(cfg.sigma.sigma, cfg.depth.target_mm, cfg.clamp.ceiling_N, 8.0, cfg.monitor);
+  // The depth is judged once the opener has had time to ramp down from raised, and a second.
+  scores_.configure(
+      cfg.sigma.sigma, cfg.clamp.ceiling_N,
+      std::abs(cfg.depth.target_mm - cfg.depth.raised_mm) / cfg.depth.rate_mm_per_s + 1.0,
+      static_cast<double>(period_ns_) * 1e-9);
 }
 
 LockstepRunner::~LockstepRunner() = default;
@@ -57,6 +63,7 @@ void LockstepRunner::step() {
   const bool running = controller_->state() == SupervisorState::kRunning;
   summary_.add(controller_->telemetry(), machine_->plant().truth(), running,
                running ? time_s() - script_.planting_since_s() : 0.0);
+  scores_.add(controller_->telemetry(), machine_->plant().truth(), time_s());
   if (observer_) observer_(TickRecord{controller_->telemetry(), machine_->plant().truth()});
 }
 
@@ -74,6 +81,7 @@ Summary LockstepRunner::run() {
   Summary s = summary_.finish(machine_->plant().seedlings(), plot_m,
                               static_cast<int>(scenario_.plant.route.distance_m / plot_m + 1e-9));
   s.scenario = scenario_.name;
+  s.loops = scores_.finish();
   s.distance_m = machine_->plant().ground().x_m();
   s.sim_seconds = time_s();
   s.wall_seconds = wall;

@@ -71,6 +71,7 @@ class LockstepRunner {
   std::unique_ptr<SimulatedMachine> machine_;
   Observer observer_;
   SummaryBuilder summary_;
+  LoopScorer scores_;
   std::int64_t period_ns_;
   std::int64_t substep_ns_ = 1'000'000;
   double finished_at_s_ = -1.0;

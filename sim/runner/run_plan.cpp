@@ -11,6 +11,7 @@
 #include "config/input_file.h"
 #include "config/output_set.h"
 #include "sim/plant/model_values.h"
+#include "sim/runner/disturbance_keys.h"
 #include "sim/runner/lockstep_runner.h"
 
 namespace planter::sim {
@@ -52,6 +53,11 @@ std::string plan_json(const RunPlan& plan) {
       for (const auto& [key, value] : r.values) values[key] = value;
       one["values"] = values;
     }
+    if (!r.disturbances.empty()) {
+      nlohmann::ordered_json list = nlohmann::ordered_json::array();
+      for (const auto& [key, value] : r.disturbances) list.push_back({key, value});
+      one["disturbances"] = list;
+    }
     runs.push_back(one);
   }
   j["runs"] = runs;
@@ -82,6 +88,9 @@ RunPlan read_plan(const std::string& path) {
       if (one.contains("values"))
         for (const auto& [key, value] : one.at("values").items())
           r.values.emplace_back(key, value.get<double>());
+      if (one.contains("disturbances"))
+        for (const auto& pair : one.at("disturbances"))
+          r.disturbances.emplace_back(pair.at(0).get<std::string>(), pair.at(1).get<double>());
       plan.runs.push_back(r);
     }
   } catch (const nlohmann::json::exception& e) {
@@ -120,6 +129,7 @@ Scenario planned_scenario(const Scenario& base, const PlannedRun& run) {
     s.board.controller.clamp.ceiling_N =
         std::max(s.board.controller.clamp.ceiling_N, *run.clamp_setpoint_N + 20.0);
   }
+  for (const auto& [key, value] : run.disturbances) apply_disturbance(s, key, value);
   return s;
 }
 

@@ -26,6 +26,8 @@ struct PlannedRun {
   std::optional<double> clamp_setpoint_N;  // the ceiling raised to 20 N above it if needed
   // Model values set by their keys (sim/plant/model_values.h), before the operating point.
   std::vector<std::pair<std::string, double>> values;
+  // Disturbances set by their keys (disturbance_keys.h), after everything else.
+  std::vector<std::pair<std::string, double>> disturbances;
 };
 
 struct RunPlan {

@@ -153,6 +153,8 @@ std::string Summary::to_json() const {
   j["can_frames"] = can_frames;
   j["faults"] = faults;
   j["final_state"] = final_state;
+  j["warnings_seen"] = warnings_seen;
+  j["loops"] = nlohmann::ordered_json::parse(loop_scores_json(loops));
   return j.dump(2);
 }
 
@@ -184,7 +186,6 @@ Summary Summary::from_json(const std::string& text) {
     s.monitor.skips = m.at("skips").get<double>();
     s.monitor.multiples = m.at("multiples").get<double>();
     s.monitor.singulation_pct = m.at("singulation_pct").get<double>();
-    if (m.at("empty_belt_warned").get<bool>()) s.warnings_seen |= warning::kEmptyBelt;
     s.truth_skips = m.at("truth_skips").get<int>();
     s.truth_multiples = m.at("truth_multiples").get<int>();
   }
@@ -209,6 +210,8 @@ Summary Summary::from_json(const std::string& text) {
   s.can_frames = j.at("can_frames").get<std::uint64_t>();
   s.faults = j.at("faults").get<std::uint32_t>();
   s.final_state = j.at("final_state").get<std::string>();
+  s.warnings_seen = j.at("warnings_seen").get<std::uint32_t>();
+  s.loops = loop_scores_from_json(j.at("loops").dump());
   return s;
 }
 

@@ -6,12 +6,9 @@
 
 #include "firmware/controller/telemetry.h"
 #include "sim/plant/plant.h"
+#include "sim/runner/loop_scores.h"
 
 namespace planter::sim {
-
-// Samples count towards sigma while the machine moves at least this fast: below it, sigma
-// = R*omega/v divides by almost nothing (stops and the first centimetres of a start).
-constexpr double kSigmaMinSpeedMps = 0.02;
 
 struct Summary {
   std::string scenario;
@@ -37,6 +34,7 @@ struct Summary {
   PlantingFigures monitor;
   int truth_skips = 0, truth_multiples = 0;
   std::uint32_t warnings_seen = 0;  // warning:: bits that held at some tick
+  LoopScores loops;                 // each loop against its goal (loop_scores.h)
   double distance_m = 0;
   double sim_seconds = 0, wall_seconds = 0, realtime_factor = 0;
   double can_bus_load_pct = 0;
@@ -50,8 +48,8 @@ struct Summary {
   std::vector<std::string> assumptions;
 
   [[nodiscard]] std::string to_json() const;
-  // summary.json read back (what a plan's run wrote): every field to_json writes; the
-  // warnings but the empty belt's are not in it. Throws nlohmann::json::exception.
+  // summary.json read back (what a plan's run wrote): every field to_json writes.
+  // Throws nlohmann::json::exception.
   static Summary from_json(const std::string& text);
 };
 

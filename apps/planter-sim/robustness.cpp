@@ -1,0 +1,243 @@
+#include "apps/planter-sim/robustness.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "apps/planter-sim/robustness_cases.h"
+#include "apps/planter-sim/sweep.h"
+#include "apps/version/version.h"
+#include "config/output_set.h"
+#include "report/chart.h"
+#include "report/html_text.h"
+#include "sim/runner/lockstep_runner.h"
+#include "sim/runner/run_plan.h"
+
+namespace planter::sim {
+namespace {
+
+struct CaseResult {
+  const RobustnessCase* c;
+  Summary ours, paper;  // the sigma loop's run, the paper's drive's
+  Verdict verdict = Verdict::held;
+};
+
+Verdict case_verdict(const LoopScores& s) {
+  Verdict v = Verdict::held;
+  for (const LoopScore* l : {&s.sigma, &s.clamp, &s.depth}) {
+    if (l->verdict == Verdict::silent) return Verdict::silent;
+    if (l->verdict == Verdict::alarmed) v = Verdict::alarmed;
+  }
+  return v;
+}
+
+// "held", "ALARM 0.3s" or "SILENT": one loop's verdict in a table cell.
+std::string cell(const LoopScore& l) {
+  char b[32];
+  if (l.verdict == Verdict::held) return "held";
+  if (l.verdict == Verdict::alarmed) {
+    std::snprintf(b, sizeof b, "alarm %+.1fs", l.alarm_at_s - l.left_goal_at_s);
+    return b;
+  }
+  return "SILENT";
+}
+
+nlohmann::ordered_json loop_json(const LoopScore& l) {
+  return nlohmann::ordered_json::parse(
+      loop_scores_json({l, l, l}))["sigma"];  // one loop's object, as summary.json has it
+}
+
+void print_table(const std::vector<CaseResult>& all) {
+  std::printf("%-26s %-7s | %-6s %5s %6s %-11s | %-7s %5s %6s %-11s | %-5s %6s %-11s | %s\n",
+              "case", "aimed", "sigma", "rms%", "worst%", "verdict", "clamp", ">ceil", "band%",
+              "verdict", "depth", "band%", "verdict", "paper drive sigma rms%");
+  for (const CaseResult& r : all) {
+    const LoopScores& s = r.ours.loops;
+    std::printf(
+        "%-26s %-7s | %-6s %5.2f %6.2f %-11s | %-7s %4.1fs %6.1f %-11s | %-5s %6.1f %-11s | "
+        "%.2f\n",
+        r.c->name.c_str(), r.c->aimed_at.c_str(), "", s.sigma.rms, s.sigma.worst,
+        cell(s.sigma).c_str(), "", s.clamp.above_ceiling_s, s.clamp.in_band_pct,
+        cell(s.clamp).c_str(), "", s.depth.in_band_pct, cell(s.depth).c_str(),
+        r.paper.loops.sigma.rms);
+  }
+}
+
+// The worst case of each loop, run again here with its time series, as charts.
+std::string report_html(const Scenario& base, const RunPlan& plan,
+                        const std::vector<CaseResult>& all, int held, int silent) {
+  std::ostringstream h;
+  report::ChartPage page;
+  h << "<!doctype html><html><head>" << report::kReportHead << report::kTablePageStyle
+    << "<title>planter-sim robustness</title>" << report::ChartPage::head() << "</head><body>"
+    << "<h1>The controller under disturbance: " << report::html_escape(base.name) << "</h1>"
+    << "<p>" << held << " of " << all.size() << " cases held, " << silent
+    << " silent. A loop holds when it meets its goal (docs/control.md); it is alarmed when an "
+       "alarm of its own, or a fault, rose within a second of it leaving the goal; else it is "
+       "silent.</p><table><tr><th>case</th><th>sigma RMS %</th><th>worst %</th><th>sigma</th>"
+       "<th>above ceiling s</th><th>in band %</th><th>clamp</th><th>depth in band %</th>"
+       "<th>depth</th><th>paper drive sigma RMS %</th></tr>";
+  const auto colour = [](Verdict v) {
+    return v == Verdict::held ? "#dfd" : v == Verdict::alarmed ? "#ffd" : "#fcc";
+  };
+  for (const CaseResult& r : all) {
+    const LoopScores& s = r.ours.loops;
+    h << "<tr><td style='text-align:left'>" << report::html_escape(r.c->name) << "</td><td>"
+      << report::fixed(s.sigma.rms, 2) << "</td><td>" << report::fixed(s.sigma.worst, 2)
+      << "</td><td style='background:" << colour(s.sigma.verdict) << "'>" << cell(s.sigma)
+      << "</td><td>" << report::fixed(s.clamp.above_ceiling_s, 2) << "</td><td>"
+      << report::fixed(s.clamp.in_band_pct, 1)
+      << "</td><td style='background:" << colour(s.clamp.verdict) << "'>" << cell(s.clamp)
+      << "</td><td>" << report::fixed(s.depth.in_band_pct, 1)
+      << "</td><td style='background:" << colour(s.depth.verdict) << "'>" << cell(s.depth)
+      << "</td><td>" << report::fixed(r.paper.loops.sigma.rms, 2) << "</td></tr>";
+  }
+  h << "</table>";
+  // Worst of each loop: the lowest verdict, then the largest miss.
+  const auto worst_of = [&](auto score) {
+    const CaseResult* w = &all.front();
+    for (const CaseResult& r : all) {
+      const LoopScore& a = score(r.ours.loops);
+      const LoopScore& b = score(w->ours.loops);
+      if (a.verdict > b.verdict || (a.verdict == b.verdict && a.longest_out_s > b.longest_out_s))
+        w = &r;
+    }
+    return w;
+  };
+  const CaseResult* worst[] = {worst_of([](const LoopScores& s) { return s.sigma; }),
+                               worst_of([](const LoopScores& s) { return s.clamp; }),
+                               worst_of([](const LoopScores& s) { return s.depth; })};
+  const char* titles[] = {"sigma (true)", "clamp force (true)", "furrow depth (true)"};
+  for (int loop = 0; loop < 3; ++loop) {
+    const CaseResult& r = *worst[loop];
+    const std::size_t index = static_cast<std::size_t>(&r - all.data()) * 2;
+    LockstepRunner runner(planned_scenario(base, plan.runs[index]));
+    std::vector<double> t, y, alarm;
+    runner.set_observer([&](const TickRecord& rec) {
+      t.push_back(static_cast<double>(rec.controller.time_ns) * 1e-9);
+      const double v = loop == 0
+                           ? (rec.truth.v_mps >= kSigmaMinSpeedMps ? rec.truth.sigma : std::nan(""))
+                       : loop == 1 ? rec.truth.clamp_force_N
+                                   : rec.truth.depth_mm;
+      y.push_back(v);
+      alarm.push_back(rec.controller.warnings != 0 || rec.controller.faults != 0 ? 1.0 : 0.0);
+    });
+    runner.run();
+    const ControllerConfig& cfg = runner.scenario().board.controller;
+    report::ChartSpec spec;
+    spec.title = std::string("worst for ") + titles[loop] + ": " + r.c->name;
+    spec.x_label = "time [s]";
+    spec.y_unit = loop == 0 ? "" : loop == 1 ? "N" : "mm";
+    if (loop == 0) spec.y_markers.push_back({cfg.sigma.sigma, "#070", "target"});
+    if (loop == 1) spec.y_markers.push_back({cfg.clamp.ceiling_N, "#c00", "ceiling"});
+    if (loop == 1) spec.y_markers.push_back({cfg.clamp.setpoint_N, "#070", "set-point"});
+    if (loop == 2) spec.y_markers.push_back({cfg.depth.target_mm, "#070", "target"});
+    spec.note = std::string("the loop's verdict: ") + cell(loop == 0   ? r.ours.loops.sigma
+                                                           : loop == 1 ? r.ours.loops.clamp
+                                                                       : r.ours.loops.depth);
+    h << page.lines(spec, t, {{&y, "#06c", titles[loop]}});
+    (void)alarm;
+  }
+  h << "</body></html>\n";
+  return h.str();
+}
+
+}  // namespace
+
+int run_robustness(const std::string& scenario_path, const std::string& out_dir,
+                   const RobustnessOptions& o) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const Scenario base = load_scenario(scenario_path);
+  if (const std::string why = executor_refusal(o.executor); !why.empty())
+    throw std::runtime_error(why);
+  config::OutputSet out(out_dir, "planter-sim robustness", o.force);
+  const std::vector<RobustnessCase> cases = robustness_cases(base, o.distance_m, o.combinations);
+  RunPlan plan = new_plan(scenario_path, apps::version());
+  for (const RobustnessCase& c : cases) {
+    for (int paper = 0; paper < 2; ++paper) {
+      PlannedRun run;
+      run.distance_m = o.distance_m;
+      run.seed = base.seed;
+      run.disturbances = c.settings;
+      if (paper) run.disturbances.emplace_back("controller.paper_drive", 1.0);
+      plan.runs.push_back(run);
+    }
+  }
+  std::fprintf(stderr,
+               "planter-sim robustness: %zu cases of %.0f m, each with the sigma loop and with "
+               "the paper's drive (%zu runs)\n",
+               cases.size(), o.distance_m, plan.runs.size());
+  const std::vector<Summary> runs =
+      execute_plan(runs_folder(out_dir) + "/runs", plan, executor_for(o.executor, o.jobs, o.force),
+                   "robustness");
+  std::vector<CaseResult> all;
+  int held = 0, silent = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    CaseResult r{&cases[i], runs[2 * i], runs[2 * i + 1]};
+    r.verdict = case_verdict(r.ours.loops);
+    held += r.verdict == Verdict::held;
+    silent += r.verdict == Verdict::silent;
+    all.push_back(r);
+  }
+  nlohmann::ordered_json j;
+  j["scenario"] = base.name;
+  j["distance_m_per_case"] = o.distance_m;
+  j["goals"] = {{"sigma",
+                 {{"rms_pct", kLoopGoals.sigma.rms_pct},
+                  {"worst_pct", kLoopGoals.sigma.worst_pct},
+                  {"window_s", kLoopGoals.sigma.window_s},
+                  {"after_start_s", kLoopGoals.sigma.after_start_s}}},
+                {"clamp",
+                 {{"ceiling_N", base.board.controller.clamp.ceiling_N},
+                  {"band_pct", kLoopGoals.clamp.band_pct},
+                  {"in_band_share_pct", kLoopGoals.clamp.in_band_share_pct}}},
+                {"depth",
+                 {{"band_mm", kLoopGoals.depth.band_mm},
+                  {"in_band_share_pct", kLoopGoals.depth.in_band_share_pct}}},
+                {"alarm_within_s", kLoopGoals.alarm_within_s}};
+  std::ostringstream csv;
+  csv << "case,aimed_at,verdict,sigma_rms_pct,sigma_worst_pct,sigma_verdict,clamp_above_ceiling_s,"
+         "clamp_in_band_pct,clamp_verdict,depth_in_band_pct,depth_verdict,warnings_seen,faults,"
+         "paper_sigma_rms_pct,paper_sigma_worst_pct\n";
+  for (const CaseResult& r : all) {
+    nlohmann::ordered_json one;
+    one["case"] = r.c->name;
+    one["aimed_at"] = r.c->aimed_at;
+    one["what"] = r.c->what;
+    nlohmann::ordered_json settings;
+    for (const auto& [k, v] : r.c->settings) settings[k] = v;
+    one["settings"] = settings;
+    one["verdict"] = verdict_name(r.verdict);
+    one["loops"] = nlohmann::ordered_json::parse(loop_scores_json(r.ours.loops));
+    one["warnings_seen"] = r.ours.warnings_seen;
+    one["faults"] = r.ours.faults;
+    one["paper_drive"] = {{"sigma", loop_json(r.paper.loops.sigma)}};
+    j["cases"].push_back(one);
+    const LoopScores& s = r.ours.loops;
+    csv << '"' << r.c->name << "\"," << r.c->aimed_at << ',' << verdict_name(r.verdict) << ','
+        << s.sigma.rms << ',' << s.sigma.worst << ',' << verdict_name(s.sigma.verdict) << ','
+        << s.clamp.above_ceiling_s << ',' << s.clamp.in_band_pct << ','
+        << verdict_name(s.clamp.verdict) << ',' << s.depth.in_band_pct << ','
+        << verdict_name(s.depth.verdict) << ',' << r.ours.warnings_seen << ',' << r.ours.faults
+        << ',' << r.paper.loops.sigma.rms << ',' << r.paper.loops.sigma.worst << '\n';
+  }
+  j["held"] = held;
+  j["silent"] = silent;
+  j["cases_total"] = all.size();
+  out.write("robustness.json", j.dump(2) + "\n");
+  out.write("robustness.csv", csv.str());
+  out.write("report.html", report_html(base, plan, all, held, silent));
+  out.commit();
+  print_table(all);
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  std::printf("wrote %s/{robustness.json,robustness.csv,report.html}\n", out_dir.c_str());
+  std::printf("robustness suite: %.1f s wall for %zu runs (goal < 60 s)\n", wall, plan.runs.size());
+  std::printf("robustness: %d of %zu cases held, %d silent\n", held, all.size(), silent);
+  return 0;
+}
+
+}  // namespace planter::sim

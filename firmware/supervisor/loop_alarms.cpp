@@ -1,0 +1,63 @@
+#include "firmware/supervisor/loop_alarms.h"
+
+#include <cmath>
+
+#include "firmware/supervisor/supervisor.h"
+
+namespace planter {
+
+bool LoopAlarms::Timer::update(bool condition, double dt_s, double delay_s, double hold_s) {
+  if (condition) {
+    on_s += dt_s;
+    off_s = 0;
+    if (on_s >= delay_s - 1e-9) raised = true;
+  } else {
+    on_s = 0;
+    off_s += dt_s;
+    if (off_s >= hold_s) raised = false;
+  }
+  return raised;
+}
+
+void LoopAlarms::reset() {
+  too_fast_ = lagging_ = short_ = disagrees_ = ceiling_ = depth_ = Timer{};
+  weak_grip_angle_rad_ = -1e9;
+}
+
+std::uint32_t LoopAlarms::update(const LoopAlarmInputs& in) {
+  const double dt = in.dt_s, hold = cfg_.hold_s;
+  const bool run = in.running;
+  std::uint32_t w = 0;
+  // Sigma: the machine faster than the disc's top, or the disc held a pitch behind.
+  if (too_fast_.update(run && in.sigma.too_fast, dt, 0.3, hold)) w |= warning::kTooFastForDisc;
+  const bool behind = in.sigma.lag_held || in.sigma.lag_rad > 0.5 * cfg_.clamp_pitch_rad;
+  if (lagging_.update(run && behind && !in.sigma.too_fast, dt, 0.5, hold))
+    w |= warning::kDiscLagging;
+  // Clamp: the roller at its travel with the force short of the band.
+  const ClampStatus& c = in.clamp;
+  const bool gripping = run && c.clamping && c.ramped;
+  const bool short_of_band = c.measured_N < (1.0 - cfg_.band_pct / 100.0) * in.clamp_setpoint_N;
+  if (short_.update(gripping && c.at_travel && short_of_band, dt, 0.3, hold))
+    w |= warning::kClampShort;
+  const double disagreement = std::abs(c.measured_N - c.model_force_N);
+  const bool disagree =
+      disagreement > cfg_.disagree_share * c.model_force_N + cfg_.disagree_offset_N;
+  if (disagrees_.update(gripping && disagree, dt, 0.5, hold)) w |= warning::kLoadCellDisagrees;
+  if (ceiling_.update(run && c.ceiling, dt, 0.1, hold)) w |= warning::kClampAtCeiling;
+  // Empty clamps: dropped seedlings when the grip was weak within a carry, else an empty belt.
+  if (gripping && c.measured_N < cfg_.weak_grip_share * in.clamp_setpoint_N)
+    weak_grip_angle_rad_ = in.disc_angle_rad;
+  if (in.empty_belt) {
+    const bool dropped =
+        in.disc_angle_rad - weak_grip_angle_rad_ < cfg_.carry_rad + 6.0 * cfg_.clamp_pitch_rad;
+    w |= dropped ? warning::kSeedlingsFalling : warning::kEmptyBelt;
+  }
+  // Depth: the opener held at an end stop with the depth out of its band.
+  const DepthStatus& d = in.depth;
+  if (depth_.update(run && d.settled && d.at_end_stop && std::abs(d.error_mm) > cfg_.depth_band_mm,
+                    dt, 0.5, hold))
+    w |= warning::kDepthUnreachable;
+  return w;
+}
+
+}  // namespace planter

@@ -1,0 +1,223 @@
+#include "sim/runner/loop_scores.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+namespace planter::sim {
+
+const char* verdict_name(Verdict v) {
+  switch (v) {
+    case Verdict::held:
+      return "held";
+    case Verdict::alarmed:
+      return "alarmed";
+    case Verdict::silent:
+      return "silent";
+  }
+  return "";
+}
+
+void LoopScorer::Stretch::out(double at_s, double dt_s, double min_s) {
+  if (first_any_s < 0) first_any_s = at_s;
+  out_s += dt_s;
+  longest_s = std::max(longest_s, out_s);
+  if (out_s >= min_s && first_at_s < 0) first_at_s = at_s - out_s + dt_s;
+}
+
+void LoopScorer::close_sigma_window() {
+  if (window_n_ > 0) {
+    const double mean_pct = 100.0 * std::abs(window_sum_ / static_cast<double>(window_n_));
+    worst_window_ = std::max(worst_window_, mean_pct);
+    if (mean_pct > goals_.sigma.worst_pct) {
+      if (first_over_worst_s_ < 0) first_over_worst_s_ = window_start_s_;
+      sigma_out_.out(window_start_s_, goals_.sigma.window_s, 0.0);
+    } else {
+      sigma_out_.in();
+    }
+    if (mean_pct > goals_.sigma.rms_pct && first_over_rms_s_ < 0)
+      first_over_rms_s_ = window_start_s_;
+  }
+  window_sum_ = 0;
+  window_n_ = 0;
+  window_start_s_ = -1;
+}
+
+// Judged while running and moving, from after_start_s after each start (or restart).
+void LoopScorer::add_sigma(const PlantTruth& t, bool judged, double time_s) {
+  if (!judged) {
+    close_sigma_window();
+    return;
+  }
+  const double e = (t.sigma - sigma_) / sigma_;
+  sigma_err2_ += e * e;
+  ++sigma_n_;
+  if (window_start_s_ < 0) window_start_s_ = time_s;
+  window_sum_ += e;
+  ++window_n_;
+  if (time_s - window_start_s_ >= goals_.sigma.window_s - 0.5 * period_s_) close_sigma_window();
+}
+
+void LoopScorer::add(const Telemetry& c, const PlantTruth& t, double time_s) {
+  const bool running = c.state == SupervisorState::kRunning;
+  const bool moving = t.v_mps >= kSigmaMinSpeedMps;
+  if (running && !was_running_) running_since_s_ = time_s;
+  if (!(running && moving))
+    moving_since_s_ = -1;
+  else if (moving_since_s_ < 0)
+    moving_since_s_ = time_s;
+  was_running_ = running;
+  // An alarm of the loop's own, a fault or the e-stop: the operator was told.
+  const bool told =
+      c.faults != 0 || c.state == SupervisorState::kEStop || c.state == SupervisorState::kFault;
+  const auto first = [&](double& at_s, std::uint32_t mask) {
+    if (at_s < 0 && (told || (c.warnings & mask) != 0)) at_s = time_s;
+  };
+  first(sigma_alarm_s_, warning::kSigmaAlarms);
+  first(clamp_alarm_s_, warning::kClampAlarms);
+  first(depth_alarm_s_, warning::kDepthAlarms);
+
+  add_sigma(t, moving_since_s_ >= 0 && time_s - moving_since_s_ >= goals_.sigma.after_start_s,
+            time_s);
+
+  if (t.clamp_force_N > ceiling_N_) {
+    above_ceiling_s_ += period_s_;
+    if (first_above_s_ < 0) first_above_s_ = time_s;
+  }
+  // The clamp is judged while a seedling is in the nip, once the set-point has ramped up.
+  const double setpoint = c.clamp_force_cmd_N;
+  const bool ramped =
+      setpoint > 0 && setpoint >= std::min(c.clamp_force_target_N, 0.95 * ceiling_N_) - 1e-6;
+  if (running && ramped && t.known_nip_mm > 0) {
+    const double e = t.clamp_force_N - setpoint;
+    clamp_err2_ += e * e;
+    clamp_worst_ = std::max(clamp_worst_, std::abs(e));
+    ++nip_n_;
+    if (std::abs(e) <= goals_.clamp.band_pct / 100.0 * setpoint) {
+      ++nip_in_band_;
+      clamp_out_.in();
+    } else {
+      clamp_out_.out(time_s, period_s_, goals_.clamp.onset_s);
+    }
+  }
+  if (running && moving && time_s - running_since_s_ >= depth_ramp_s_) {
+    const double e = t.depth_mm - c.depth_target_mm;
+    depth_err2_ += e * e;
+    depth_worst_ = std::max(depth_worst_, std::abs(e));
+    ++depth_n_;
+    if (std::abs(e) <= goals_.depth.band_mm) {
+      ++depth_in_band_;
+      depth_out_.in();
+    } else {
+      depth_out_.out(time_s, period_s_, goals_.depth.onset_s);
+    }
+  }
+}
+
+namespace {
+
+void judge(LoopScore& s, double alarm_at_s, double within_s) {
+  s.alarm_at_s = alarm_at_s;
+  if (s.goal_met) {
+    s.verdict = Verdict::held;
+  } else {
+    s.verdict = alarm_at_s >= 0 && alarm_at_s <= s.left_goal_at_s + within_s ? Verdict::alarmed
+                                                                             : Verdict::silent;
+  }
+}
+
+double share_pct(std::uint64_t in, std::uint64_t n) {
+  return n ? 100.0 * static_cast<double>(in) / static_cast<double>(n) : 100.0;
+}
+
+double onset(const double first_long_s, const double first_any_s) {
+  return first_long_s >= 0 ? first_long_s : first_any_s;
+}
+
+}  // namespace
+
+LoopScores LoopScorer::finish() const {
+  LoopScores r;
+  LoopScore& g = r.sigma;
+  g.rms = sigma_n_ ? 100.0 * std::sqrt(sigma_err2_ / static_cast<double>(sigma_n_)) : 0.0;
+  g.worst = worst_window_;
+  if (window_n_ > 0)  // the last, partial window
+    g.worst = std::max(g.worst, 100.0 * std::abs(window_sum_ / static_cast<double>(window_n_)));
+  g.longest_out_s = sigma_out_.longest_s;
+  const bool worst_failed = g.worst > goals_.sigma.worst_pct;
+  g.goal_met = !worst_failed && g.rms <= goals_.sigma.rms_pct;
+  g.left_goal_at_s = g.goal_met ? -1 : worst_failed ? first_over_worst_s_ : first_over_rms_s_;
+  if (!g.goal_met && g.left_goal_at_s < 0) g.left_goal_at_s = running_since_s_;
+  judge(g, sigma_alarm_s_, goals_.alarm_within_s);
+
+  LoopScore& c = r.clamp;
+  c.rms = nip_n_ ? std::sqrt(clamp_err2_ / static_cast<double>(nip_n_)) : 0.0;
+  c.worst = clamp_worst_;
+  c.in_band_pct = share_pct(nip_in_band_, nip_n_);
+  c.longest_out_s = clamp_out_.longest_s;
+  c.above_ceiling_s = above_ceiling_s_;
+  c.goal_met = above_ceiling_s_ == 0 && c.in_band_pct >= goals_.clamp.in_band_share_pct;
+  if (!c.goal_met) {
+    const double band_onset = onset(clamp_out_.first_at_s, clamp_out_.first_any_s);
+    c.left_goal_at_s = first_above_s_ >= 0 && (band_onset < 0 || first_above_s_ < band_onset)
+                           ? first_above_s_
+                           : band_onset;
+  }
+  judge(c, clamp_alarm_s_, goals_.alarm_within_s);
+
+  LoopScore& d = r.depth;
+  d.rms = depth_n_ ? std::sqrt(depth_err2_ / static_cast<double>(depth_n_)) : 0.0;
+  d.worst = depth_worst_;
+  d.in_band_pct = share_pct(depth_in_band_, depth_n_);
+  d.longest_out_s = depth_out_.longest_s;
+  d.goal_met = d.in_band_pct >= goals_.depth.in_band_share_pct;
+  if (!d.goal_met) d.left_goal_at_s = onset(depth_out_.first_at_s, depth_out_.first_any_s);
+  judge(d, depth_alarm_s_, goals_.alarm_within_s);
+  return r;
+}
+
+namespace {
+
+nlohmann::ordered_json score_json(const LoopScore& s) {
+  return {{"rms", s.rms},
+          {"worst", s.worst},
+          {"in_band_pct", s.in_band_pct},
+          {"longest_out_s", s.longest_out_s},
+          {"left_goal_at_s", s.left_goal_at_s},
+          {"alarm_at_s", s.alarm_at_s},
+          {"above_ceiling_s", s.above_ceiling_s},
+          {"goal_met", s.goal_met},
+          {"verdict", verdict_name(s.verdict)}};
+}
+
+LoopScore score_from(const nlohmann::json& j) {
+  LoopScore s;
+  s.rms = j.at("rms").get<double>();
+  s.worst = j.at("worst").get<double>();
+  s.in_band_pct = j.at("in_band_pct").get<double>();
+  s.longest_out_s = j.at("longest_out_s").get<double>();
+  s.left_goal_at_s = j.at("left_goal_at_s").get<double>();
+  s.alarm_at_s = j.at("alarm_at_s").get<double>();
+  s.above_ceiling_s = j.at("above_ceiling_s").get<double>();
+  s.goal_met = j.at("goal_met").get<bool>();
+  const std::string v = j.at("verdict").get<std::string>();
+  s.verdict = v == "held" ? Verdict::held : v == "alarmed" ? Verdict::alarmed : Verdict::silent;
+  return s;
+}
+
+}  // namespace
+
+std::string loop_scores_json(const LoopScores& s) {
+  nlohmann::ordered_json j;
+  j["sigma"] = score_json(s.sigma);
+  j["clamp"] = score_json(s.clamp);
+  j["depth"] = score_json(s.depth);
+  return j.dump();
+}
+
+LoopScores loop_scores_from_json(const std::string& text) {
+  const nlohmann::json j = nlohmann::json::parse(text);
+  return {score_from(j.at("sigma")), score_from(j.at("clamp")), score_from(j.at("depth"))};
+}
+
+}  // namespace planter::sim

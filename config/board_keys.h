@@ -73,7 +73,7 @@ inline constexpr ConfigKey kMachineKeys[] = {
   number_key(kMachine, "control", "clamp_position_max_mm", board_defaults::kClamp.position_max_mm, 1.0, 100.0, "mm", "the roller actuator's travel"),
   number_key(kMachine, "control", "depth_mm", 102.0, kDepthFileRangeMm.min, kDepthFileRangeMm.max, "mm", "the furrow depth set-point"),
   number_key(kMachine, "control", "depth_rate_mm_per_s", 20.0, 1.0, 500.0, "mm/s", "the depth actuator's rate limit"),
-  number_key(kMachine, "control", "depth_ki_per_s", 0.5, 0.0, 20.0, "1/s", "the depth loop's integral gain on the measured depth"),
+  number_key(kMachine, "control", "depth_ki_per_s", board_defaults::kDepth.ki_per_s, 0.0, 20.0, "1/s", "the depth loop's integral gain on the measured depth"),
   number_key(kMachine, "control", "depth_min_mm", board_defaults::kDepth.min_mm, -50.0, 500.0, "mm", "the depth actuator's upper end stop (the unit's calibration replaces it)"),
   number_key(kMachine, "control", "depth_max_mm", board_defaults::kDepth.max_mm, 10.0, 500.0, "mm", "the depth actuator's lower end stop (the unit's calibration replaces it)"),
   number_key(kMachine, "planting_monitor", "clamp_pitch_mm", board_defaults::kMonitor.clamp_pitch_mm, 5.0, 500.0, "mm", "the clamps' pitch along the disc rim; the target spacing is this over sigma"),

@@ -9,7 +9,10 @@ namespace planter {
 struct DepthLoopConfig {
   double target_mm = 102.0;
   double rate_mm_per_s = 20.0;
-  double ki_per_s = 0.5;
+  // The integral's crossover at 5 rad/s: ten times the 0.5 s period of the paper's field's
+  // terrain at 0.45 m wavelength and 0.06 m/s (0.84 rad/s), below the actuator's 0.05 s lag
+  // and the sensor's two ticks (phase margin about 65 deg; docs/control.md).
+  double ki_per_s = 5.0;
   double min_mm = 0.0;
   double max_mm = 165.0;   // the opener's lower end stop (the machine's; calibration replaces it)
   double raised_mm = 0.0;  // opener position out of the ground

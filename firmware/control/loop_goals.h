@@ -14,15 +14,14 @@ struct SigmaGoal {
 };
 
 struct ClampGoal {
-  // The true force never above the ceiling, and within this share of the set-point while a
-  // seedling is in the nip ...
+  // The true force never above the ceiling, and the grip each seedling gets, the mean true
+  // force over its passage through the nip, within this share of the set-point ...
   double band_pct = 10.0;
-  // ... for at least this share of the time a seedling is in the nip (assumed, 90-99 %: a
-  // seedling's entry is a step the loop needs a few ticks to answer).
+  // ... for at least this share of the seedlings (assumed, 90-99 %).
   double in_band_share_pct = 95.0;
-  // A stretch out of the band this long (seedling in the nip) marks when the loop left its
-  // goal, for the alarm's one second (assumed: the paper's nip passes in about 0.3 s).
-  double onset_s = 0.2;
+  // Passages out of the band in a row for this long mark when the loop left its goal, for the
+  // alarm's one second (assumed: about two seedlings at the paper's speed).
+  double onset_s = 0.5;
 };
 
 struct DepthGoal {

@@ -16,7 +16,8 @@ double SigmaLoop::update(double distance_m, double ground_speed_mps, double disc
                          double dt_s) {
   const double k = cfg_.sigma / cfg_.disc_radius_m;
   const double feed_forward = k * std::max(0.0, ground_speed_mps);
-  status_.too_fast = feed_forward > cfg_.omega_max_radps;
+  // Said a tenth before the disc's top: the clamp falls behind the seedlings' rate first.
+  status_.too_fast = feed_forward > 0.9 * cfg_.omega_max_radps;
   if (cfg_.fixed_ratio) return std::clamp(feed_forward, 0.0, cfg_.omega_max_radps);
   double error = angle0_rad_ + k * (distance_m - distance0_m_) - disc_angle_rad;
   // The reference governor: beyond max_lag the reference slides along with the disc.

@@ -13,7 +13,8 @@ Controller::Controller(const ControllerConfig& config)
       depth_loop_(config.depth),
       link_recovery_(config.link_recovery),
       monitor_(config.monitor),
-      alarms_(config.alarms) {}
+      alarms_(config.alarms),
+      load_cell_zero_(config.load_cell_zero) {}
 
 const MachineCommand& Controller::update(const MachineState& in, std::int64_t now_ns,
                                          std::int64_t dt_ns) {
@@ -44,6 +45,14 @@ const MachineCommand& Controller::update(const MachineState& in, std::int64_t no
     }
     previous_state_ = state;
   }
+  // The lips are held open for the load cell's zero at each start (load_cell_zero.h).
+  running_for_ns_ = state == SupervisorState::kRunning ? running_for_ns_ + dt_ns : 0;
+  zeroing_ = state == SupervisorState::kRunning &&
+             static_cast<double>(running_for_ns_) * 1e-9 < cfg_.load_cell_zero.zero_s;
+  const bool lips_open =
+      (state == SupervisorState::kReady || zeroing_) &&
+      in.clamp_pos_mm < cfg_.clamp.model_x0_mm - cfg_.load_cell_zero.clear_of_contact_mm;
+  load_cell_zero_.update(in.clamp_force_N, lips_open);
   decide_outputs(in, state, static_cast<double>(dt_ns) * 1e-9);
   monitor_.update(in, state == SupervisorState::kRunning || state == SupervisorState::kStopping);
   LoopAlarmInputs alarm_in;
@@ -129,12 +138,13 @@ void Controller::decide_outputs(const MachineState& in, SupervisorState state, d
   double omega_cmd = 0.0;
   double clamp_pos_cmd = cfg_.clamp.release_position_mm;
   double depth_cmd = cfg_.depth.raised_mm;
+  const double force_N = load_cell_zero_.corrected_N(in.clamp_force_N);
   if (state == SupervisorState::kRunning) {
     omega_cmd = sigma_loop_.update(in.distance_m, in.v_wheel_mps, in.disc_angle_rad, dt_s);
-    clamp_pos_cmd = clamp_loop_.update(in.clamp_force_N, in.clamp_pos_mm, dt_s, true);
+    clamp_pos_cmd = clamp_loop_.update(force_N, in.clamp_pos_mm, dt_s, !zeroing_);
     depth_cmd = depth_loop_.update(in.depth_mm, dt_s, true);
   } else if (state == SupervisorState::kStopping) {
-    clamp_pos_cmd = clamp_loop_.update(in.clamp_force_N, in.clamp_pos_mm, dt_s, true);
+    clamp_pos_cmd = clamp_loop_.update(force_N, in.clamp_pos_mm, dt_s, !zeroing_);
     depth_cmd = depth_loop_.update(in.depth_mm, dt_s, true);
   } else if (state == SupervisorState::kFault || state == SupervisorState::kEStop) {
     // Safe outputs: every drive quick-stops where it is; commands are held at the measured values.

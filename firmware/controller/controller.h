@@ -11,6 +11,7 @@
 #include "firmware/controller/controller_config.h"
 #include "firmware/controller/operator_command.h"
 #include "firmware/io/process_image.h"
+#include "firmware/sensing/load_cell_zero.h"
 #include "firmware/sensing/planting_monitor.h"
 #include "firmware/supervisor/link_recovery.h"
 #include "firmware/supervisor/loop_alarms.h"
@@ -46,6 +47,8 @@ class Controller {
   [[nodiscard]] std::uint32_t warnings() const { return warnings_; }
   // Fault resets the link recovery has requested.
   [[nodiscard]] std::uint32_t link_resets() const { return link_recovery_.resets(); }
+  // The load cell's zero taken while the lips were open (load_cell_zero.h).
+  [[nodiscard]] double load_cell_offset_N() const { return load_cell_zero_.offset_N(); }
 
  private:
   std::uint32_t check_faults(const MachineState& in, std::int64_t dt_ns);
@@ -59,6 +62,7 @@ class Controller {
   LinkRecovery link_recovery_;
   PlantingMonitor monitor_;
   LoopAlarms alarms_;
+  LoadCellZero load_cell_zero_;
   MachineCommand command_;
   std::uint32_t warnings_ = 0;
 
@@ -72,6 +76,8 @@ class Controller {
   std::uint32_t faults_seen_ = 0;
   std::int64_t disc_implausible_ns_ = 0;  // how long the disc has turned against the ground
   SupervisorState previous_state_ = SupervisorState::kBoot;
+  std::int64_t running_for_ns_ = 0;
+  bool zeroing_ = false;  // the lips held open for the load cell's zero
 };
 
 }  // namespace planter

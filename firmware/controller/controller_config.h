@@ -8,6 +8,7 @@
 #include "firmware/control/furrow_depth_loop.h"
 #include "firmware/control/sigma_loop.h"
 #include "firmware/io/io_config.h"
+#include "firmware/sensing/load_cell_zero.h"
 #include "firmware/sensing/planting_monitor.h"
 #include "firmware/supervisor/link_recovery.h"
 #include "firmware/supervisor/loop_alarms.h"
@@ -26,6 +27,7 @@ struct ControllerConfig {
   LinkRecoveryConfig link_recovery;  // off unless the board or planterd turns it on
   PlantingMonitorConfig monitor;
   LoopAlarmConfig alarms;
+  LoadCellZeroConfig load_cell_zero;
   bool estop_active_low = true;
 
   [[nodiscard]] const NodeConfig& node(NodeRole r) const {

@@ -20,7 +20,7 @@ bool LoopAlarms::Timer::update(bool condition, double dt_s, double delay_s, doub
 }
 
 void LoopAlarms::reset() {
-  too_fast_ = lagging_ = short_ = disagrees_ = ceiling_ = depth_ = Timer{};
+  too_fast_ = lagging_ = short_ = disagrees_ = ceiling_ = depth_ = depth_off_ = Timer{};
   weak_grip_angle_rad_ = -1e9;
 }
 
@@ -53,10 +53,11 @@ std::uint32_t LoopAlarms::update(const LoopAlarmInputs& in) {
     w |= dropped ? warning::kSeedlingsFalling : warning::kEmptyBelt;
   }
   // Depth: the opener held at an end stop with the depth out of its band.
+  // Else the measured depth out of its band: the ground or the soil beat the loop.
   const DepthStatus& d = in.depth;
-  if (depth_.update(run && d.settled && d.at_end_stop && std::abs(d.error_mm) > cfg_.depth_band_mm,
-                    dt, 0.5, hold))
-    w |= warning::kDepthUnreachable;
+  const bool off = run && d.settled && std::abs(d.error_mm) > cfg_.depth_band_mm;
+  if (depth_.update(off && d.at_end_stop, dt, 0.5, hold)) w |= warning::kDepthUnreachable;
+  if (depth_off_.update(off && !d.at_end_stop, dt, 0.5, hold)) w |= warning::kDepthOffBand;
   return w;
 }
 

@@ -16,8 +16,8 @@ struct LoopAlarmConfig {
   double hold_s = 2.0;  // assumed: long enough to be seen on a console refreshed at 2 Hz
   // The load cell and the roller's position through the clamp law disagree by more than this
   // share of the law's force plus the offset (assumed: lips differ batch to batch by 10-30 %).
-  double disagree_share = 0.15;
-  double disagree_offset_N = 5.0;
+  double disagree_share = 0.10;
+  double disagree_offset_N = 4.0;
   // A grip below this share of the set-point lets a seedling slide out (assumed, 0.3-0.7).
   double weak_grip_share = 0.5;
   // From pickup to release, the disc turns this far (the paper's carry, 150 deg): empty clamps
@@ -53,7 +53,7 @@ class LoopAlarms {
     bool update(bool condition, double dt_s, double delay_s, double hold_s);
   };
   LoopAlarmConfig cfg_;
-  Timer too_fast_, lagging_, short_, disagrees_, ceiling_, depth_;
+  Timer too_fast_, lagging_, short_, disagrees_, ceiling_, depth_, depth_off_;
   double weak_grip_angle_rad_ = -1e9;
 };
 

@@ -20,7 +20,8 @@ const char* warning::name(int bit) {
       "load cell disagrees with the roller: check the load cell and the lips",
       "clamp force held at its ceiling: stems too thick or lips too stiff",
       "seedlings falling from the clamp: the grip is too weak",
-      "opener at its end stop: the depth cannot be reached"};
+      "opener at its end stop: the depth cannot be reached",
+      "furrow depth off by more than 2 mm: ground too rough or soil too hard for the opener"};
   return bit >= 0 && bit < kCount ? kNames[bit] : "";
 }
 

@@ -153,6 +153,7 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   truth_.known_slip = (soil_slip_pct - cfg_.soil.slip_mean_pct) * 0.01;
   truth_.known_terrain_depth_mm = terrain_depth_mm;
   truth_.known_nip_mm = nip_mm;
+  truth_.seedling_in_nip = seedlings_.seedling_in_nip(t);
 }
 
 void Plant::photo_eye(std::int64_t end_ns, hal::sim::SimEdgeSource& edges) {

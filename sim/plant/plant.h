@@ -33,6 +33,8 @@ struct PlantTruth {
   // soil's slip (mean and variation along the row), the depth the terrain adds, the seedling's
   // thickness in the clamp's nip.
   double known_slip = 0, known_terrain_depth_mm = 0, known_nip_mm = 0;
+  // The seedling in the clamp's nip, counted from 1 (0: empty), for the clamp's goal.
+  std::size_t seedling_in_nip = 0;
 };
 
 class Plant {

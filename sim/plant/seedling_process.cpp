@@ -27,6 +27,12 @@ double SeedlingProcess::nip_thickness_mm(double t_s) const {
                            cfg_.drive.seedling_thickness_gain);
 }
 
+std::size_t SeedlingProcess::seedling_in_nip(double t_s) const {
+  if (seedlings_.empty()) return 0;
+  const Seedling& s = seedlings_.back();
+  return t_s - s.pickup_time_s > cfg_.mechanism.nip_time_s ? 0 : seedlings_.size();
+}
+
 Seedling SeedlingProcess::sample(double t_s) {
   const SeedlingConfig& sc = cfg_.seedlings;
   std::uniform_real_distribution<double> u01(0.0, 1.0);

@@ -50,6 +50,8 @@ class SeedlingProcess {
             double vibration_tilt_deg);
   // Extra lip compression (mm) from the seedling currently in the nip, for the clamp model.
   [[nodiscard]] double nip_thickness_mm(double t_s) const;
+  // The seedling in the nip now, counted from 1 (0: the nip is empty).
+  [[nodiscard]] std::size_t seedling_in_nip(double t_s) const;
 
   [[nodiscard]] const std::vector<Seedling>& seedlings() const { return seedlings_; }
   void set_feed_miss_pct(double pct) { cfg_.seedlings.feed_miss_pct = pct; }

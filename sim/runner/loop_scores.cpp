@@ -25,10 +25,14 @@ void LoopScorer::Stretch::out(double at_s, double dt_s, double min_s) {
   if (out_s >= min_s && first_at_s < 0) first_at_s = at_s - out_s + dt_s;
 }
 
-void LoopScorer::close_sigma_window() {
-  if (window_n_ > 0) {
+// A window is judged only whole: a stop cuts the last one short, and a mean over a few ticks
+// of braking says nothing of the spacing (the RMS still counts every tick).
+void LoopScorer::close_sigma_window(bool whole) {
+  if (whole && window_n_ > 0) {
     const double mean_pct = 100.0 * std::abs(window_sum_ / static_cast<double>(window_n_));
     worst_window_ = std::max(worst_window_, mean_pct);
+    sigma_err2_ += mean_pct * mean_pct;
+    ++sigma_n_;
     if (mean_pct > goals_.sigma.worst_pct) {
       if (first_over_worst_s_ < 0) first_over_worst_s_ = window_start_s_;
       sigma_out_.out(window_start_s_, goals_.sigma.window_s, 0.0);
@@ -43,19 +47,58 @@ void LoopScorer::close_sigma_window() {
   window_start_s_ = -1;
 }
 
+void LoopScorer::close_passage() {
+  if (passage_ticks_ > 0) {
+    const double mean_N = passage_sum_N_ / static_cast<double>(passage_ticks_);
+    const double e = mean_N - passage_setpoint_N_;
+    const double length_s = static_cast<double>(passage_ticks_) * period_s_;
+    clamp_err2_ += e * e;
+    clamp_worst_ = std::max(clamp_worst_, std::abs(e));
+    ++nip_n_;
+    if (std::abs(e) <= goals_.clamp.band_pct / 100.0 * passage_setpoint_N_) {
+      ++nip_in_band_;
+      clamp_out_.in();
+    } else {
+      clamp_out_.out(passage_start_s_ + length_s, length_s, goals_.clamp.onset_s);
+    }
+  }
+  passage_ticks_ = 0;
+  passage_sum_N_ = 0;
+}
+
+// Each seedling's grip: the mean true force over its passage through the nip while running,
+// once the set-point has ramped up.
+void LoopScorer::add_clamp(const Telemetry& c, const PlantTruth& t, bool running, double time_s) {
+  if (t.clamp_force_N > ceiling_N_) {
+    above_ceiling_s_ += period_s_;
+    if (first_above_s_ < 0) first_above_s_ = time_s;
+  }
+  const double setpoint = c.clamp_force_cmd_N;
+  const bool ramped =
+      setpoint > 0 && setpoint >= std::min(c.clamp_force_target_N, 0.95 * ceiling_N_) - 1e-6;
+  const std::size_t id = running && ramped ? t.seedling_in_nip : 0;
+  if (id != passage_id_) {
+    close_passage();
+    passage_id_ = id;
+    passage_start_s_ = time_s;
+  }
+  if (id == 0) return;
+  passage_sum_N_ += t.clamp_force_N;
+  passage_setpoint_N_ = setpoint;
+  ++passage_ticks_;
+}
+
 // Judged while running and moving, from after_start_s after each start (or restart).
 void LoopScorer::add_sigma(const PlantTruth& t, bool judged, double time_s) {
   if (!judged) {
-    close_sigma_window();
+    close_sigma_window(false);
     return;
   }
   const double e = (t.sigma - sigma_) / sigma_;
-  sigma_err2_ += e * e;
-  ++sigma_n_;
   if (window_start_s_ < 0) window_start_s_ = time_s;
   window_sum_ += e;
   ++window_n_;
-  if (time_s - window_start_s_ >= goals_.sigma.window_s - 0.5 * period_s_) close_sigma_window();
+  if (time_s - window_start_s_ >= goals_.sigma.window_s - 0.5 * period_s_) close_sigma_window(true);
 }
 
 void LoopScorer::add(const Telemetry& c, const PlantTruth& t, double time_s) {
@@ -74,7 +117,9 @@ void LoopScorer::add(const Telemetry& c, const PlantTruth& t, double time_s) {
     if (at_s < 0 && (told || (c.warnings & mask) != 0)) at_s = time_s;
   };
   first(sigma_alarm_s_, warning::kSigmaAlarms);
-  first(clamp_alarm_s_, warning::kClampAlarms);
+  // Too fast for the disc speaks for the clamp too: the seedlings then come faster than the
+  // nip can grip them, and the one thing to do for both is to slow down.
+  first(clamp_alarm_s_, warning::kClampAlarms | warning::kTooFastForDisc);
   first(depth_alarm_s_, warning::kDepthAlarms);
 
   add_sigma(t, moving_since_s_ >= 0 && time_s - moving_since_s_ >= goals_.sigma.after_start_s,
@@ -84,22 +129,7 @@ void LoopScorer::add(const Telemetry& c, const PlantTruth& t, double time_s) {
     above_ceiling_s_ += period_s_;
     if (first_above_s_ < 0) first_above_s_ = time_s;
   }
-  // The clamp is judged while a seedling is in the nip, once the set-point has ramped up.
-  const double setpoint = c.clamp_force_cmd_N;
-  const bool ramped =
-      setpoint > 0 && setpoint >= std::min(c.clamp_force_target_N, 0.95 * ceiling_N_) - 1e-6;
-  if (running && ramped && t.known_nip_mm > 0) {
-    const double e = t.clamp_force_N - setpoint;
-    clamp_err2_ += e * e;
-    clamp_worst_ = std::max(clamp_worst_, std::abs(e));
-    ++nip_n_;
-    if (std::abs(e) <= goals_.clamp.band_pct / 100.0 * setpoint) {
-      ++nip_in_band_;
-      clamp_out_.in();
-    } else {
-      clamp_out_.out(time_s, period_s_, goals_.clamp.onset_s);
-    }
-  }
+  add_clamp(c, t, running, time_s);
   if (running && moving && time_s - running_since_s_ >= depth_ramp_s_) {
     const double e = t.depth_mm - c.depth_target_mm;
     depth_err2_ += e * e;
@@ -139,10 +169,9 @@ double onset(const double first_long_s, const double first_any_s) {
 LoopScores LoopScorer::finish() const {
   LoopScores r;
   LoopScore& g = r.sigma;
-  g.rms = sigma_n_ ? 100.0 * std::sqrt(sigma_err2_ / static_cast<double>(sigma_n_)) : 0.0;
+  // Both over whole 1 s windows: the RMS of their mean errors, and the worst of them.
+  g.rms = sigma_n_ ? std::sqrt(sigma_err2_ / static_cast<double>(sigma_n_)) : 0.0;
   g.worst = worst_window_;
-  if (window_n_ > 0)  // the last, partial window
-    g.worst = std::max(g.worst, 100.0 * std::abs(window_sum_ / static_cast<double>(window_n_)));
   g.longest_out_s = sigma_out_.longest_s;
   const bool worst_failed = g.worst > goals_.sigma.worst_pct;
   g.goal_met = !worst_failed && g.rms <= goals_.sigma.rms_pct;

@@ -54,7 +54,7 @@ class LoopScorer {
     void in() { out_s = 0; }
   };
   void add_sigma(const PlantTruth& t, bool running, double time_s);
-  void close_sigma_window();
+  void close_sigma_window(bool whole);
 
   LoopGoals goals_ = kLoopGoals;
   double sigma_ = 1.5, ceiling_N_ = 120.0, depth_ramp_s_ = 6.0, period_s_ = 0.01;
@@ -65,9 +65,14 @@ class LoopScorer {
   std::uint64_t sigma_n_ = 0, window_n_ = 0;
   double first_over_worst_s_ = -1, first_over_rms_s_ = -1;
   Stretch sigma_out_;
-  // clamp
+  // clamp: each seedling's passage through the nip
+  void add_clamp(const Telemetry& c, const PlantTruth& t, bool running, double time_s);
+  void close_passage();
   double clamp_err2_ = 0, clamp_worst_ = 0, above_ceiling_s_ = 0, first_above_s_ = -1;
   std::uint64_t nip_n_ = 0, nip_in_band_ = 0;
+  std::size_t passage_id_ = 0;
+  double passage_sum_N_ = 0, passage_setpoint_N_ = 0, passage_start_s_ = 0;
+  std::uint64_t passage_ticks_ = 0;
   Stretch clamp_out_;
   // depth
   double depth_err2_ = 0, depth_worst_ = 0;

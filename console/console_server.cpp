@@ -136,6 +136,7 @@ void ConsoleServer::start() {
       {"row_spacing_mm", info_.row_spacing_mm},
       {"spacing_cv_alarm", info_.spacing_cv_alarm},
       {"singulation_alarm_pct", info_.singulation_alarm_pct},
+      {"disc_top_speed_mps", info_.disc_top_speed_mps},
       {"photo_eye", info_.photo_eye},
       {"simulated", info_.simulated},
       {"can_command", options_.commands != nullptr},

@@ -64,6 +64,7 @@ struct ConsoleInfo {
   double row_spacing_mm = 0.0;
   double spacing_cv_alarm = 0.0;
   double singulation_alarm_pct = 0.0;
+  double disc_top_speed_mps = 0.0;  // the fastest the disc holds sigma at
   bool photo_eye = false;
   bool simulated = false;  // sigma_true is known
   SetpointRange depth_range_mm;
@@ -79,6 +80,7 @@ inline ConsoleInfo console_info(std::string title, const ControllerConfig& c, bo
   info.row_spacing_mm = c.monitor.row_spacing_mm;
   info.spacing_cv_alarm = c.monitor.spacing_cv_alarm;
   info.singulation_alarm_pct = c.monitor.singulation_alarm_pct;
+  info.disc_top_speed_mps = SigmaLoop(c.sigma).top_ground_speed_mps();
   info.photo_eye = c.monitor.sensor_fitted;
   info.simulated = simulated;
   info.depth_range_mm = depth_range_mm(c);

@@ -99,6 +99,12 @@ void print_summary(const Summary& s) {
   } else {
     std::printf("planting monitor    none: the board has no seedling photo-eye\n");
   }
+  // The alarms the operator was shown during the run (firmware/supervisor/loop_alarms.h).
+  std::string alarms;
+  for (int bit = 0; bit < warning::kCount; ++bit)
+    if ((s.warnings_seen >> bit) & 1u)
+      alarms += (alarms.empty() ? "" : "; ") + std::string(warning::name(bit));
+  std::printf("alarms              %s\n", alarms.empty() ? "none" : alarms.c_str());
   std::printf("sigma (true)        mean %.4f, RMS error %.2f %%   (controller's view: %.2f %%)\n",
               s.sigma_true_mean, s.sigma_true_rms_error_pct, s.sigma_ctrl_rms_error_pct);
   std::printf("clamp force         mean %.1f N, max %.1f N, ceiling %.1f N\n", s.clamp_force_mean_N,

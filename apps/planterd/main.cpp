@@ -257,6 +257,14 @@ class MainThread {
       service_.notify(std::string("STATUS=") + supervisor_state_name(status.state));
       logged_state_ = status.state;
     }
+    // Each alarm as it rises and clears, named as the console names it.
+    for (int bit = 0; bit < warning::kCount; ++bit) {
+      const std::uint32_t mask = 1u << bit;
+      if ((status.warnings & mask) == (logged_warnings_ & mask)) continue;
+      std::fprintf(stderr, "planterd: alarm %s: %s\n",
+                   (status.warnings & mask) != 0 ? "raised" : "cleared", warning::name(bit));
+    }
+    logged_warnings_ = status.warnings;
     if (opt_.log_period_s > 0 && now >= next_log_ns_) {
       log_status(status, hw_.can().counters());
       next_log_ns_ = now + static_cast<std::int64_t>(opt_.log_period_s * 1e9);
@@ -314,6 +322,7 @@ class MainThread {
   std::int64_t next_kick_ns_;
   std::int64_t next_stamp_check_ns_ = 0;
   SupervisorState logged_state_ = SupervisorState::kBoot;
+  std::uint32_t logged_warnings_ = 0;
   std::string not_commissioned_logged_;
   bool recording_ok_ = true;
 };

@@ -32,8 +32,7 @@ double SigmaLoop::update(double distance_m, double ground_speed_mps, double disc
   // Conditional integration: not while limited in the direction the error pushes.
   const bool pushing_limit =
       (command > limited && error > 0.0) || (command < limited && error < 0.0);
-  if (!pushing_limit && !status_.lag_held)
-    integral_radps_ += cfg_.angle_integral_per_s2 * error * dt_s;
+  if (!pushing_limit) integral_radps_ += cfg_.angle_integral_per_s2 * error * dt_s;
   return limited;
 }
 

@@ -10,18 +10,17 @@ const char* fault::name(int bit) {
 }
 
 const char* warning::name(int bit) {
-  // What the operator reads, and what to do: the words are the alarm's documentation too
-  // (docs/recording-format.md lists them by bit).
-  static constexpr const char* kNames[kCount] = {
-      "empty belt: clamps passing with no seedling, refill the belt",
-      "too fast for the disc: slow down",
-      "disc lagging the ground: check the disc drive for drag",
-      "clamp cannot reach its force: the roller is at its travel, check the lips",
-      "load cell disagrees with the roller: check the load cell and the lips",
-      "clamp force held at its ceiling: stems too thick or lips too stiff",
-      "seedlings falling from the clamp: the grip is too weak",
-      "opener at its end stop: the depth cannot be reached",
-      "furrow depth off by more than 2 mm: ground too rough or soil too hard for the opener"};
+  // What the operator reads; the console adds what to do (console_page.html's advice), and
+  // docs/recording-format.md lists them by bit.
+  static constexpr const char* kNames[kCount] = {"empty belt: clamps passing with no seedling",
+                                                 "too fast for the disc",
+                                                 "disc lagging the ground",
+                                                 "clamp cannot reach its force",
+                                                 "load cell disagrees with the roller",
+                                                 "clamp force at its ceiling",
+                                                 "seedlings falling from the clamp",
+                                                 "opener at its end stop",
+                                                 "furrow depth off by more than 2 mm"};
   return bit >= 0 && bit < kCount ? kNames[bit] : "";
 }
 

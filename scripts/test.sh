@@ -31,6 +31,10 @@ bench/run_realtime_factor.sh "$root/build"
 "$root/build/bench/planter_bench_latency" "$root/scenarios/zhangqiu-field.toml" 60
 "$root/build/bench/planter_bench_can"
 bench/executor_overhead.sh "$root/build"
+# The controller under disturbance (docs/control.md): the table, then its time and
+# `robustness: N of M cases held, S silent` last.
+"$root/build/apps/planter-sim/planter-sim" robustness "$root/scenarios/zhangqiu-field.toml" \
+  --out "$root/build/robustness" --force
 stage "seedling DEM: compression with the calibrated parameters, calibration, reduced-order model, speed against Yade"
 scripts/dem-test.sh "$root/build"
 stage "planter-fit: the blind proof on planter-sim recordings (its count is the figure), then its speed"

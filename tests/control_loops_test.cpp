@@ -51,13 +51,14 @@ TEST(SigmaLoop, IntegralTakesOutADraggingDrivesLag) {
   SigmaLoop loop(cfg);
   loop.engage(0.0, 0.0);
   // A drive that turns 0.05 rad/s slower than commanded (friction): P alone would leave a
-  // steady lag of 0.05 / 3 rad; the integral takes it out.
+  // steady lag of 0.05 / 3 rad; the integral takes it down to its dead band.
   double angle = 0, distance = 0;
   for (int i = 0; i < 6000; ++i) {
     distance += 0.06 * 0.01;
     angle += std::max(0.0, loop.update(distance, 0.06, angle, 0.01) - 0.05) * 0.01;
   }
-  EXPECT_LT(std::abs(loop.angle_error_rad()), 0.002);
+  EXPECT_LT(std::abs(loop.angle_error_rad()), cfg.integral_dead_band_rad + 0.001);
+  EXPECT_GT(0.05 / cfg.angle_gain_per_s, cfg.integral_dead_band_rad + 0.005);
 }
 
 TEST(ClampForceLoop, NeverCommandsPastTheCeiling) {

@@ -63,13 +63,10 @@ Verdict case_verdict(const LoopScores& s) {
 
 // "held", "ALARM 0.3s" or "SILENT": one loop's verdict in a table cell.
 std::string cell(const LoopScore& l) {
-  char b[32];
   if (l.verdict == Verdict::held) return "held";
-  if (l.verdict == Verdict::alarmed) {
-    std::snprintf(b, sizeof b, "alarm %+.1fs", l.alarm_at_s - l.left_goal_at_s);
-    return b;
-  }
-  return "SILENT";
+  if (l.verdict == Verdict::silent) return "SILENT";
+  const double after_s = l.alarm_at_s - l.left_goal_at_s;
+  return std::string("alarm ") + (after_s >= 0 ? "+" : "") + report::fixed(after_s, 1) + "s";
 }
 
 nlohmann::ordered_json loop_json(const LoopScore& l) {

@@ -49,7 +49,7 @@ void add_combinations(std::vector<RobustnessCase>& cases, const Scenario& base, 
       coded[i][f] = (static_cast<double>(stratum[i]) + within(rng)) / static_cast<double>(n);
   }
   for (std::size_t i = 0; i < count; ++i) {
-    char name[32];
+    char name[48];
     std::snprintf(name, sizeof name, "combination %02zu", i + 1);
     RobustnessCase c{name, "all", "every axis drawn between nominal and its top", {}};
     c.settings.emplace_back("effects.change_at_s", mid_s);

@@ -32,7 +32,11 @@ double SigmaLoop::update(double distance_m, double ground_speed_mps, double disc
   // Conditional integration: not while limited in the direction the error pushes.
   const bool pushing_limit =
       (command > limited && error > 0.0) || (command < limited && error < 0.0);
-  if (!pushing_limit) integral_radps_ += cfg_.angle_integral_per_s2 * error * dt_s;
+  // Only a lag past the dead band is integrated: the field's own wander (speed, slip) stays
+  // with the proportional term, a dragging drive's steady lag goes to the integral.
+  const double beyond = std::abs(error) - cfg_.integral_dead_band_rad;
+  if (!pushing_limit && beyond > 0.0)
+    integral_radps_ += cfg_.angle_integral_per_s2 * std::copysign(beyond, error) * dt_s;
   return limited;
 }
 

@@ -16,6 +16,9 @@ struct SigmaLoopConfig {
   // The PI's zero at 0.2 rad/s, a fifteenth of the 3 rad/s crossover: it takes out a steady
   // lag without eating the phase margin (one value, chosen so; docs/control.md).
   double angle_integral_per_s2 = 0.6;
+  // Assumed: 3 mm at the rim, a tenth of a spacing. Below it the integral rests, so the
+  // nominal field (its error well inside) runs as the proportional loop did.
+  double integral_dead_band_rad = 0.01;
   double omega_max_radps = 1.2;
   // The most the disc may lag its reference: one clamp pitch at the rim (the loader sets it
   // from the machine's pitch and radius). Beyond it the seedlings are missed, not caught up.

@@ -130,7 +130,7 @@ inline constexpr std::array kSignals = {
                           signal_decl::c402::kTorqueActual, 0, BusScale::kPerMilleRated),
     signal_decl::at("state", "-", "supervisor state name", SignalSource::kSupervisor, 0),
     // The planting monitor (firmware/sensing/planting_monitor.h): the columns this project adds.
-    signal_decl::at("warnings", "bits", "warnings holding (1 = empty belt)",
+    signal_decl::at("warnings", "bits", "alarms holding, a bit each (see Alarms below)",
                     SignalSource::kWarnings, 0),
     signal_decl::monitored("seedlings", "count", "seedlings the photo-eye saw since start", 0,
                            &PlantingFigures::seedlings),

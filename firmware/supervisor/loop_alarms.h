@@ -7,6 +7,7 @@
 
 #include "firmware/control/clamp_force_loop.h"
 #include "firmware/control/furrow_depth_loop.h"
+#include "firmware/control/loop_goals.h"
 #include "firmware/control/sigma_loop.h"
 #include "firmware/sensing/planting_monitor.h"
 
@@ -24,8 +25,8 @@ struct LoopAlarmConfig {
   // within it of a weak grip are seedlings dropped, not an empty belt.
   double carry_rad = 2.618;
   double clamp_pitch_rad = 0.1475;  // the loader sets it: the machine's pitch over the radius
-  double band_pct = 10.0;           // the clamp's goal band (loop_goals.h)
-  double depth_band_mm = 2.0;       // the depth's goal band (loop_goals.h)
+  double band_pct = kLoopGoals.clamp.band_pct;      // the clamp's goal band
+  double depth_band_mm = kLoopGoals.depth.band_mm;  // the depth's goal band
 };
 
 struct LoopAlarmInputs {

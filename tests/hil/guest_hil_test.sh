@@ -86,6 +86,25 @@ echo $? > c-restart.rc
 
 python3 "$R/tests/hil/check_hil.py" "$BOARD" . || fail=1
 
+# 4b. One case of the disturbance suite per loop (docs/control.md) against planterd on this
+# kernel: the loop cannot hold its goal, and its alarm must reach planterd's log. Each alarm
+# rises 3-7 s into the run in lockstep; 20 s leaves the emulated machine room.
+for c in "hil-too-fast:too fast for the disc" \
+         "hil-load-cell-span:load cell disagrees with the roller" \
+         "hil-opener-end-stop:opener at its end stop"; do
+  scen=${c%%:*}; alarm=${c#*:}
+  "$SIM" devices "$R/scenarios/$scen.toml" --board "$BOARD" --can vcan0 --gpio planter-sim \
+    --duration 22 > "d-$scen-devices.out" 2> "d-$scen-devices.log" & DEV=$!
+  sleep 1
+  "$PLANTERD" --board "$BOARD" --run --duration 20 --log-period 0 2> "d-$scen-planterd.log"
+  wait $DEV
+  if grep -q "planterd: alarm raised: $alarm" "d-$scen-planterd.log"; then
+    note "$scen: planterd raised '$alarm'"
+  else
+    note "FAIL $scen: no '$alarm' in planterd's log:"; tail -5 "d-$scen-planterd.log"; fail=1
+  fi
+done
+
 # 5. The package installed as on a machine, its service's command with the console, a phone's
 # requests, the commissioning gate, and a stop as systemctl stops it.
 sh "$R/tests/hil/guest_package_test.sh" "$R" "$B" "$DEB" || fail=1

@@ -324,9 +324,9 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     mon->reject_unknown_keys();
   }
   c.monitor.target_spacing_mm = c.monitor.clamp_pitch_mm / c.sigma.sigma;
-  // One clamp pitch at the rim: the most the disc may lag, and the alarms' unit of carry.
-  c.sigma.max_lag_rad = c.monitor.clamp_pitch_mm / 1000.0 / c.sigma.disc_radius_m;
-  c.alarms.clamp_pitch_rad = c.sigma.max_lag_rad;
+  // One clamp pitch at the rim: the unit of the disc's most lag and of the alarms' carry.
+  c.sigma.clamp_pitch_rad = c.monitor.clamp_pitch_mm / 1000.0 / c.sigma.disc_radius_m;
+  c.alarms.clamp_pitch_rad = c.sigma.clamp_pitch_rad;
   // [supervisor]: the loop's timing is the board's; the plausibility limits are the machine's.
   {
     auto board_sup = root.table("supervisor");

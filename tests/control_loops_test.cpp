@@ -31,7 +31,7 @@ TEST(SigmaLoop, ADiscThatCannotKeepUpDoesNotRaceAfterwards) {
   for (int i = 0; i < 6000; ++i) {
     distance += 0.30 * 0.01;
     angle += loop.update(distance, 0.30, angle, 0.01) * 0.01;
-    EXPECT_LE(loop.angle_error_rad(), cfg.max_lag_rad + 1e-12);
+    EXPECT_LE(loop.angle_error_rad(), cfg.max_lag_rad() + 1e-12);
   }
   EXPECT_TRUE(loop.status().too_fast);
   // The machine slows to 0.06 m/s: the disc goes back to sigma v / R within a few seconds,
@@ -46,8 +46,9 @@ TEST(SigmaLoop, ADiscThatCannotKeepUpDoesNotRaceAfterwards) {
   EXPECT_NEAR(cmd, 1.5 * 0.06 / 0.3, 0.02);
 }
 
-TEST(SigmaLoop, IntegralTakesOutADraggingDrivesLag) {
+TEST(SigmaLoop, IntegralWhenOnTakesADraggingDrivesLagDownToItsDeadBand) {
   SigmaLoopConfig cfg;
+  cfg.angle_integral_per_s2 = 0.6;  // off by default (sigma_loop.h says why)
   SigmaLoop loop(cfg);
   loop.engage(0.0, 0.0);
   // A drive that turns 0.05 rad/s slower than commanded (friction): P alone would leave a

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "apps/planter-sim/latin_hypercube.h"
 #include "apps/planter-sim/run_figures.h"
 #include "apps/planter-sim/sweep.h"
 #include "apps/version/version.h"
@@ -58,18 +59,9 @@ int run_monte_carlo(const std::string& scenario_path, const std::string& out_dir
   const std::size_t k = values.size();
   const auto n = static_cast<std::size_t>(o.runs);
 
-  // Latin hypercube: each value's range cut into n equal strata, one draw in each, the strata
-  // shuffled independently per value. Seeded by the scenario's seed.
+  // Seeded by the scenario's seed.
   std::mt19937_64 rng(base.seed);
-  std::uniform_real_distribution<double> within(0.0, 1.0);
-  std::vector<std::vector<double>> coded(n, std::vector<double>(k));
-  for (std::size_t f = 0; f < k; ++f) {
-    std::vector<std::size_t> stratum(n);
-    std::iota(stratum.begin(), stratum.end(), 0);
-    std::shuffle(stratum.begin(), stratum.end(), rng);
-    for (std::size_t i = 0; i < n; ++i)
-      coded[i][f] = (static_cast<double>(stratum[i]) + within(rng)) / static_cast<double>(n);
-  }
+  const std::vector<std::vector<double>> coded = latin_hypercube(n, k, rng);
   RunPlan plan = new_plan(scenario_path, apps::version());
   for (std::size_t i = 0; i < n; ++i) {
     PlannedRun run;

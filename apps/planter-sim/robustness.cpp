@@ -90,11 +90,54 @@ void print_table(const std::vector<CaseResult>& all) {
   }
 }
 
-// The worst case of each loop, run again here with its time series, as charts.
+const LoopScore& loop_of(const LoopScores& s, int loop) {
+  return loop == 0 ? s.sigma : loop == 1 ? s.clamp : s.depth;
+}
+
+// The case that did worst for `loop`: the lowest verdict, then the longest out of its goal.
+const CaseResult& worst_for(const std::vector<CaseResult>& all, int loop) {
+  const CaseResult* w = &all.front();
+  for (const CaseResult& r : all) {
+    const LoopScore& a = loop_of(r.ours.loops, loop);
+    const LoopScore& b = loop_of(w->ours.loops, loop);
+    if (a.verdict > b.verdict || (a.verdict == b.verdict && a.longest_out_s > b.longest_out_s))
+      w = &r;
+  }
+  return *w;
+}
+
+// The worst case of `loop`, run again here for its time series, as a chart.
+std::string worst_chart(report::ChartPage& page, const Scenario& base, const RunPlan& plan,
+                        const std::vector<CaseResult>& all, int loop) {
+  static constexpr const char* kTitles[] = {"sigma (true)", "clamp force (true)",
+                                            "furrow depth (true)"};
+  const CaseResult& r = worst_for(all, loop);
+  const std::size_t index = static_cast<std::size_t>(&r - all.data()) * 2;
+  LockstepRunner runner(planned_scenario(base, plan.runs[index]));
+  std::vector<double> t, y;
+  runner.set_observer([&](const TickRecord& rec) {
+    t.push_back(static_cast<double>(rec.controller.time_ns) * 1e-9);
+    y.push_back(loop == 0 ? (rec.truth.v_mps >= kSigmaMinSpeedMps ? rec.truth.sigma : std::nan(""))
+                : loop == 1 ? rec.truth.clamp_force_N
+                            : rec.truth.depth_mm);
+  });
+  runner.run();
+  const ControllerConfig& cfg = runner.scenario().board.controller;
+  report::ChartSpec spec;
+  spec.title = std::string("worst for ") + kTitles[loop] + ": " + r.c->name;
+  spec.x_label = "time [s]";
+  spec.y_unit = loop == 0 ? "" : loop == 1 ? "N" : "mm";
+  if (loop == 0) spec.y_markers.push_back({cfg.sigma.sigma, "#070", "target"});
+  if (loop == 1) spec.y_markers.push_back({cfg.clamp.ceiling_N, "#c00", "ceiling"});
+  if (loop == 1) spec.y_markers.push_back({cfg.clamp.setpoint_N, "#070", "set-point"});
+  if (loop == 2) spec.y_markers.push_back({cfg.depth.target_mm, "#070", "target"});
+  spec.note = "the loop's verdict: " + cell(loop_of(r.ours.loops, loop));
+  return page.lines(spec, t, {{&y, "#06c", kTitles[loop]}});
+}
+
 std::string report_html(const Scenario& base, const RunPlan& plan,
                         const std::vector<CaseResult>& all, int held, int silent) {
   std::ostringstream h;
-  report::ChartPage page;
   h << "<!doctype html><html><head>" << report::kReportHead << report::kTablePageStyle
     << "<title>planter-sim robustness</title>" << report::ChartPage::head() << "</head><body>"
     << "<h1>The controller under disturbance: " << report::html_escape(base.name) << "</h1>"
@@ -104,69 +147,100 @@ std::string report_html(const Scenario& base, const RunPlan& plan,
        "silent.</p><table><tr><th>case</th><th>sigma RMS %</th><th>worst %</th><th>sigma</th>"
        "<th>above ceiling s</th><th>in band %</th><th>clamp</th><th>depth in band %</th>"
        "<th>depth</th><th>paper drive sigma RMS %</th></tr>";
-  const auto colour = [](Verdict v) {
-    return v == Verdict::held ? "#dfd" : v == Verdict::alarmed ? "#ffd" : "#fcc";
+  const auto td = [](const LoopScore& l) {
+    const char* colour = l.verdict == Verdict::held      ? "#dfd"
+                         : l.verdict == Verdict::alarmed ? "#ffd"
+                                                         : "#fcc";
+    return std::string("<td style='background:") + colour + "'>" + cell(l) + "</td>";
   };
   for (const CaseResult& r : all) {
     const LoopScores& s = r.ours.loops;
     h << "<tr><td style='text-align:left'>" << report::html_escape(r.c->name) << "</td><td>"
-      << report::fixed(s.sigma.rms, 2) << "</td><td>" << report::fixed(s.sigma.worst, 2)
-      << "</td><td style='background:" << colour(s.sigma.verdict) << "'>" << cell(s.sigma)
-      << "</td><td>" << report::fixed(s.clamp.above_ceiling_s, 2) << "</td><td>"
-      << report::fixed(s.clamp.in_band_pct, 1)
-      << "</td><td style='background:" << colour(s.clamp.verdict) << "'>" << cell(s.clamp)
-      << "</td><td>" << report::fixed(s.depth.in_band_pct, 1)
-      << "</td><td style='background:" << colour(s.depth.verdict) << "'>" << cell(s.depth)
-      << "</td><td>" << report::fixed(r.paper.loops.sigma.rms, 2) << "</td></tr>";
+      << report::fixed(s.sigma.rms, 2) << "</td><td>" << report::fixed(s.sigma.worst, 2) << "</td>"
+      << td(s.sigma) << "<td>" << report::fixed(s.clamp.above_ceiling_s, 2) << "</td><td>"
+      << report::fixed(s.clamp.in_band_pct, 1) << "</td>" << td(s.clamp) << "<td>"
+      << report::fixed(s.depth.in_band_pct, 1) << "</td>" << td(s.depth) << "<td>" << paper_cell(r)
+      << "</td></tr>";
   }
   h << "</table>";
-  // Worst of each loop: the lowest verdict, then the largest miss.
-  const auto worst_of = [&](auto score) {
-    const CaseResult* w = &all.front();
-    for (const CaseResult& r : all) {
-      const LoopScore& a = score(r.ours.loops);
-      const LoopScore& b = score(w->ours.loops);
-      if (a.verdict > b.verdict || (a.verdict == b.verdict && a.longest_out_s > b.longest_out_s))
-        w = &r;
-    }
-    return w;
-  };
-  const CaseResult* worst[] = {worst_of([](const LoopScores& s) { return s.sigma; }),
-                               worst_of([](const LoopScores& s) { return s.clamp; }),
-                               worst_of([](const LoopScores& s) { return s.depth; })};
-  const char* titles[] = {"sigma (true)", "clamp force (true)", "furrow depth (true)"};
-  for (int loop = 0; loop < 3; ++loop) {
-    const CaseResult& r = *worst[loop];
-    const std::size_t index = static_cast<std::size_t>(&r - all.data()) * 2;
-    LockstepRunner runner(planned_scenario(base, plan.runs[index]));
-    std::vector<double> t, y, alarm;
-    runner.set_observer([&](const TickRecord& rec) {
-      t.push_back(static_cast<double>(rec.controller.time_ns) * 1e-9);
-      const double v = loop == 0
-                           ? (rec.truth.v_mps >= kSigmaMinSpeedMps ? rec.truth.sigma : std::nan(""))
-                       : loop == 1 ? rec.truth.clamp_force_N
-                                   : rec.truth.depth_mm;
-      y.push_back(v);
-      alarm.push_back(rec.controller.warnings != 0 || rec.controller.faults != 0 ? 1.0 : 0.0);
-    });
-    runner.run();
-    const ControllerConfig& cfg = runner.scenario().board.controller;
-    report::ChartSpec spec;
-    spec.title = std::string("worst for ") + titles[loop] + ": " + r.c->name;
-    spec.x_label = "time [s]";
-    spec.y_unit = loop == 0 ? "" : loop == 1 ? "N" : "mm";
-    if (loop == 0) spec.y_markers.push_back({cfg.sigma.sigma, "#070", "target"});
-    if (loop == 1) spec.y_markers.push_back({cfg.clamp.ceiling_N, "#c00", "ceiling"});
-    if (loop == 1) spec.y_markers.push_back({cfg.clamp.setpoint_N, "#070", "set-point"});
-    if (loop == 2) spec.y_markers.push_back({cfg.depth.target_mm, "#070", "target"});
-    spec.note = std::string("the loop's verdict: ") + cell(loop == 0   ? r.ours.loops.sigma
-                                                           : loop == 1 ? r.ours.loops.clamp
-                                                                       : r.ours.loops.depth);
-    h << page.lines(spec, t, {{&y, "#06c", titles[loop]}});
-    (void)alarm;
-  }
+  report::ChartPage page;
+  for (int loop = 0; loop < 3; ++loop) h << worst_chart(page, base, plan, all, loop);
   h << "</body></html>\n";
   return h.str();
+}
+
+// Each case twice: with the sigma loop, then with the paper's drive.
+RunPlan suite_plan(const std::string& scenario_path, const Scenario& base,
+                   const std::vector<RobustnessCase>& cases, double distance_m) {
+  RunPlan plan = new_plan(scenario_path, apps::version());
+  for (const RobustnessCase& c : cases) {
+    for (int paper = 0; paper < 2; ++paper) {
+      PlannedRun run;
+      run.distance_m = distance_m;
+      run.seed = base.seed;
+      run.disturbances = c.settings;
+      if (paper) run.disturbances.emplace_back("controller.paper_drive", 1.0);
+      plan.runs.push_back(run);
+    }
+  }
+  return plan;
+}
+
+nlohmann::ordered_json goals_json(const Scenario& base) {
+  const LoopGoals& g = kLoopGoals;
+  return {
+      {"sigma",
+       {{"rms_pct", g.sigma.rms_pct},
+        {"worst_pct", g.sigma.worst_pct},
+        {"window_s", g.sigma.window_s},
+        {"after_start_s", g.sigma.after_start_s}}},
+      {"clamp",
+       {{"ceiling_N", base.board.controller.clamp.ceiling_N},
+        {"band_pct", g.clamp.band_pct},
+        {"in_band_share_pct", g.clamp.in_band_share_pct}}},
+      {"depth", {{"band_mm", g.depth.band_mm}, {"in_band_share_pct", g.depth.in_band_share_pct}}},
+      {"alarm_within_s", g.alarm_within_s}};
+}
+
+nlohmann::ordered_json case_json(const CaseResult& r) {
+  nlohmann::ordered_json one;
+  one["case"] = r.c->name;
+  one["aimed_at"] = r.c->aimed_at;
+  one["what"] = r.c->what;
+  nlohmann::ordered_json settings = nlohmann::ordered_json::object();
+  for (const auto& [k, v] : r.c->settings) settings[k] = v;
+  one["settings"] = settings;
+  one["verdict"] = verdict_name(r.verdict);
+  one["loops"] = nlohmann::ordered_json::parse(loop_scores_json(r.ours.loops));
+  one["warnings_seen"] = r.ours.warnings_seen;
+  one["faults"] = r.ours.faults;
+  if (chain_comparable(*r.c))
+    one["paper_drive"] = {{"sigma", loop_json(r.paper.loops.sigma)}};
+  else
+    one["paper_drive"] = {{"sigma", nullptr}, {"why", "a chain has no motor to drag"}};
+  return one;
+}
+
+std::string results_csv(const std::vector<CaseResult>& all) {
+  std::ostringstream csv;
+  csv << "case,aimed_at,verdict,sigma_rms_pct,sigma_worst_pct,sigma_verdict,clamp_above_ceiling_s,"
+         "clamp_in_band_pct,clamp_verdict,depth_in_band_pct,depth_verdict,warnings_seen,faults,"
+         "paper_sigma_rms_pct,paper_sigma_worst_pct\n";
+  for (const CaseResult& r : all) {
+    const LoopScores& s = r.ours.loops;
+    csv << '"' << r.c->name << "\"," << r.c->aimed_at << ',' << verdict_name(r.verdict) << ','
+        << s.sigma.rms << ',' << s.sigma.worst << ',' << verdict_name(s.sigma.verdict) << ','
+        << s.clamp.above_ceiling_s << ',' << s.clamp.in_band_pct << ','
+        << verdict_name(s.clamp.verdict) << ',' << s.depth.in_band_pct << ','
+        << verdict_name(s.depth.verdict) << ',' << r.ours.warnings_seen << ',' << r.ours.faults
+        << ',';
+    if (chain_comparable(*r.c))
+      csv << r.paper.loops.sigma.rms << ',' << r.paper.loops.sigma.worst;
+    else
+      csv << ',';
+    csv << '\n';
+  }
+  return csv.str();
 }
 
 }  // namespace
@@ -179,17 +253,7 @@ int run_robustness(const std::string& scenario_path, const std::string& out_dir,
     throw std::runtime_error(why);
   config::OutputSet out(out_dir, "planter-sim robustness", o.force);
   const std::vector<RobustnessCase> cases = robustness_cases(base, o.distance_m, o.combinations);
-  RunPlan plan = new_plan(scenario_path, apps::version());
-  for (const RobustnessCase& c : cases) {
-    for (int paper = 0; paper < 2; ++paper) {
-      PlannedRun run;
-      run.distance_m = o.distance_m;
-      run.seed = base.seed;
-      run.disturbances = c.settings;
-      if (paper) run.disturbances.emplace_back("controller.paper_drive", 1.0);
-      plan.runs.push_back(run);
-    }
-  }
+  const RunPlan plan = suite_plan(scenario_path, base, cases, o.distance_m);
   std::fprintf(stderr,
                "planter-sim robustness: %zu cases of %.0f m, each with the sigma loop and with "
                "the paper's drive (%zu runs)\n",
@@ -199,65 +263,25 @@ int run_robustness(const std::string& scenario_path, const std::string& out_dir,
                    "robustness");
   std::vector<CaseResult> all;
   int held = 0, silent = 0, slip_only = 0;
+  nlohmann::ordered_json j;
+  j["scenario"] = base.name;
+  j["distance_m_per_case"] = o.distance_m;
+  j["goals"] = goals_json(base);
   for (std::size_t i = 0; i < cases.size(); ++i) {
     CaseResult r{&cases[i], runs[2 * i], runs[2 * i + 1]};
     r.verdict = case_verdict(r.ours.loops);
     held += r.verdict == Verdict::held;
     silent += r.verdict == Verdict::silent;
     slip_only += silent_for_slip(cases[i], r.ours.loops, base);
+    j["cases"].push_back(case_json(r));
     all.push_back(r);
-  }
-  nlohmann::ordered_json j;
-  j["scenario"] = base.name;
-  j["distance_m_per_case"] = o.distance_m;
-  j["goals"] = {{"sigma",
-                 {{"rms_pct", kLoopGoals.sigma.rms_pct},
-                  {"worst_pct", kLoopGoals.sigma.worst_pct},
-                  {"window_s", kLoopGoals.sigma.window_s},
-                  {"after_start_s", kLoopGoals.sigma.after_start_s}}},
-                {"clamp",
-                 {{"ceiling_N", base.board.controller.clamp.ceiling_N},
-                  {"band_pct", kLoopGoals.clamp.band_pct},
-                  {"in_band_share_pct", kLoopGoals.clamp.in_band_share_pct}}},
-                {"depth",
-                 {{"band_mm", kLoopGoals.depth.band_mm},
-                  {"in_band_share_pct", kLoopGoals.depth.in_band_share_pct}}},
-                {"alarm_within_s", kLoopGoals.alarm_within_s}};
-  std::ostringstream csv;
-  csv << "case,aimed_at,verdict,sigma_rms_pct,sigma_worst_pct,sigma_verdict,clamp_above_ceiling_s,"
-         "clamp_in_band_pct,clamp_verdict,depth_in_band_pct,depth_verdict,warnings_seen,faults,"
-         "paper_sigma_rms_pct,paper_sigma_worst_pct\n";
-  for (const CaseResult& r : all) {
-    nlohmann::ordered_json one;
-    one["case"] = r.c->name;
-    one["aimed_at"] = r.c->aimed_at;
-    one["what"] = r.c->what;
-    nlohmann::ordered_json settings;
-    for (const auto& [k, v] : r.c->settings) settings[k] = v;
-    one["settings"] = settings;
-    one["verdict"] = verdict_name(r.verdict);
-    one["loops"] = nlohmann::ordered_json::parse(loop_scores_json(r.ours.loops));
-    one["warnings_seen"] = r.ours.warnings_seen;
-    one["faults"] = r.ours.faults;
-    if (chain_comparable(*r.c))
-      one["paper_drive"] = {{"sigma", loop_json(r.paper.loops.sigma)}};
-    else
-      one["paper_drive"] = {{"sigma", nullptr}, {"why", "a chain has no motor to drag"}};
-    j["cases"].push_back(one);
-    const LoopScores& s = r.ours.loops;
-    csv << '"' << r.c->name << "\"," << r.c->aimed_at << ',' << verdict_name(r.verdict) << ','
-        << s.sigma.rms << ',' << s.sigma.worst << ',' << verdict_name(s.sigma.verdict) << ','
-        << s.clamp.above_ceiling_s << ',' << s.clamp.in_band_pct << ','
-        << verdict_name(s.clamp.verdict) << ',' << s.depth.in_band_pct << ','
-        << verdict_name(s.depth.verdict) << ',' << r.ours.warnings_seen << ',' << r.ours.faults
-        << ',' << r.paper.loops.sigma.rms << ',' << r.paper.loops.sigma.worst << '\n';
   }
   j["held"] = held;
   j["silent"] = silent;
   j["silent_for_slip_alone"] = slip_only;
   j["cases_total"] = all.size();
   out.write("robustness.json", j.dump(2) + "\n");
-  out.write("robustness.csv", csv.str());
+  out.write("robustness.csv", results_csv(all));
   out.write("report.html", report_html(base, plan, all, held, silent));
   out.commit();
   print_table(all);

@@ -5,6 +5,8 @@
 #include <numeric>
 #include <random>
 
+#include "apps/planter-sim/latin_hypercube.h"
+
 namespace planter::sim {
 namespace {
 
@@ -37,17 +39,9 @@ void add_combinations(std::vector<RobustnessCase>& cases, const Scenario& base, 
   if (n <= 0) return;
   constexpr std::size_t k = std::size(kDimensions);
   const auto count = static_cast<std::size_t>(n);
-  // Latin hypercube (McKay, Beckman and Conover 1979), as planter-sim montecarlo draws.
+  // As planter-sim montecarlo draws (latin_hypercube.h), seeded by the scenario's seed.
   std::mt19937_64 rng(base.seed ^ 0x6f627573u);
-  std::uniform_real_distribution<double> within(0.0, 1.0);
-  std::vector<std::vector<double>> coded(count, std::vector<double>(k));
-  for (std::size_t f = 0; f < k; ++f) {
-    std::vector<std::size_t> stratum(count);
-    std::iota(stratum.begin(), stratum.end(), 0);
-    std::shuffle(stratum.begin(), stratum.end(), rng);
-    for (std::size_t i = 0; i < count; ++i)
-      coded[i][f] = (static_cast<double>(stratum[i]) + within(rng)) / static_cast<double>(n);
-  }
+  const std::vector<std::vector<double>> coded = latin_hypercube(count, k, rng);
   for (std::size_t i = 0; i < count; ++i) {
     char name[48];
     std::snprintf(name, sizeof name, "combination %02zu", i + 1);

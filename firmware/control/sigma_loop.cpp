@@ -21,10 +21,11 @@ double SigmaLoop::update(double distance_m, double ground_speed_mps, double disc
   if (cfg_.fixed_ratio) return std::clamp(feed_forward, 0.0, cfg_.omega_max_radps);
   double error = angle0_rad_ + k * (distance_m - distance0_m_) - disc_angle_rad;
   // The reference governor: beyond max_lag the reference slides along with the disc.
-  status_.lag_held = error > cfg_.max_lag_rad;
+  const double max_lag_rad = cfg_.max_lag_rad();
+  status_.lag_held = error > max_lag_rad;
   if (status_.lag_held) {
-    angle0_rad_ -= error - cfg_.max_lag_rad;
-    error = cfg_.max_lag_rad;
+    angle0_rad_ -= error - max_lag_rad;
+    error = max_lag_rad;
   }
   status_.lag_rad = error;
   const double command = feed_forward + cfg_.angle_gain_per_s * error + integral_radps_;
@@ -32,10 +33,12 @@ double SigmaLoop::update(double distance_m, double ground_speed_mps, double disc
   // Conditional integration: not while limited in the direction the error pushes.
   const bool pushing_limit =
       (command > limited && error > 0.0) || (command < limited && error < 0.0);
-  // Only a lag past the dead band is integrated: the field's own wander (speed, slip) stays
-  // with the proportional term, a dragging drive's steady lag goes to the integral.
+  // Only a lag past the dead band and within a pitch is integrated: the field's own wander
+  // (speed, slip) stays with the proportional term, and so does a start's transient lag (an
+  // integral of it overshoots once the disc breaks free); a dragging drive's steady lag goes
+  // to the integral.
   const double beyond = std::abs(error) - cfg_.integral_dead_band_rad;
-  if (!pushing_limit && beyond > 0.0)
+  if (!pushing_limit && beyond > 0.0 && std::abs(error) < cfg_.clamp_pitch_rad)
     integral_radps_ += cfg_.angle_integral_per_s2 * std::copysign(beyond, error) * dt_s;
   return limited;
 }

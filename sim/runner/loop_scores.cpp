@@ -47,20 +47,39 @@ void LoopScorer::close_sigma_window(bool whole) {
   window_start_s_ = -1;
 }
 
+namespace {
+double share_pct(std::uint64_t in, std::uint64_t n) {
+  return n ? 100.0 * static_cast<double>(in) / static_cast<double>(n) : 100.0;
+}
+}  // namespace
+
+void LoopScorer::BandTally::add(double error, bool in_band, double at_s, double dt_s,
+                                double onset_s) {
+  err2 += error * error;
+  worst = std::max(worst, std::abs(error));
+  ++n;
+  if (in_band) {
+    ++in;
+    out.in();
+  } else {
+    out.out(at_s, dt_s, onset_s);
+  }
+}
+
+void LoopScorer::BandTally::fill(LoopScore& s) const {
+  s.rms = n ? std::sqrt(err2 / static_cast<double>(n)) : 0.0;
+  s.worst = worst;
+  s.in_band_pct = share_pct(in, n);
+  s.longest_out_s = out.longest_s;
+}
+
 void LoopScorer::close_passage() {
   if (passage_ticks_ > 0) {
     const double mean_N = passage_sum_N_ / static_cast<double>(passage_ticks_);
     const double e = mean_N - passage_setpoint_N_;
     const double length_s = static_cast<double>(passage_ticks_) * period_s_;
-    clamp_err2_ += e * e;
-    clamp_worst_ = std::max(clamp_worst_, std::abs(e));
-    ++nip_n_;
-    if (std::abs(e) <= goals_.clamp.band_pct / 100.0 * passage_setpoint_N_) {
-      ++nip_in_band_;
-      clamp_out_.in();
-    } else {
-      clamp_out_.out(passage_start_s_ + length_s, length_s, goals_.clamp.onset_s);
-    }
+    clamp_.add(e, std::abs(e) <= goals_.clamp.band_pct / 100.0 * passage_setpoint_N_,
+               passage_start_s_ + length_s, length_s, goals_.clamp.onset_s);
   }
   passage_ticks_ = 0;
   passage_sum_N_ = 0;
@@ -132,15 +151,7 @@ void LoopScorer::add(const Telemetry& c, const PlantTruth& t, double time_s) {
   add_clamp(c, t, running, time_s);
   if (running && moving && time_s - running_since_s_ >= depth_ramp_s_) {
     const double e = t.depth_mm - c.depth_target_mm;
-    depth_err2_ += e * e;
-    depth_worst_ = std::max(depth_worst_, std::abs(e));
-    ++depth_n_;
-    if (std::abs(e) <= goals_.depth.band_mm) {
-      ++depth_in_band_;
-      depth_out_.in();
-    } else {
-      depth_out_.out(time_s, period_s_, goals_.depth.onset_s);
-    }
+    depth_.add(e, std::abs(e) <= goals_.depth.band_mm, time_s, period_s_, goals_.depth.onset_s);
   }
 }
 
@@ -154,14 +165,6 @@ void judge(LoopScore& s, double alarm_at_s, double within_s) {
     s.verdict = alarm_at_s >= 0 && alarm_at_s <= s.left_goal_at_s + within_s ? Verdict::alarmed
                                                                              : Verdict::silent;
   }
-}
-
-double share_pct(std::uint64_t in, std::uint64_t n) {
-  return n ? 100.0 * static_cast<double>(in) / static_cast<double>(n) : 100.0;
-}
-
-double onset(const double first_long_s, const double first_any_s) {
-  return first_long_s >= 0 ? first_long_s : first_any_s;
 }
 
 }  // namespace
@@ -180,14 +183,11 @@ LoopScores LoopScorer::finish() const {
   judge(g, sigma_alarm_s_, goals_.alarm_within_s);
 
   LoopScore& c = r.clamp;
-  c.rms = nip_n_ ? std::sqrt(clamp_err2_ / static_cast<double>(nip_n_)) : 0.0;
-  c.worst = clamp_worst_;
-  c.in_band_pct = share_pct(nip_in_band_, nip_n_);
-  c.longest_out_s = clamp_out_.longest_s;
+  clamp_.fill(c);
   c.above_ceiling_s = above_ceiling_s_;
   c.goal_met = above_ceiling_s_ == 0 && c.in_band_pct >= goals_.clamp.in_band_share_pct;
   if (!c.goal_met) {
-    const double band_onset = onset(clamp_out_.first_at_s, clamp_out_.first_any_s);
+    const double band_onset = clamp_.left_goal_at_s();
     c.left_goal_at_s = first_above_s_ >= 0 && (band_onset < 0 || first_above_s_ < band_onset)
                            ? first_above_s_
                            : band_onset;
@@ -195,12 +195,9 @@ LoopScores LoopScorer::finish() const {
   judge(c, clamp_alarm_s_, goals_.alarm_within_s);
 
   LoopScore& d = r.depth;
-  d.rms = depth_n_ ? std::sqrt(depth_err2_ / static_cast<double>(depth_n_)) : 0.0;
-  d.worst = depth_worst_;
-  d.in_band_pct = share_pct(depth_in_band_, depth_n_);
-  d.longest_out_s = depth_out_.longest_s;
+  depth_.fill(d);
   d.goal_met = d.in_band_pct >= goals_.depth.in_band_share_pct;
-  if (!d.goal_met) d.left_goal_at_s = onset(depth_out_.first_at_s, depth_out_.first_any_s);
+  if (!d.goal_met) d.left_goal_at_s = depth_.left_goal_at_s();
   judge(d, depth_alarm_s_, goals_.alarm_within_s);
   return r;
 }

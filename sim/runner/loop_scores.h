@@ -53,6 +53,17 @@ class LoopScorer {
     void out(double at_s, double dt_s, double min_s);
     void in() { out_s = 0; }
   };
+  // A loop judged against a band (clamp: per seedling; depth: per tick).
+  struct BandTally {
+    double err2 = 0, worst = 0;
+    std::uint64_t n = 0, in = 0;
+    Stretch out;
+    void add(double error, bool in_band, double at_s, double dt_s, double onset_s);
+    void fill(LoopScore& s) const;
+    [[nodiscard]] double left_goal_at_s() const {
+      return out.first_at_s >= 0 ? out.first_at_s : out.first_any_s;
+    }
+  };
   void add_sigma(const PlantTruth& t, bool running, double time_s);
   void close_sigma_window(bool whole);
 
@@ -68,16 +79,12 @@ class LoopScorer {
   // clamp: each seedling's passage through the nip
   void add_clamp(const Telemetry& c, const PlantTruth& t, bool running, double time_s);
   void close_passage();
-  double clamp_err2_ = 0, clamp_worst_ = 0, above_ceiling_s_ = 0, first_above_s_ = -1;
-  std::uint64_t nip_n_ = 0, nip_in_band_ = 0;
+  BandTally clamp_;
+  double above_ceiling_s_ = 0, first_above_s_ = -1;
   std::size_t passage_id_ = 0;
   double passage_sum_N_ = 0, passage_setpoint_N_ = 0, passage_start_s_ = 0;
   std::uint64_t passage_ticks_ = 0;
-  Stretch clamp_out_;
-  // depth
-  double depth_err2_ = 0, depth_worst_ = 0;
-  std::uint64_t depth_n_ = 0, depth_in_band_ = 0;
-  Stretch depth_out_;
+  BandTally depth_;
   // the first tick each loop's alarms (or a fault) held
   double sigma_alarm_s_ = -1, clamp_alarm_s_ = -1, depth_alarm_s_ = -1;
 };

@@ -1,7 +1,8 @@
-// Fuzz target: the other TOML files a user hands the tools: a scenario (planter-sim), a
-// planter-fit model.toml (--model, planter-sim replay) and DEM parameters (planter-dem). Each
-// load either succeeds or throws ConfigError naming the file; never anything else. The first
-// byte picks the loader, so one corpus serves all three.
+// Fuzz target: the other files a user hands the tools: a scenario (planter-sim), a planter-fit
+// model.toml (--model, planter-sim replay), DEM parameters (planter-dem), and a run plan's
+// plan.json (planter-sim plan-run) with each run's settings and disturbances applied. Each load
+// either succeeds or throws ConfigError naming the file (a plan: std::runtime_error); never
+// anything else. The first byte picks the loader, so one corpus serves all four.
 #include <unistd.h>
 
 #include <cstddef>
@@ -13,6 +14,7 @@
 #include "analysis/model_file.h"
 #include "config/config_error.h"
 #include "dem/dem_params.h"
+#include "sim/runner/run_plan.h"
 #include "sim/runner/scenario.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -34,8 +36,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (f == nullptr) return 0;
   std::fwrite(data + 1, 1, size - 1, f);
   std::fclose(f);
+  if (data[0] % 4 == 3) {
+    static const planter::sim::Scenario base =
+        planter::sim::load_scenario(PLANTER_SOURCE_DIR "/scenarios/zhangqiu-field.toml");
+    try {
+      for (const planter::sim::PlannedRun& run : planter::sim::read_plan(path).runs)
+        (void)planter::sim::planned_scenario(base, run);
+    } catch (const std::runtime_error&) {
+    }
+    return 0;
+  }
   try {
-    switch (data[0] % 3) {
+    switch (data[0] % 4) {
       case 0:
         (void)planter::sim::load_scenario(path);
         break;

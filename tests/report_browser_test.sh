@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Every report, opened in a real browser (Debian's chromium, headless): planter-sim's run and
-# sweep, planter-fit's and planter-dem's. For each: the page loads with no script error, every
+# Every report, opened in a real browser (Debian's chromium, headless): planter-sim's run,
+# sweep and robustness, planter-fit's and planter-dem's. For each: the page loads with no script error, every
 # chart is drawn (a dygraphs canvas with its title and legend under each chart element), nothing
 # is fetched from the network, and a screenshot is kept in SHOTS (the build directory). Then each
 # on a phone (390 x 844, tests/report_phone_test.py): the page fits the screen's width.
@@ -21,8 +21,10 @@ printf '[bond]\nnormal_stiffness_N_m3 = 3.5e6\nshear_stiffness_N_m3 = 3.5e6\nten
 run "$dem" compress --params "$work/short.toml" --speedup 100 --out "$work/dem"
 run "$sim" sweep "$src/scenarios/zhangqiu-field.toml" --out "$work/sweep" --distance 2 \
   --replicates 2 --max-replicates 2 --jobs 2
+run "$sim" robustness "$src/scenarios/zhangqiu-field.toml" --out "$work/robustness" --distance 3 \
+  --combinations 1 --jobs 2
 
-for report in run fit dem sweep; do
+for report in run fit dem sweep robustness; do
   page="$work/$report/report.html"
   flags=(--headless=new --no-sandbox --disable-gpu --hide-scrollbars --no-first-run
     --user-data-dir="$work/profile" --enable-logging=stderr --v=0)
@@ -61,6 +63,7 @@ sys.exit(1 if fail else 0)
 PY
 done
 timeout 120 /usr/bin/python3 "$src/tests/report_phone_test.py" "$shots" run="$work/run/report.html" \
-  fit="$work/fit/report.html" dem="$work/dem/report.html" sweep="$work/sweep/report.html" ||
+  fit="$work/fit/report.html" dem="$work/dem/report.html" sweep="$work/sweep/report.html" \
+  robustness="$work/robustness/report.html" ||
   fails=$((fails + 1))
 [ "$fails" -eq 0 ] && echo "reports in a browser: all drawn, and each fits a phone" || exit 1

@@ -246,7 +246,7 @@ TEST_F(CanToolTest, CalibrateDepthHomesAndFindsTheEndStop) {
   std::istringstream in;
   ASSERT_EQ(run_calibrate(*ctx_, o, in), kExitOk) << err();
   const config::BoardConfig after = config::load_board(board_path_);
-  EXPECT_NEAR(after.controller.depth.max_mm, 165.0, 0.5);  // the sim's end stop; board said 170
+  EXPECT_NEAR(after.controller.depth.max_mm, 165.0, 0.5);  // the sim's end stop
   EXPECT_NEAR(after.controller.depth.min_mm, 0.0, 0.1);
 }
 

@@ -55,7 +55,7 @@ check("encoder direction", evidence.get("direction") == "forward", str(evidence.
 depth = load("depth")
 top = {c["key"]: c["after"] for c in depth.get("changes", [])}.get("depth_max_mm", float("nan"))
 check("depth calibration", rc("depth") == 0 and abs(top - 165.0) < 1.0,
-      f"homed, travel ends at {top:.2f} mm (end stop 165 mm, board said 170 mm)")
+      f"homed, travel ends at {top:.2f} mm (end stop 165 mm)")
 calibration = (run / "d" / "calibration.toml").read_text()
 check("calibrations written to the unit's calibration file",
       f"wheel_radius_m = {radius:.6g}"[:22] in calibration and "depth_max_mm" in calibration

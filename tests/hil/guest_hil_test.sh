@@ -96,7 +96,8 @@ for c in "hil-too-fast:too fast for the disc" \
   "$SIM" devices "$R/scenarios/$scen.toml" --board "$BOARD" --can vcan0 --gpio planter-sim \
     --duration 22 > "d-$scen-devices.out" 2> "d-$scen-devices.log" & DEV=$!
   sleep 1
-  "$PLANTERD" --board "$BOARD" --run --duration 20 --log-period 0 2> "d-$scen-planterd.log"
+  "$PLANTERD" --board "$BOARD" --run --duration 20 --log-period 5 --record "d-$scen.csv" \
+    2> "d-$scen-planterd.log"
   wait $DEV
   if grep -q "planterd: alarm raised: $alarm" "d-$scen-planterd.log"; then
     note "$scen: planterd raised '$alarm'"

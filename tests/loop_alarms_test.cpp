@@ -111,6 +111,29 @@ TEST(LoopAlarms, EmptyClampsAfterAWeakGripAreSeedlingsFallingElseAnEmptyBelt) {
   EXPECT_EQ(a.update(in), 0u);
 }
 
+TEST(LoopAlarms, ALoadCellDriftingAwayFromTheRollerIsSaidBeforeTheFastThreshold) {
+  const LoopAlarmConfig cfg;
+  LoopAlarms a{cfg};
+  LoopAlarmInputs in = gripping();
+  // Settled with a standing disagreement of +2 N (the stems' share of the force).
+  in.clamp.measured_N = 92.0;
+  EXPECT_EQ(hold(a, in, cfg.drift_settle_s + 5.0), 0u);
+  // Then the cell drifts down 2 N a minute: said once the slow mean has moved drift_N, while
+  // the fast threshold (10 % + 4 N) is still far off.
+  std::uint32_t w = 0;
+  double t = 0;
+  while (w == 0 && t < 300.0) {
+    in.clamp.measured_N = 92.0 - 2.0 / 60.0 * t;
+    w = a.update(in);
+    t += in.dt_s;
+  }
+  EXPECT_EQ(w, warning::kLoadCellDisagrees);
+  const double drift_N = 2.0 / 60.0 * t;
+  EXPECT_GT(drift_N, cfg.drift_N);
+  EXPECT_LT(drift_N, cfg.drift_N + 1.0);  // the slow mean's lag: tau x rate = 0.33 N
+  EXPECT_LT(drift_N + 2.0, cfg.disagree_share * 90.0 + cfg.disagree_offset_N);
+}
+
 TEST(LoopAlarms, EveryBitHasAName) {
   for (int bit = 0; bit < warning::kCount; ++bit) EXPECT_STRNE(warning::name(bit), "") << bit;
   EXPECT_STREQ(warning::name(warning::kCount), "");

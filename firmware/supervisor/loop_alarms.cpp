@@ -1,5 +1,6 @@
 #include "firmware/supervisor/loop_alarms.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "firmware/supervisor/supervisor.h"
@@ -22,6 +23,8 @@ bool LoopAlarms::Timer::update(bool condition, double dt_s, double delay_s, doub
 void LoopAlarms::reset() {
   too_fast_ = lagging_ = short_ = disagrees_ = ceiling_ = depth_ = depth_off_ = Timer{};
   weak_grip_angle_rad_ = -1e9;
+  gripping_s_ = disagree_lp_N_ = disagree_ref_N_ = 0;
+  drift_ref_taken_ = false;
 }
 
 std::uint32_t LoopAlarms::update(const LoopAlarmInputs& in) {
@@ -40,8 +43,18 @@ std::uint32_t LoopAlarms::update(const LoopAlarmInputs& in) {
   if (short_.update(gripping && c.at_travel && short_of_band, dt, 0.3, hold))
     w |= warning::kClampShort;
   const double disagreement = std::abs(c.measured_N - c.model_force_N);
-  const bool disagree =
-      disagreement > cfg_.disagree_share * c.model_force_N + cfg_.disagree_offset_N;
+  bool disagree = disagreement > cfg_.disagree_share * c.model_force_N + cfg_.disagree_offset_N;
+  if (gripping) {
+    gripping_s_ += dt;
+    disagree_lp_N_ +=
+        (c.measured_N - c.model_force_N - disagree_lp_N_) * std::min(1.0, dt / cfg_.drift_tau_s);
+    if (!drift_ref_taken_ && gripping_s_ >= cfg_.drift_settle_s) {
+      disagree_ref_N_ = disagree_lp_N_;
+      drift_ref_taken_ = true;
+    }
+    disagree =
+        disagree || (drift_ref_taken_ && std::abs(disagree_lp_N_ - disagree_ref_N_) > cfg_.drift_N);
+  }
   if (disagrees_.update(gripping && disagree, dt, 0.5, hold)) w |= warning::kLoadCellDisagrees;
   if (ceiling_.update(run && c.ceiling, dt, 0.1, hold)) w |= warning::kClampAtCeiling;
   // Empty clamps: dropped seedlings when the grip was weak within a carry, else an empty belt.

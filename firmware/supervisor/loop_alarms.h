@@ -19,6 +19,15 @@ struct LoopAlarmConfig {
   // share of the law's force plus the offset (assumed: lips differ batch to batch by 10-30 %).
   double disagree_share = 0.10;
   double disagree_offset_N = 4.0;
+  // The slow part of the same disagreement: its mean over drift_tau_s moving by more than
+  // drift_N from where it settled after the start is a load cell drifting (or lips changing
+  // slowly) while the two paths still agree within the fast threshold above. drift_N is set
+  // below where a drift takes the grip out of its band (the band is 9 N at 90 N and thick
+  // stems add up to about 5 N to a seedling's mean grip, so about 4 N): one value, chosen so;
+  // the nominal field's slow mean stays inside it (no alarm in the 30 m run).
+  double drift_tau_s = 10.0;
+  double drift_settle_s = 20.0;
+  double drift_N = 3.0;
   // A grip below this share of the set-point lets a seedling slide out (assumed, 0.3-0.7).
   double weak_grip_share = 0.5;
   // From pickup to release, the disc turns this far (the paper's carry, 150 deg): empty clamps
@@ -56,6 +65,10 @@ class LoopAlarms {
   LoopAlarmConfig cfg_;
   Timer too_fast_, lagging_, short_, disagrees_, ceiling_, depth_, depth_off_;
   double weak_grip_angle_rad_ = -1e9;
+  double gripping_s_ = 0;      // since the grip began
+  double disagree_lp_N_ = 0;   // the disagreement's slow mean
+  double disagree_ref_N_ = 0;  // ... where it settled after the start
+  bool drift_ref_taken_ = false;
 };
 
 }  // namespace planter

@@ -70,8 +70,7 @@ std::string cell(const LoopScore& l) {
 }
 
 nlohmann::ordered_json loop_json(const LoopScore& l) {
-  return nlohmann::ordered_json::parse(
-      loop_scores_json({l, l, l}))["sigma"];  // one loop's object, as summary.json has it
+  return nlohmann::ordered_json::parse(loop_score_json(l));
 }
 
 void print_table(const std::vector<CaseResult>& all) {

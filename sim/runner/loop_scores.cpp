@@ -233,6 +233,8 @@ LoopScore score_from(const nlohmann::json& j) {
 
 }  // namespace
 
+std::string loop_score_json(const LoopScore& s) { return score_json(s).dump(); }
+
 std::string loop_scores_json(const LoopScores& s) {
   nlohmann::ordered_json j;
   j["sigma"] = score_json(s.sigma);

@@ -91,6 +91,7 @@ class LoopScorer {
 
 // "loops" in summary.json, and back.
 std::string loop_scores_json(const LoopScores& s);  // one JSON object
+std::string loop_score_json(const LoopScore& s);    // one loop's, as inside it
 LoopScores loop_scores_from_json(const std::string& text);
 
 }  // namespace planter::sim

@@ -535,18 +535,6 @@ class ClampChannel : public ChannelModel {
   }
 };
 
-// A first-order actuator whose speed is capped (a CiA 402 profile position move with its profile
-// velocity: dx/dt = clamp((u - x) / tau, -r, r)), solved exactly over dt with u held: at the
-// cap until the gap is r tau, then exponential. The sampled exponential with its step clipped
-// at r dt, used before, lags a ramp at the cap by a sample more than the drive.
-double rate_limited_lag(double x, double u, double tau, double rate, double dt) {
-  const double gap = u - x;
-  const double capped_s = (std::abs(gap) - rate * tau) / rate;  // time spent at the cap
-  if (capped_s >= dt) return x + std::copysign(rate * dt, gap);
-  if (capped_s <= 0.0) return u - gap * std::exp(-dt / tau);
-  return u - std::copysign(rate * tau, gap) * std::exp(-(dt - capped_s) / tau);
-}
-
 class DepthChannel : public ChannelModel {
  public:
   std::string subsystem() const override { return "depth"; }
@@ -556,15 +544,6 @@ class DepthChannel : public ChannelModel {
   std::vector<std::string> known_inputs() const override { return {"known_terrain_depth_mm"}; }
   std::vector<ParamSpec> nominal_params() const override {
     return {{"T_a", "s", 0.5, 0.01, 20.0}, {"r_max", "mm/s", 50.0, 0.1, 2000.0}};
-  }
-  // The opener is lowered at its profile velocity: a recording that declares it starts r_max
-  // there. From 50 mm/s the limit never binds, so the fit could not move it, and the ramp's
-  // lag went into T_a (a console recording: depth held-out RMS 10x its noise, issue 49's loop).
-  std::vector<double> initial_guess(const Recording& r) const override {
-    std::vector<double> p = ChannelModel::initial_guess(r);
-    if (const double declared = r.depth_rate_mm_per_s(); declared > 0.0)
-      p[1] = std::min(declared, nominal_params()[1].upper);
-    return p;
   }
   std::vector<const EffectSpec*> candidates(const Recording& r) const override {
     return specs(r,
@@ -584,7 +563,9 @@ class DepthChannel : public ChannelModel {
     double state = r.at("depth_mm")[0] - (terrain ? (*terrain)[0] : 0.0);
     y.assign(u.size(), r.at("depth_mm")[0]);
     for (std::size_t k = 1; k < u.size(); ++k) {
-      state = rate_limited_lag(state, u[k - 1], tau, rate, r.t[k] - r.t[k - 1]);
+      const double dt = r.t[k] - r.t[k - 1];
+      const double step = (1.0 - std::exp(-dt / tau)) * (u[k - 1] - state);
+      state += std::clamp(step, -rate * dt, rate * dt);
       y[k] = state + (terrain ? (*terrain)[k] : 0.0);
     }
     apply_output(r, fx, r.has("depth_force") ? &r.at("depth_force") : nullptr, nullptr, y);

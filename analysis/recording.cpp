@@ -1,7 +1,6 @@
 #include "analysis/recording.h"
 
 #include <algorithm>
-#include <array>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -10,7 +9,6 @@
 #include <fstream>
 #include <set>
 #include <sstream>
-#include <string_view>
 #include <type_traits>
 
 #include "config/config_key.h"
@@ -110,43 +108,21 @@ bool RecordingReader::next_line(std::string& line) {
   return true;
 }
 
-// The metadata values planter-fit uses: a wrong one would shift or slow the drives' commands.
-namespace {
-struct CheckedMetadata {
-  std::string_view key;
-  double upper;
-  const char* meaning;
-};
-constexpr std::array<CheckedMetadata, 2> kCheckedMetadata{{
-    {config::kSyncPeriodKey, config::kSyncPeriodMaxS, "the SYNC period in seconds"},
-    {config::kDepthRateKey, config::kDepthRateMaxMmPerS, "the depth actuator's rate in mm/s"},
-}};
-
-double metadata_number(const std::map<std::string, std::string>& metadata, std::string_view key) {
-  const auto it = metadata.find(std::string(key));
-  return it == metadata.end() ? 0.0 : std::strtod(it->second.c_str(), nullptr);
-}
-}  // namespace
-
-void RecordingReader::check_metadata(const std::string& key, const std::string& value) const {
-  for (const CheckedMetadata& m : kCheckedMetadata) {
-    if (key != m.key) continue;
-    char* end = nullptr;
-    const double v = std::strtod(value.c_str(), &end);
-    if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v) || v <= 0.0 ||
-        v > m.upper)
-      throw RecordingError(file_, line_no_,
-                           "metadata " + key + ": '" + value + "' must be " + m.meaning +
-                               ", in (0, " + config::number_text(m.upper) + "]");
-  }
+// The one metadata value planter-fit uses: a wrong one would shift the drives' commands.
+void RecordingReader::check_sync_period(const std::string& value) const {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v) || v <= 0.0 ||
+      v > config::kSyncPeriodMaxS)
+    throw RecordingError(file_, line_no_,
+                         "metadata " + std::string(config::kSyncPeriodKey) + ": '" + value +
+                             "' must be the SYNC period in seconds, in (0, " +
+                             config::number_text(config::kSyncPeriodMaxS) + "]");
 }
 
 double Recording::sync_period_s() const {
-  return metadata_number(metadata, config::kSyncPeriodKey);
-}
-
-double Recording::depth_rate_mm_per_s() const {
-  return metadata_number(metadata, config::kDepthRateKey);
+  const auto it = metadata.find(std::string(config::kSyncPeriodKey));
+  return it == metadata.end() ? 0.0 : std::strtod(it->second.c_str(), nullptr);
 }
 
 Recording without_rows(const Recording& r) {
@@ -186,7 +162,7 @@ void RecordingReader::read_header() {
       if (colon != std::string::npos) {
         const std::string key = trim(line.substr(1, colon - 1));
         const std::string value = trim(line.substr(colon + 1));
-        check_metadata(key, value);
+        if (key == config::kSyncPeriodKey) check_sync_period(value);
         metadata_[key] = value;
       }
       continue;

@@ -53,8 +53,6 @@ struct Recording {
   [[nodiscard]] std::size_t size() const { return t.size(); }
   // The board's SYNC period the recording declares (sync_period_s), or 0 when it declares none.
   [[nodiscard]] double sync_period_s() const;
-  // The depth actuator's rate limit it declares (depth_rate_mm_per_s), or 0 when none.
-  [[nodiscard]] double depth_rate_mm_per_s() const;
 };
 
 // Reads a recording a block of rows at a time, so that a recording of any length can be
@@ -91,7 +89,7 @@ class RecordingReader {
 
  private:
   void read_header();
-  void check_metadata(const std::string& key, const std::string& value) const;
+  void check_sync_period(const std::string& value) const;
   bool next_line(std::string& line);
 
   std::string file_;

@@ -127,16 +127,4 @@ std::string sync_period_value(std::int64_t sync_period_ns) {
   return value;
 }
 
-std::vector<std::pair<std::string, std::string>> board_metadata(const BoardConfig& board) {
-  std::vector<std::pair<std::string, std::string>> out{
-      {std::string(kSyncPeriodKey), sync_period_value(board.controller.can.sync_period_ns)}};
-  const double rate = board.controller.node(NodeRole::kDepthActuator).profile_velocity_units_per_s;
-  if (rate > 0.0) {
-    char value[32];
-    std::snprintf(value, sizeof value, "%.9g", rate);
-    out.emplace_back(std::string(kDepthRateKey), value);
-  }
-  return out;
-}
-
 }  // namespace planter::config

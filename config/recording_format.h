@@ -6,10 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
-#include <utility>
-#include <vector>
 
-#include "config/board_config.h"
 #include "firmware/controller/telemetry.h"
 
 namespace planter::config {
@@ -21,17 +18,6 @@ inline constexpr std::string_view kSyncPeriodKey = "sync_period_s";
 inline constexpr double kSyncPeriodMaxS = 1.0;  // the board file's largest sync_period_ms
 // The value of that line in seconds ("0.01").
 std::string sync_period_value(std::int64_t sync_period_ns);
-
-// The metadata line that declares the depth actuator's rate limit: the profile velocity (CiA 402,
-// 0x6081) the controller writes at boot, in mm/s. The opener's ramp to working depth runs at it,
-// so planter-fit takes it as the depth channel's nominal rate limit; a log without it is fitted
-// from a default (a rate it cannot see moving, issue 52).
-inline constexpr std::string_view kDepthRateKey = "depth_rate_mm_per_s";
-inline constexpr double kDepthRateMaxMmPerS = 1e6;  // the machine file's profile_velocity range
-
-// Every metadata line a recording takes from its board: the SYNC period and, where the machine
-// writes one, the depth actuator's profile velocity. planterd and the simulator write the same.
-std::vector<std::pair<std::string, std::string>> board_metadata(const BoardConfig& board);
 
 // Header of the controller columns, without a trailing newline.
 std::string controller_columns();

@@ -47,13 +47,15 @@ class LiveRecorder : public console::RecordingControl {
     const std::string name = console::recording_file_name("live");
     const std::string path = dir_ + "/" + name;
     try {
-      writer_ =
-          std::make_unique<RecordingWriter>(path, path,
-                                            recording_metadata({{"source", "planter-sim live"},
-                                                                {"scenario", scenario_.name},
-                                                                {"board", scenario_.board.name},
-                                                                {"units", "1"}},
-                                                               scenario_.board));
+      writer_ = std::make_unique<RecordingWriter>(
+          path, path,
+          std::vector<std::pair<std::string, std::string>>{
+              {"source", "planter-sim live"},
+              {"scenario", scenario_.name},
+              {"board", scenario_.board.name},
+              {"units", "1"},
+              {std::string(config::kSyncPeriodKey),
+               config::sync_period_value(scenario_.board.controller.can.sync_period_ns)}});
     } catch (const std::exception& e) {
       return console::recording_reply(console::ConsoleResult::kFailed, e.what());
     }

@@ -157,13 +157,15 @@ int run_scenario(const std::string& scenario_path, const std::string& out_dir, b
   const Scenario scenario = load_scenario_warned(scenario_path, "");
   config::OutputSet out(out_dir, "planter-sim run", force);
   LockstepRunner runner(scenario);
-  RecordingWriter recording(out.path("recording.csv"), out.shown("recording.csv"),
-                            recording_metadata({{"source", "planter-sim"},
-                                                {"scenario", scenario.name},
-                                                {"board", scenario.board.name},
-                                                {"seed", std::to_string(scenario.seed)},
-                                                {"units", "1"}},
-                                               scenario.board));
+  RecordingWriter recording(
+      out.path("recording.csv"), out.shown("recording.csv"),
+      {{"source", "planter-sim"},
+       {"scenario", scenario.name},
+       {"board", scenario.board.name},
+       {"seed", std::to_string(scenario.seed)},
+       {"units", "1"},
+       {std::string(config::kSyncPeriodKey),
+        config::sync_period_value(scenario.board.controller.can.sync_period_ns)}});
   ReportSeries series;
   std::uint64_t tick = 0;
   RecordingThread recording_thread(recording);

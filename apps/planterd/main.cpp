@@ -40,12 +40,10 @@
 
 namespace {
 
-// A recording's metadata lines: these first, then the board's (config/recording_format.h).
-std::vector<std::string> metadata_lines(std::vector<std::string> lines,
-                                        const planter::config::BoardConfig& board) {
-  for (const auto& [key, value] : planter::config::board_metadata(board))
-    lines.push_back(key + ": " + value);
-  return lines;
+// The recording's line that declares the SYNC period (config/recording_format.h).
+std::string sync_period_line(const planter::config::BoardConfig& board) {
+  return std::string(planter::config::kSyncPeriodKey) + ": " +
+         planter::config::sync_period_value(board.controller.can.sync_period_ns);
 }
 
 using namespace planter;
@@ -358,8 +356,8 @@ class OperatorConsole {
       if (o.recordings_dir.empty()) o.recordings_dir = ".";
       recording_ = std::make_unique<daemon::ConsoleRecording>(
           o.recordings_dir,
-          metadata_lines(
-              {"board: " + board.name, "source: planterd console", "units: PRODUCT.md v1"}, board));
+          std::vector<std::string>{"board: " + board.name, "source: planterd console",
+                                   "units: PRODUCT.md v1", sync_period_line(board)});
       if (o.commands != nullptr) o.recording = recording_.get();
     }
     server_ = std::make_unique<console::ConsoleServer>(
@@ -453,9 +451,9 @@ int main(int argc, char** argv) {
     if (!opt.record.empty()) {
       recording = std::make_unique<daemon::CrashSafeRecording>(
           opt.record,
-          metadata_lines({"board: " + board.name, "source: planterd", "units: PRODUCT.md v1",
-                          "flush_ms: " + std::to_string(opt.flush_ms), start_wall_text},
-                         board));
+          std::vector<std::string>{"board: " + board.name, "source: planterd",
+                                   "units: PRODUCT.md v1", sync_period_line(board),
+                                   "flush_ms: " + std::to_string(opt.flush_ms), start_wall_text});
       if (!recording->moved_aside_to().empty())
         std::fprintf(stderr, "planterd: previous recording moved to %s\n",
                      recording->moved_aside_to().c_str());

@@ -14,11 +14,6 @@
 
 namespace planter::sim {
 
-RecordingMetadata recording_metadata(RecordingMetadata first, const config::BoardConfig& board) {
-  for (auto& line : config::board_metadata(board)) first.push_back(std::move(line));
-  return first;
-}
-
 RecordingWriter::RecordingWriter(const std::string& path, const std::string& shown_path,
                                  const std::vector<std::pair<std::string, std::string>>& metadata)
     : path_(shown_path) {

@@ -7,15 +7,10 @@
 #include <utility>
 #include <vector>
 
-#include "config/board_config.h"
 #include "sim/plant/truth_columns.h"
 #include "sim/runner/lockstep_runner.h"
 
 namespace planter::sim {
-
-using RecordingMetadata = std::vector<std::pair<std::string, std::string>>;
-// `first`, then the lines a recording takes from its board (config::board_metadata).
-RecordingMetadata recording_metadata(RecordingMetadata first, const config::BoardConfig& board);
 
 class RecordingWriter {
  public:

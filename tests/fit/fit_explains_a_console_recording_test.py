@@ -54,9 +54,11 @@ try:
     auth = {"Cookie": headers.get("Set-Cookie", "").split(";")[0],
             "X-CSRF-Token": json.loads(body).get("csrf", "")}
     # The operator records the work: once the machine runs with the opener down at its
-    # working depth. (The opener's lowering ramp before that leaves about 0.02 mm on the depth
-    # channel, the fit's CAN timing half a row from the simulator's, which the fit may name as a
-    # sag of 0.04 mm/kN: noted on issue 52.)
+    # working depth. A recording that holds the opener's lowering is not clean (issue 52, in
+    # docs/planter-fit.md): the lowering runs at the drive's profile velocity, 20 mm/s, which
+    # the depth channel's rate limit, started at 50 mm/s, never reaches, so the ramp's lag goes
+    # into T_a; held-out RMS 0.010 mm for a noise of 0.001 mm, and two runs in three named a
+    # vibration or a delay of it.
     state = None
     for _ in range(150):
         status, body, _ = call("/api/state", headers=auth)

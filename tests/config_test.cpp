@@ -256,11 +256,16 @@ TEST(ScenarioConfig, AssumptionsAreWrittenFromWhatRan) {
   std::filesystem::remove(path);
   ASSERT_TRUE(s.plant.seedlings.force_model.loaded);
   const std::string with_dem = joined(sim::model_assumptions(s));
-  // The DEM gives the compression, never the strength: that is the measured peaks' (issue 27).
-  EXPECT_NE(with_dem.find("The DEM's reduced-order model (" + std::string(PLANTER_SOURCE_DIR) +
-                          "/models/seedling_force.toml) gives each seedling's compression, not "
-                          "its strength"),
+  // The DEM gives the stem's compression in the nip, never the strength: that is the measured
+  // peaks' (issue 27); the nip's law and the ceiling it implies are said (issue 50).
+  EXPECT_NE(with_dem.find("the DEM's reduced law (" + std::string(PLANTER_SOURCE_DIR) +
+                          "/models/seedling_force.toml) gives each stem's compression"),
             std::string::npos)
+      << with_dem;
+  EXPECT_NE(with_dem.find("The ceiling by the same rule: 1 % of the weakest stems"),
+            std::string::npos)
+      << with_dem;
+  EXPECT_NE(with_dem.find("the machine's ceiling is typed in as 120 N"), std::string::npos)
       << with_dem;
   EXPECT_NE(with_dem.find("lognormal with mean 161.9 N and SD 25.1 N"), std::string::npos)
       << with_dem;
@@ -271,7 +276,8 @@ TEST(ScenarioConfig, AssumptionsAreWrittenFromWhatRan) {
   s.plant.seedlings.force_model.loaded = false;
   s.plant.effects.force_offset_N = 0.0;
   const std::string without = joined(sim::model_assumptions(s));
-  EXPECT_EQ(without.find("The DEM's reduced-order model"), std::string::npos) << without;
+  EXPECT_EQ(without.find("the DEM's reduced law"), std::string::npos) << without;
+  EXPECT_NE(without.find("damaged when the nip's line load"), std::string::npos) << without;
   s.plant.seedlings.strength_mean_N = 150.0;  // a scenario's own value is the one shown
   EXPECT_NE(joined(sim::model_assumptions(s)).find("lognormal with mean 150.0 N"),
             std::string::npos);

@@ -103,6 +103,22 @@ const std::array kValues{
     ModelValue{"plant.seedling_thickness_gain", "", O::assumed, 0.25, 1.0,
                "assumed: extra lip compression per mm of seedling over the reference",
                [](PlantConfig& c) -> double& { return c.drive.seedling_thickness_gain; }},
+    // The nip's stem (sim/plant/clamp_nip.h), from the DEM's reduced law when the scenario names
+    // one. Its bonds were tuned at one particle size and the same bonds give a peak 1.4-3.6 times
+    // as high at others (models/seedling_dem.toml): the law is known within about a factor of
+    // two in stiffness, its exponent and its drop less so.
+    ModelValue{
+        "seedlings.stem_stiffness_N_per_mm_n", "N/mm^n", O::calibrated, 12.0, 50.0,
+        "calibrated: the DEM's reduced law (planter-dem reduce, 1.5 mm particles); range "
+        "assumed, half to twice it (the DEM's resolution moves its peak 1.4-3.6 times)",
+        [](PlantConfig& c) -> double& { return c.seedlings.force_model.stiffness_N_per_mm_n; }},
+    ModelValue{"seedlings.stem_exponent", "", O::calibrated, 1.2, 1.8,
+               "calibrated: the DEM's reduced law; range assumed (a tube between plates, 1.5 "
+               "near contact, stiffening or softening as the wall bends)",
+               [](PlantConfig& c) -> double& { return c.seedlings.force_model.exponent; }},
+    ModelValue{"seedlings.stem_residual_fraction", "", O::calibrated, 0.3, 0.8,
+               "calibrated: the DEM's drop after its first peak (93 of 146 N); range assumed",
+               [](PlantConfig& c) -> double& { return c.seedlings.force_model.residual_fraction; }},
 };
 
 std::string number(double v) {

@@ -92,14 +92,23 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
                dev.roller.enabled(), dt);
   dev.roller.set_actual(
       std::llround(raw_of(board_, known_signal("clamp_pos_mm"), roller_.position_mm())), 0, 0);
-  const double nip_mm = seedlings_.nip_thickness_mm(t);
-  const double compression = roller_.position_mm() + nip_mm - cfg_.drive.clamp_x0_mm;
-  if (const double squeezed_mm = std::max(0.0, compression); squeezed_mm != clamp_compression_mm_) {
-    clamp_compression_mm_ = squeezed_mm;
-    clamp_power_ = std::pow(squeezed_mm, cfg_.drive.clamp_n);
+  // The lips and the stem in the nip (clamp_nip.h), or the law with the stem's thickness alone.
+  const double clamp_k_N = cfg_.drive.clamp_k_N * fx.changed(fx.clamp_stiffness_change_pct, t);
+  const double gap_mm = roller_.position_mm() - cfg_.drive.clamp_x0_mm;
+  double nip_mm = 0.0, elastic = 0.0;
+  if (const auto nip = seedlings_.nip_force(gap_mm, clamp_k_N, cfg_.drive.clamp_n, t, elastic_N_)) {
+    nip_mm = nip->added_mm;
+    elastic = nip->force_N;
+  } else {
+    nip_mm = seedlings_.nip_thickness_mm(t);
+    if (const double squeezed_mm = std::max(0.0, gap_mm + nip_mm);
+        squeezed_mm != clamp_compression_mm_) {
+      clamp_compression_mm_ = squeezed_mm;
+      clamp_power_ = std::pow(squeezed_mm, cfg_.drive.clamp_n);
+    }
+    elastic = clamp_k_N * clamp_power_;
   }
-  const double elastic =
-      cfg_.drive.clamp_k_N * fx.changed(fx.clamp_stiffness_change_pct, t) * clamp_power_;
+  elastic_N_ = elastic;
   // Viscoelastic relaxation: a Maxwell branch takes a share of the load over tau.
   if (fx.clamp_relaxation_frac > 0.0) {
     relaxation_N_ +=

@@ -69,6 +69,7 @@ class Plant {
   // The clamp law's power for the last compression: the nip holds still between seedlings, so
   // most substeps ask for the same value again (exact: the same argument, the same result).
   double clamp_compression_mm_ = 0.0, clamp_power_ = 0.0;
+  double elastic_N_ = 0.0;  // the last substep's clamp force before relaxation: the nip's guess
   double relaxation2_N_ = 0.0;
   double fixture_load_N_ = 0.0;
   double draft_N_ = 0.0;  // the last substep's, for the sag in the working depth

@@ -9,14 +9,28 @@ namespace {
 constexpr double kDegPerRad = 57.29577951308232;
 }
 
-SeedlingProcess::SeedlingProcess(const PlantConfig& config, std::uint64_t seed)
-    : cfg_(config), rng_(seed) {
-  seedlings_.reserve(2048);
-}
-
 double nip_load_factor(const PlantConfig& config, double diameter_mm) {
   return config.seedlings.strength_test_length_mm * 1e-3 /
          std::max(1e-6, held_length_m(config.mechanism, diameter_mm));
+}
+
+SeedlingProcess::SeedlingProcess(const PlantConfig& config, std::uint64_t seed)
+    : cfg_(config), rng_(seed) {
+  seedlings_.reserve(2048);
+  const SeedlingConfig& sc = cfg_.seedlings;
+  if (sc.force_model.loaded)
+    nip_.emplace(sc.force_model, sc.reference_diameter_mm,
+                 1.0 / nip_load_factor(cfg_, sc.reference_diameter_mm),
+                 cfg_.drive.seedling_thickness_gain);
+}
+
+std::optional<SeedlingProcess::NipForce> SeedlingProcess::nip_force(double gap_mm, double k_N,
+                                                                    double n, double t_s,
+                                                                    double guess_N) {
+  if (!nip_ || seedling_in_nip(t_s) == 0) return std::nullopt;
+  NipStem& stem = seedlings_.back().nip;
+  const double f = nip_->force_N(gap_mm, k_N, n, stem, guess_N);
+  return NipForce{f, nip_->added_compression_mm(stem, f)};
 }
 
 double SeedlingProcess::nip_thickness_mm(double t_s) const {
@@ -41,8 +55,15 @@ Seedling SeedlingProcess::sample(double t_s) {
   s.length_mm = sc.length_min_mm + (sc.length_max_mm - sc.length_min_mm) * u01(rng_);
   // Lognormal strength (sim/seedling/measured_strength.h), one standard normal draw.
   std::normal_distribution<double> z(0.0, 1.0);
+  // Not the DEM's slope of the peak with the diameter: that came from its particle scaling
+  // (docs/simulator.md); the assumed power of the diameter.
   s.strength_N = lognormal_strength_N(sc.strength_mean(), sc.strength_sd(), z(rng_)) *
                  std::pow(s.diameter_mm / sc.reference_diameter_mm, sc.strength_diameter_exponent);
+  if (nip_) {
+    s.nip.diameter_mm = s.diameter_mm;
+    s.nip.load_factor = 1.0 / nip_load_factor(cfg_, s.diameter_mm);
+    s.nip.peak_N = s.strength_N * s.nip.load_factor;
+  }
   s.pickup_angle_rad = next_pickup_angle_rad_;
   s.pickup_time_s = t_s;
   return s;
@@ -80,20 +101,19 @@ void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N,
       seedlings_.push_back(second);
     }
   }
-  // Compression while in the nip: the clamp force as the strength test's force.
+  // Compression while in the nip: the clamp force as the strength test's force. With the DEM's
+  // law the stem is damaged when its wall has collapsed (the plant's nip solve, clamp_nip.h).
   if (!seedlings_.empty()) {
     Seedling& s = seedlings_.back();
     if (now.t_s - s.pickup_time_s <= mc.nip_time_s) {
       s.peak_force_N =
           std::max(s.peak_force_N, clamp_force_N * nip_load_factor(cfg_, s.diameter_mm));
-      s.damaged = s.peak_force_N > s.strength_N;
-      if (sc.force_model.loaded) {
-        // Past its first peak the wall collapses: the compression jumps past delta_p.
-        const SeedlingForceModel& m = sc.force_model;
-        s.peak_compression_mm = s.damaged
-                                    ? std::max(m.peak_displacement(s.diameter_mm),
-                                               m.compression_mm(s.diameter_mm, s.peak_force_N))
-                                    : m.compression_mm(s.diameter_mm, s.peak_force_N);
+      if (nip_) {
+        s.damaged = s.nip.collapsed;
+        s.peak_compression_mm =
+            std::max(s.peak_compression_mm, nip_->stem_compression_mm(s.nip, clamp_force_N));
+      } else {
+        s.damaged = s.peak_force_N > s.strength_N;
       }
     }
   }

@@ -3,9 +3,11 @@
 // compressed and may be damaged), carried through the carry angle and released; its tilt in
 // the furrow comes from the release mechanics (seedling_release.h).
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <vector>
 
+#include "sim/plant/clamp_nip.h"
 #include "sim/plant/plant_config.h"
 #include "sim/plant/seedling_release.h"
 
@@ -26,6 +28,7 @@ struct Seedling {
   double pickup_time_s = 0;
   double peak_force_N = 0;         // largest radial compression while in the nip
   double peak_compression_mm = 0;  // its radial compression then (with a DEM force model)
+  NipStem nip;                     // the stem as the nip's law sees it (with a DEM force model)
   bool damaged = false;
   bool planted = false;
   bool doubled = false;  // the second seedling the feed put into one clamp
@@ -48,8 +51,18 @@ class SeedlingProcess {
   // Called every step with the disc's angle; picks up and releases seedlings.
   void step(double disc_angle_rad, double clamp_force_N, const ReleaseConditions& now,
             double vibration_tilt_deg);
-  // Extra lip compression (mm) from the seedling currently in the nip, for the clamp model.
+  // Extra lip compression (mm) from the seedling currently in the nip, for the clamp model
+  // without the DEM's law: its thickness over the reference diameter's.
   [[nodiscard]] double nip_thickness_mm(double t_s) const;
+  // With the DEM's law (clamp_nip.h): the clamp's force at the law's gap x - x0 (law k_N, n)
+  // with the stem in the nip now, which may collapse; nullopt when the nip is empty or the
+  // scenario names no law. `added_mm` is what the stem adds to the law's compression.
+  struct NipForce {
+    double force_N;
+    double added_mm;
+  };
+  [[nodiscard]] std::optional<NipForce> nip_force(double gap_mm, double k_N, double n, double t_s,
+                                                  double guess_N);
   // The seedling in the nip now, counted from 1 (0: the nip is empty).
   [[nodiscard]] std::size_t seedling_in_nip(double t_s) const;
 
@@ -63,6 +76,7 @@ class SeedlingProcess {
   Seedling sample(double t_s);
 
   PlantConfig cfg_;
+  std::optional<ClampNip> nip_;  // with the DEM's law
   std::mt19937_64 rng_;
   std::vector<Seedling> seedlings_;
   double next_pickup_angle_rad_ = 0.0;

@@ -20,23 +20,66 @@ std::string format(const char* fmt, Args... args) {
   return out;
 }
 
-std::string strength(const SeedlingConfig& c, const MechanismConfig& mc) {
-  const StrengthFit& m = measured_strength();
+// The nip with the DEM's reduced law (sim/plant/clamp_nip.h), the specimen length's effect and
+// the ceiling the same rule gives.
+std::string nip_law(const PlantConfig& p, double ceiling_N) {
+  const SeedlingConfig& c = p.seedlings;
+  const double d_lo = c.diameter_min_mm, d_hi = c.diameter_max_mm, d_ref = c.reference_diameter_mm;
+  auto size = [&](double d) { return std::pow(d / d_ref, c.strength_diameter_exponent); };
+  // The nip's force at which a stem passes its first peak: its strength at the nip's scale.
+  auto peak_at_nip = [&](double d, double z, double test_length_mm) {
+    PlantConfig q = p;
+    q.seedlings.strength_test_length_mm = test_length_mm;
+    return lognormal_strength_N(c.strength_mean(), c.strength_sd(), z) * size(d) /
+           nip_load_factor(q, d);
+  };
+  // The weakest diameter's first percentile: thinner stems are weaker (F_p) but held longer.
+  constexpr double kFirstPercentileZ = -2.3263;
+  double ceiling_rule_N = 1e9, weakest_d = d_lo;
+  for (int i = 0; i <= 20; ++i) {
+    const double d = d_lo + (d_hi - d_lo) * i / 20.0;
+    if (const double f = peak_at_nip(d, kFirstPercentileZ, c.strength_test_length_mm);
+        f < ceiling_rule_N) {
+      ceiling_rule_N = f;
+      weakest_d = d;
+    }
+  }
+  const double dem_specimen_mm = 190.0;  // dem/seedling.h: the DEM's modelled stem
   return format(
+      "The nip is the lips in series with the stem (sim/plant/clamp_nip.h): the DEM's reduced law "
+      "(%s) gives each stem's compression, so the load cell reads its thickness, stiffness and "
+      "collapse, and a stem is damaged when the force through it passes its first peak. Its peak: "
+      "the measured strength times (d / %.0f mm)^%.2g (assumed: the law's own slope of the peak "
+      "with d comes from the DEM's particle scaling), at the nip's scale held length / %.0f mm "
+      "(the strength test's specimen length, "
+      "assumed: at the DEM's own %.0f mm stem the reference stem's median peak in the nip would be "
+      "%.0f N, far below the paper's 90 N field grip that damaged 2.76 %%, so the test's loaded "
+      "length was short). The ceiling by the same rule: 1 %% of the weakest stems (%.1f mm) pass "
+      "their peak at %.0f N through the nip; the machine's ceiling is typed in as %.0f N.",
+      c.force_model_file.c_str(), d_ref, c.strength_diameter_exponent, c.strength_test_length_mm,
+      dem_specimen_mm, peak_at_nip(d_ref, 0.0, dem_specimen_mm), weakest_d, ceiling_rule_N,
+      ceiling_N);
+}
+
+std::string strength(const PlantConfig& p, double ceiling_N) {
+  const SeedlingConfig& c = p.seedlings;
+  const StrengthFit& m = measured_strength();
+  const std::string measured = format(
       "Seedling strength: lognormal with mean %.1f N and SD %.1f N (the paper's six measured "
       "peaks, Sec. 3.5, are %.1f-%.1f N with mean %.1f N, SD %.1f N, the mean's 95 %% interval "
       "%.1f-%.1f N; its text's %.1f N is shown for comparison only); the lognormal form is "
-      "assumed, as six values cannot choose it; strength ~ (diameter / %.0f mm)^%.2g (assumed). "
-      "A seedling is damaged when the nip's line load (clamp force over the held length, contact "
-      "area / diameter, at most the %.0f mm band) exceeds the test's (its strength over %.0f mm, "
-      "assumed).%s",
+      "assumed, as six values cannot choose it. ",
       c.strength_mean(), c.strength_sd(), m.min_N, m.max_N, m.mean_N, m.sd_N, m.mean_lo_N,
-      m.mean_hi_N, kPaperStatedStrength_N, c.reference_diameter_mm, c.strength_diameter_exponent,
-      mc.protrusion_band_mm, c.strength_test_length_mm,
-      c.force_model.loaded ? (" The DEM's reduced-order model (" + c.force_model_file +
-                              ") gives each seedling's compression, not its strength.")
-                                 .c_str()
-                           : "");
+      m.mean_hi_N, kPaperStatedStrength_N);
+  if (!c.force_model.loaded)
+    return measured +
+           format(
+               "Strength ~ (diameter / %.0f mm)^%.2g (assumed). A seedling is damaged when the "
+               "nip's line load (clamp force over the held length, contact area / diameter, at "
+               "most the %.0f mm band) exceeds the test's (its strength over %.0f mm, assumed).",
+               c.reference_diameter_mm, c.strength_diameter_exponent,
+               p.mechanism.protrusion_band_mm, c.strength_test_length_mm);
+  return measured + nip_law(p, ceiling_N);
 }
 
 std::string effects(const Effects& e) {
@@ -59,7 +102,7 @@ std::vector<std::string> model_assumptions(const Scenario& sc) {
   const MechanismConfig& m = p.mechanism;
   const DriveModelConfig& dr = p.drive;
   return {
-      strength(p.seedlings, p.mechanism),
+      strength(p, sc.board.controller.clamp.ceiling_N),
       format("Contact area acts through mechanics: the lips hold the stem over contact area / "
              "diameter (%.0f mm^2 here: %.1f mm of a 10 mm stem, at most the %.0f mm band), which "
              "spreads the nip's load (damage) and sets the friction moment that keeps the "

@@ -1,0 +1,72 @@
+#include "sim/plant/clamp_nip.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace planter::sim {
+namespace {
+constexpr double kForceMaxN = 1e6;    // past any clamp: the bracket's top
+constexpr double kToleranceN = 1e-6;  // the solve's resolution, below the load cell's bits
+constexpr int kIterationsMax = 80;    // bisection alone reaches 1e-6 N from 1e6 N in 40
+}  // namespace
+
+double ClampNip::intact_compression_mm(double d_mm, double a, double force_N) const {
+  if (force_N <= 0.0) return 0.0;
+  return std::pow(force_N / (a * law_.stiffness(d_mm)), 1.0 / law_.exponent);
+}
+
+double ClampNip::stem_compression_mm(const NipStem& stem, double force_N) const {
+  if (!stem.collapsed) return intact_compression_mm(stem.diameter_mm, stem.load_factor, force_N);
+  const double peak_mm = intact_compression_mm(stem.diameter_mm, stem.load_factor, stem.peak_N);
+  const double residual_N = law_.residual_fraction * stem.peak_N;
+  if (force_N <= residual_N)  // unloading below the residual: back along the intact form
+    return peak_mm * std::pow(std::max(0.0, force_N) / residual_N, 1.0 / law_.exponent);
+  return peak_mm + intact_compression_mm(stem.diameter_mm, stem.load_factor, force_N - residual_N);
+}
+
+double ClampNip::added_compression_mm(const NipStem& stem, double force_N) const {
+  return gain_ * (stem.diameter_mm - ref_d_mm_) - stem_compression_mm(stem, force_N) +
+         intact_compression_mm(ref_d_mm_, ref_a_, force_N);
+}
+
+double ClampNip::force_N(double gap_mm, double k_N, double n, NipStem& stem, double guess_N) const {
+  // h(F) = the gap the law sees with this stem, less the law's compression at F; its root is
+  // the force. h(0) > 0 when the lips touch; h falls as F rises (the law's compression grows
+  // faster than the two stems' difference), so the root is bracketed and kept.
+  auto h = [&](double f) {
+    return gap_mm + added_compression_mm(stem, f) - std::pow(f / k_N, 1.0 / n);
+  };
+  auto solve = [&]() {
+    double lo = 0.0, hi = std::max(1.0, 2.0 * guess_N);
+    if (h(lo) <= 0.0) return 0.0;
+    while (h(hi) > 0.0 && hi < kForceMaxN) {
+      lo = hi;
+      hi *= 4.0;
+    }
+    double f = std::clamp(guess_N, lo, hi);
+    for (int i = 0; i < kIterationsMax; ++i) {
+      const double hf = h(f);
+      if (hf > 0.0)
+        lo = f;
+      else
+        hi = f;
+      // Newton on a numerical slope while it stays inside the bracket, else bisection.
+      const double step = 1e-6 * std::max(1.0, f);
+      const double slope = (h(f + step) - hf) / step;
+      double next = slope < 0.0 ? f - hf / slope : 0.5 * (lo + hi);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      const bool done = std::abs(next - f) < kToleranceN || hi - lo < kToleranceN;
+      f = next;
+      if (done) break;
+    }
+    return f;
+  };
+  double f = solve();
+  if (!stem.collapsed && f > stem.peak_N) {
+    stem.collapsed = true;  // the wall gives: the same gap now carries less
+    f = solve();
+  }
+  return f;
+}
+
+}  // namespace planter::sim

@@ -70,6 +70,7 @@ inline constexpr ConfigKey kMachineKeys[] = {
   number_key(kMachine, "control", "clamp_model_k_N", board_defaults::kClamp.model_k_N, 0.01, 1e4, "N", "the clamp law's stiffness, for the loop's feed-forward"),
   number_key(kMachine, "control", "clamp_model_x0_mm", board_defaults::kClamp.model_x0_mm, 0.0, 50.0, "mm", "the clamp law's free travel before contact"),
   number_key(kMachine, "control", "clamp_model_n", board_defaults::kClamp.model_n, 1.0, 3.0, "", "the clamp law's exponent"),
+  number_key(kMachine, "control", "clamp_stem_step_N", board_defaults::kClamp.stem_step_N, 0.0, 100.0, "N", "a force step read as a stem entering or leaving the nip (0: not read)"),
   number_key(kMachine, "control", "clamp_position_max_mm", board_defaults::kClamp.position_max_mm, 1.0, 100.0, "mm", "the roller actuator's travel"),
   number_key(kMachine, "control", "depth_mm", 102.0, kDepthFileRangeMm.min, kDepthFileRangeMm.max, "mm", "the furrow depth set-point"),
   number_key(kMachine, "control", "depth_rate_mm_per_s", 20.0, 1.0, 500.0, "mm/s", "the depth actuator's rate limit"),

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "firmware/control/clamp_force_loop.h"
 #include "firmware/control/furrow_depth_loop.h"
@@ -89,6 +90,46 @@ TEST(ClampForceLoop, StifferLipsDoNotLatchTheClampOpen) {
     cmd = loop.update(lips_N(roller), roller, 0.01, true);
   }
   EXPECT_NEAR(lips_N(roller), 90.0, 2.0);
+}
+
+// A stem entering the nip adds compression the law does not hold: the force steps while the
+// roller stands. Read as a step, the trim takes it at once; the PI alone takes its own time.
+TEST(ClampForceLoop, AStemEnteringTheNipIsReadFromTheForceStep) {
+  auto settle_after_entry = [](double stem_step_N) {
+    ClampLoopConfig cfg;
+    cfg.stem_step_N = stem_step_N;
+    ClampForceLoop loop(cfg);
+    double cmd = 0, roller = 0, added_mm = 0;
+    const auto force = [&](double x) { return loop.model_force_N(x + added_mm); };
+    for (int i = 0; i < 500; ++i) {  // settled on the empty nip
+      roller += (cmd - roller) * 0.2;
+      cmd = loop.update(force(roller), roller, 0.01, true);
+    }
+    added_mm = 0.8;  // a thick stem: about 25 N more at the same position
+    for (int i = 0; i < 100; ++i) {
+      roller += (cmd - roller) * 0.2;
+      cmd = loop.update(force(roller), roller, 0.01, true);
+      if (std::abs(force(roller) - 90.0) < 4.5 && i > 2) return i;  // inside half the band
+    }
+    return 100;
+  };
+  const int read_ticks = settle_after_entry(6.0), pi_ticks = settle_after_entry(0.0);
+  EXPECT_LE(read_ticks, 12);  // the roller's lag and the read's tick
+  EXPECT_GT(pi_ticks, 2 * read_ticks);
+}
+
+TEST(ClampForceLoop, TheLoadCellsNoiseIsNotReadAsAStem) {
+  ClampLoopConfig cfg;
+  ClampForceLoop loop(cfg);
+  double cmd = 0, roller = 0;
+  std::uint32_t seed = 12345;
+  for (int i = 0; i < 20000; ++i) {
+    seed = seed * 1664525u + 1013904223u;  // +-1.7 N uniform: 1 N RMS
+    const double noise = (static_cast<double>(seed >> 8) / 16777216.0 - 0.5) * 3.46;
+    roller += (cmd - roller) * 0.2;
+    cmd = loop.update(loop.model_force_N(roller) + noise, roller, 0.01, true);
+  }
+  EXPECT_EQ(loop.stems_read(), 0);
 }
 
 TEST(ClampForceLoop, ALoadCellReadingLowCannotPushPastTheCeiling) {

@@ -9,6 +9,27 @@ void ClampForceLoop::reset() {
   ramped_setpoint_N_ = 0.0;
   integral_mm_ = 0.0;
   status_ = ClampStatus{};
+  has_last_ = false;
+}
+
+double ClampForceLoop::model_slope_N_per_mm(double position_mm) const {
+  return cfg_.model_k_N * cfg_.model_n *
+         std::pow(std::max(0.1, position_mm - cfg_.model_x0_mm), cfg_.model_n - 1.0);
+}
+
+void ClampForceLoop::read_stem(double force_N, double roller_mm, bool gripping) {
+  if (gripping && has_last_ && cfg_.stem_step_N > 0.0) {
+    const double slope = model_slope_N_per_mm(roller_mm);
+    const double step_N = (force_N - last_force_N_) - slope * (roller_mm - last_roller_mm_);
+    if (std::abs(step_N) > cfg_.stem_step_N) {
+      // The gap the law sees moved by step / slope: the roller follows it now.
+      integral_mm_ -= step_N / slope;
+      ++stems_read_;
+    }
+  }
+  last_force_N_ = force_N;
+  last_roller_mm_ = roller_mm;
+  has_last_ = true;
 }
 
 double ClampForceLoop::model_position_mm(double force_N) const {
@@ -32,6 +53,7 @@ double ClampForceLoop::update(double force_N, double roller_mm, double dt_s, boo
   ramped_setpoint_N_ = std::min(target, ramped_setpoint_N_ + cfg_.ramp_N_per_s * dt_s);
   const double error = ramped_setpoint_N_ - force_N;
   const double feed_forward = model_position_mm(ramped_setpoint_N_);
+  read_stem(force_N, roller_mm, ramped_setpoint_N_ >= target - 1e-9);
 
   // The ceiling's second path: the roller never goes past where the law gives the guard force,
   // whatever the load cell says. A fixed position: it does not move with the trim.
@@ -43,12 +65,8 @@ double ClampForceLoop::update(double force_N, double roller_mm, double dt_s, boo
   const double model_N = model_force_N(roller_mm);
   const double seen_N = std::max(force_N, model_N);
   const bool ceiling = seen_N > guard_N;
-  if (ceiling) {
-    const double slope_N_per_mm =
-        cfg_.model_k_N * cfg_.model_n *
-        std::pow(std::max(0.1, roller_mm - cfg_.model_x0_mm), cfg_.model_n - 1.0);
-    command = std::min(command, roller_mm - (seen_N - guard_N) / slope_N_per_mm);
-  }
+  if (ceiling)
+    command = std::min(command, roller_mm - (seen_N - guard_N) / model_slope_N_per_mm(roller_mm));
   const double limited = std::clamp(command, lower, std::max(lower, upper));
   const bool at_travel = command >= upper && error > 0.0;
   if (limited != command || ceiling) {

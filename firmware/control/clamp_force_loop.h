@@ -17,6 +17,12 @@ struct ClampLoopConfig {
   // roller's 0.05 s lag and the two ticks of the load cell's path (docs/control.md).
   double kp_mm_per_N = 0.017;
   double ki_mm_per_Ns = 0.28;
+  // A stem entering or leaving the nip steps the force while the roller stands (the nip's law,
+  // sim/plant/clamp_nip.h): a step beyond this, less what the roller's own move explains through
+  // the law's slope, is read as that stem's added compression and taken into the trim at once
+  // (docs/control.md). Above the load cell's noise between two ticks (1 N each: 1.4 N) by four
+  // times; 0 turns the reading off.
+  double stem_step_N = 6.0;
   double position_min_mm = 0.0;
   double position_max_mm = 12.0;
   double release_position_mm = 0.0;  // roller position when not clamping
@@ -54,12 +60,22 @@ class ClampForceLoop {
   // Position at which the nominal model gives `force_N`, and the model's force at a position.
   [[nodiscard]] double model_position_mm(double force_N) const;
   [[nodiscard]] double model_force_N(double position_mm) const;
+  // The law's slope (N/mm) at a roller position, floored where the law is flat.
+  [[nodiscard]] double model_slope_N_per_mm(double position_mm) const;
+  // Stems read in the nip since the start (steps taken into the trim).
+  [[nodiscard]] long stems_read() const { return stems_read_; }
 
  private:
   ClampLoopConfig cfg_;
   double ramped_setpoint_N_ = 0.0;
   double integral_mm_ = 0.0;
   ClampStatus status_;
+  double last_force_N_ = 0.0, last_roller_mm_ = 0.0;
+  bool has_last_ = false;
+  long stems_read_ = 0;
+
+  // The step a stem makes in the force, taken into the trim (stem_step_N).
+  void read_stem(double force_N, double roller_mm, bool gripping);
 };
 
 }  // namespace planter

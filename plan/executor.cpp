@@ -1,5 +1,6 @@
 #include "plan/executor.h"
 
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -7,9 +8,11 @@
 #include <array>
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -17,6 +20,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "config/durable_file.h"
 
@@ -134,6 +139,47 @@ std::pair<std::string, int> capture(const std::string& command) {
   while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
   const int rc = ::pclose(p);
   return {out, WIFEXITED(rc) ? WEXITSTATUS(rc) : 128};
+}
+
+// A program run with these arguments, no shell between (a user's string stays one word):
+// its standard output and error together, and its exit status.
+std::pair<std::string, int> capture_argv(const std::vector<std::string>& argv) {
+  int fds[2];
+  if (::pipe(fds) != 0) throw std::runtime_error("cannot run " + argv.front() + ": no pipe");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
+  posix_spawn_file_actions_addclose(&actions, fds[0]);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(fds[1]);
+  if (spawned != 0) {
+    ::close(fds[0]);
+    throw std::runtime_error("cannot run " + argv.front() + ": " + std::strerror(spawned));
+  }
+  std::string out;
+  std::array<char, 4096> buf{};
+  ssize_t n = 0;
+  while ((n = ::read(fds[0], buf.data(), buf.size())) > 0 || (n < 0 && errno == EINTR))
+    if (n > 0) out.append(buf.data(), static_cast<std::size_t>(n));
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return {out, WIFEXITED(status) ? WEXITSTATUS(status) : 128};
+}
+
+// Words split at blanks, as --sbatch-args is read (no quotes: no shell reads it).
+std::vector<std::string> blank_separated(const std::string& s) {
+  std::vector<std::string> words;
+  std::istringstream in(s);
+  for (std::string w; in >> w;) words.push_back(w);
+  return words;
 }
 
 // "sweep: clamp force" -> "sweep-clamp-force": a job name is one word of plain characters.
@@ -263,6 +309,9 @@ void run_slurm(const PlanRuns& runs, std::vector<std::size_t> todo, const Execut
     ++done_before;
     if (todo.empty()) return;
   }
+  // The folder is written into the script's lines: a control character there would end a line.
+  if (const std::string why = control_character_refusal("the plan's folder", dir); !why.empty())
+    throw std::runtime_error(why);
   const std::string script = dir + "/plan.sbatch";
   const auto tasks = tasks_of(todo, static_cast<std::size_t>(std::max(1, o.runs_per_task)));
   std::string lines;
@@ -272,8 +321,10 @@ void run_slurm(const PlanRuns& runs, std::vector<std::size_t> todo, const Execut
   config::write_output_file(dir + "/tasks.txt", lines);
   config::write_output_file(script, sbatch_script(runs, tasks.size(), o, label, time_limit));
   if (o.plan_only) throw PlanWritten{dir, "sbatch " + script};
-  const auto [out, rc] =
-      capture("sbatch --parsable " + o.sbatch_args + " " + shell_quoted(script) + " 2>&1");
+  std::vector<std::string> sbatch{"sbatch", "--parsable"};
+  for (std::string& w : blank_separated(o.sbatch_args)) sbatch.push_back(std::move(w));
+  sbatch.push_back(script);
+  const auto [out, rc] = capture_argv(sbatch);
   if (rc != 0) {
     // sbatch's own words, and what to fix.
     std::string fix = "Slurm is not reachable from here: check `sinfo` (and SLURM_CONF)";
@@ -335,8 +386,27 @@ void run_slurm(const PlanRuns& runs, std::vector<std::size_t> todo, const Execut
 
 }  // namespace
 
+std::string control_character_refusal(const std::string& what, const std::string& value) {
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const auto c = static_cast<unsigned char>(value[i]);
+    if (c < 0x20 || c == 0x7f) {
+      char code[8];
+      std::snprintf(code, sizeof code, "0x%02x", c);
+      return what + ": a control character (" + code + ") at byte " + std::to_string(i + 1) +
+             "; a Slurm script's line cannot carry it, so it is refused";
+    }
+  }
+  return "";
+}
+
 std::string executor_refusal(const ExecutorOptions& o) {
   if (o.kind != "local" && o.kind != "slurm") return "--executor '" + o.kind + "': local or slurm";
+  for (const auto& [option, value] :
+       {std::pair<const char*, const std::string&>{"--partition", o.partition},
+        {"--account", o.account},
+        {"--time-limit", o.time_limit},
+        {"--sbatch-args", o.sbatch_args}})
+    if (std::string why = control_character_refusal(option, value); !why.empty()) return why;
   if (o.kind == "slurm" && !o.plan_only && capture("command -v sbatch squeue").second != 0)
     return "--executor slurm: sbatch and squeue are not on PATH (Debian: slurm-client; "
            "--plan-only writes the plan and its sbatch script without them)";

@@ -34,8 +34,13 @@ struct ExecutorOptions {
   bool replace_other_plan = false;
 };
 
-// Why the options cannot be used ("" when they can): an unknown executor, sbatch missing.
+// Why the options cannot be used ("" when they can): an unknown executor, sbatch missing, a
+// control character in a value that goes into the Slurm script (a newline there would end its
+// line and drop the directives after it). sbatch runs without a shell: --sbatch-args is split
+// at blanks and each word is one argument.
 std::string executor_refusal(const ExecutorOptions& o);
+// `what`: a control character in `value`, named with its byte ("" when there is none).
+std::string control_character_refusal(const std::string& what, const std::string& value);
 
 // The program a Slurm task runs: `o.program`, or this process's own executable.
 std::string task_program(const ExecutorOptions& o);

@@ -37,6 +37,19 @@ sed "s|^feed_miss_pct = .*|feed_pitch_mm = 44.25|" "$src/scenarios/zhangqiu-fiel
 expect old-pitch-key "p.toml:[0-9]+: 'seedlings.feed_pitch_mm': is the machine's: \[planting_monitor\] clamp_pitch_mm" -- "$sim" run "$tmp/p.toml" --out "$tmp/o"
 sed "s|^texture = .*|texture = \"loamy\"|" "$src/scenarios/zhangqiu-field.toml" | sed "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" >"$tmp/x.toml"
 expect bad-texture "x.toml:[0-9]+: 'soil.texture': is 'loamy'; allowed: fine, medium, coarse" -- "$sim" run "$tmp/x.toml" --out "$tmp/o"
+# Values that go into a Slurm script: a newline would end its line and drop the directives
+# after it (issue 53). Refused before anything is written, with the option and the byte (exit
+# 1, as the executor's other refusals).
+want_rc=1 expect slurm-partition-newline "^planter-sim: --partition: a control character \(0x0a\) at byte 2; a Slurm script's line cannot carry it" -- \
+  "$sim" sweep "$src/scenarios/zhangqiu-field.toml" --out "$tmp/slurm" --executor slurm --plan-only \
+  --partition "$(printf 'a\n#SBATCH --x')"
+want_rc=1 expect slurm-time-limit-tab "^planter-sim: --time-limit: a control character \(0x09\) at byte 3" -- \
+  "$sim" montecarlo "$src/scenarios/zhangqiu-field.toml" --out "$tmp/slurm" --executor slurm \
+  --plan-only --time-limit "$(printf '10\t5')"
+want_rc=1 expect slurm-folder-newline "the plan's folder: a control character \(0x0a\)" -- \
+  "$sim" montecarlo "$src/scenarios/zhangqiu-field.toml" --runs 2 --distance 1 --executor slurm \
+  --plan-only --out "$tmp/two$(printf '\nlines')"
+[ ! -e "$tmp/two"$'\n'"lines.runs/plan.sbatch" ] || { echo "FAIL slurm-folder-newline: a script was written"; fail=1; }
 printf '[scenario\n' >"$tmp/broken.toml"
 expect syntax "broken.toml:1:" -- "$sim" run "$tmp/broken.toml" --out "$tmp/o"
 expect missing-file "none.toml: no such file" -- "$sim" run "$tmp/none.toml" --out "$tmp/o"

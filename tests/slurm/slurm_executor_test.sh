@@ -38,6 +38,14 @@ grep -q "submitted 14 runs as Slurm job" "$work/slurm.err" ||
 same_sweep "$work/local" "$work/slurm" || fail "sweep.json through Slurm differs from the local one"
 echo "slurm: the 3 m sweep through the cluster equals the local one (sweep.json)"
 
+# --sbatch-args reaches sbatch as words, never through a shell (issue 53): a $(...) in it is
+# text for sbatch, not a command for this machine.
+"$sim" montecarlo "$src/scenarios/zhangqiu-field.toml" --runs 3 --distance 1 --out "$work/args" \
+  --executor slurm --poll 0.3 --sbatch-args "--comment=\$(touch\${IFS}$work/pwned)" \
+  >/dev/null 2>"$work/args.err" || { cat "$work/args.err"; fail "montecarlo with --sbatch-args failed"; }
+[ ! -e "$work/pwned" ] || fail "--sbatch-args went through a shell: the \$(touch ...) in it ran"
+echo "slurm: --sbatch-args reaches sbatch as words (the \$(touch ...) in it ran nothing)"
+
 # A killed task: the plan submitted by hand (one task at a time), its last task cancelled.
 "$sim" "${args[@]}" --out "$work/killed" --executor slurm --plan-only --throttle 1 \
   >"$work/plan-only.out" || fail "--plan-only failed"

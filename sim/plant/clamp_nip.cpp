@@ -8,6 +8,7 @@ namespace {
 constexpr double kForceMaxN = 1e6;    // past any clamp: the bracket's top
 constexpr double kToleranceN = 1e-6;  // the solve's resolution, below the load cell's bits
 constexpr int kIterationsMax = 80;    // bisection alone reaches 1e-6 N from 1e6 N in 40
+constexpr double kForceMinN = 1e-9;   // where the power laws' slopes are taken near zero
 }  // namespace
 
 double ClampNip::intact_compression_mm(double d_mm, double a, double force_N) const {
@@ -29,30 +30,38 @@ double ClampNip::added_compression_mm(const NipStem& stem, double force_N) const
          intact_compression_mm(ref_d_mm_, ref_a_, force_N);
 }
 
+// The stem's compression at F and its slope d(delta)/dF: a power law's slope is (1/m) delta / F.
+ClampNip::Compression ClampNip::stem_compression(const NipStem& stem, double force_N) const {
+  const double f = std::max(force_N, kForceMinN);
+  const double m = law_.exponent;
+  const double delta = stem_compression_mm(stem, f);
+  if (!stem.collapsed || f <= law_.residual_fraction * stem.peak_N) return {delta, delta / (m * f)};
+  const double above_N = f - law_.residual_fraction * stem.peak_N;
+  const double rise = intact_compression_mm(stem.diameter_mm, stem.load_factor, above_N);
+  return {delta, rise / (m * above_N)};
+}
+
 double ClampNip::force_N(double gap_mm, double k_N, double n, NipStem& stem, double guess_N) const {
   // h(F) = the gap the law sees with this stem, less the law's compression at F; its root is
-  // the force. h(0) > 0 when the lips touch; h falls as F rises (the law's compression grows
-  // faster than the two stems' difference), so the root is bracketed and kept.
-  auto h = [&](double f) {
-    return gap_mm + added_compression_mm(stem, f) - std::pow(f / k_N, 1.0 / n);
-  };
+  // the force. h(0) is the gap with the stem's thickness (no force, no compression): the lips
+  // touch when it is positive. h falls as F rises (the law's compression grows faster than the
+  // two stems' difference), so Newton from the last step's force, kept inside the bracket
+  // [lo, hi] that the signs of h build, converges in a few steps; bisection where it would leave.
+  const double touch_mm = gap_mm + gain_ * (stem.diameter_mm - ref_d_mm_);
+  if (touch_mm <= 0.0) return 0.0;
   auto solve = [&]() {
-    double lo = 0.0, hi = std::max(1.0, 2.0 * guess_N);
-    if (h(lo) <= 0.0) return 0.0;
-    while (h(hi) > 0.0 && hi < kForceMaxN) {
-      lo = hi;
-      hi *= 4.0;
-    }
-    double f = std::clamp(guess_N, lo, hi);
+    double lo = 0.0, hi = kForceMaxN;
+    double f = std::clamp(guess_N, kForceMinN, hi);
     for (int i = 0; i < kIterationsMax; ++i) {
-      const double hf = h(f);
+      const Compression stem_c = stem_compression(stem, f);
+      const double ref_mm = intact_compression_mm(ref_d_mm_, ref_a_, f);
+      const double law_mm = std::pow(f / k_N, 1.0 / n);
+      const double hf = touch_mm - stem_c.mm + ref_mm - law_mm;
+      const double slope = -stem_c.mm_per_N + ref_mm / (law_.exponent * f) - law_mm / (n * f);
       if (hf > 0.0)
         lo = f;
       else
         hi = f;
-      // Newton on a numerical slope while it stays inside the bracket, else bisection.
-      const double step = 1e-6 * std::max(1.0, f);
-      const double slope = (h(f + step) - hf) / step;
       double next = slope < 0.0 ? f - hf / slope : 0.5 * (lo + hi);
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
       const bool done = std::abs(next - f) < kToleranceN || hi - lo < kToleranceN;

@@ -53,6 +53,11 @@ class ClampNip {
   [[nodiscard]] double stem_compression_mm(const NipStem& stem, double force_N) const;
 
  private:
+  struct Compression {
+    double mm;
+    double mm_per_N;
+  };
+  [[nodiscard]] Compression stem_compression(const NipStem& stem, double force_N) const;
   [[nodiscard]] double intact_compression_mm(double d_mm, double a, double force_N) const;
 
   SeedlingForceModel law_;

@@ -53,7 +53,8 @@ double ClampForceLoop::update(double force_N, double roller_mm, double dt_s, boo
   ramped_setpoint_N_ = std::min(target, ramped_setpoint_N_ + cfg_.ramp_N_per_s * dt_s);
   const double error = ramped_setpoint_N_ - force_N;
   const double feed_forward = model_position_mm(ramped_setpoint_N_);
-  read_stem(force_N, roller_mm, ramped_setpoint_N_ >= target - 1e-9);
+  const bool ramped = ramped_setpoint_N_ >= target - 1e-9;
+  read_stem(force_N, roller_mm, ramped);
 
   // The ceiling's second path: the roller never goes past where the law gives the guard force,
   // whatever the load cell says. A fixed position: it does not move with the trim.
@@ -75,7 +76,7 @@ double ClampForceLoop::update(double force_N, double roller_mm, double dt_s, boo
   } else {
     integral_mm_ += cfg_.ki_mm_per_Ns * error * dt_s;
   }
-  status_ = {true, ramped_setpoint_N_ >= target - 1e-9, at_travel, ceiling, model_N, force_N};
+  status_ = {true, ramped, at_travel, ceiling, model_N, force_N};
   return limited;
 }
 

@@ -11,18 +11,13 @@ constexpr int kIterationsMax = 80;    // bisection alone reaches 1e-6 N from 1e6
 constexpr double kForceMinN = 1e-9;   // where the power laws' slopes are taken near zero
 }  // namespace
 
+// The DEM's law at the nip's scale: the stem carries F where the test's specimen carries F / a.
 double ClampNip::intact_compression_mm(double d_mm, double a, double force_N) const {
-  if (force_N <= 0.0) return 0.0;
-  return std::pow(force_N / (a * law_.stiffness(d_mm)), 1.0 / law_.exponent);
+  return law_.compression_mm(d_mm, force_N / a);
 }
 
 double ClampNip::stem_compression_mm(const NipStem& stem, double force_N) const {
-  if (!stem.collapsed) return intact_compression_mm(stem.diameter_mm, stem.load_factor, force_N);
-  const double peak_mm = intact_compression_mm(stem.diameter_mm, stem.load_factor, stem.peak_N);
-  const double residual_N = law_.residual_fraction * stem.peak_N;
-  if (force_N <= residual_N)  // unloading below the residual: back along the intact form
-    return peak_mm * std::pow(std::max(0.0, force_N) / residual_N, 1.0 / law_.exponent);
-  return peak_mm + intact_compression_mm(stem.diameter_mm, stem.load_factor, force_N - residual_N);
+  return stem_compression(stem, force_N).mm;
 }
 
 double ClampNip::added_compression_mm(const NipStem& stem, double force_N) const {
@@ -30,15 +25,24 @@ double ClampNip::added_compression_mm(const NipStem& stem, double force_N) const
          intact_compression_mm(ref_d_mm_, ref_a_, force_N);
 }
 
-// The stem's compression at F and its slope d(delta)/dF: a power law's slope is (1/m) delta / F.
+// The stem's compression at F, the intact branch or past its collapse, and its slope
+// d(delta)/dF: a power law's slope is (1/m) delta / F (taken at kForceMinN near zero).
 ClampNip::Compression ClampNip::stem_compression(const NipStem& stem, double force_N) const {
-  const double f = std::max(force_N, kForceMinN);
   const double m = law_.exponent;
-  const double delta = stem_compression_mm(stem, f);
-  if (!stem.collapsed || f <= law_.residual_fraction * stem.peak_N) return {delta, delta / (m * f)};
-  const double above_N = f - law_.residual_fraction * stem.peak_N;
+  const double slope_at_N = std::max(force_N, kForceMinN);
+  if (!stem.collapsed) {
+    const double delta = intact_compression_mm(stem.diameter_mm, stem.load_factor, force_N);
+    return {delta, delta / (m * slope_at_N)};
+  }
+  const double peak_mm = intact_compression_mm(stem.diameter_mm, stem.load_factor, stem.peak_N);
+  const double residual_N = law_.residual_fraction * stem.peak_N;
+  if (force_N <= residual_N) {  // unloading below the residual: back along the intact form
+    const double delta = peak_mm * std::pow(std::max(0.0, force_N) / residual_N, 1.0 / m);
+    return {delta, delta / (m * slope_at_N)};
+  }
+  const double above_N = force_N - residual_N;
   const double rise = intact_compression_mm(stem.diameter_mm, stem.load_factor, above_N);
-  return {delta, rise / (m * above_N)};
+  return {peak_mm + rise, rise / (m * above_N)};
 }
 
 double ClampNip::force_N(double gap_mm, double k_N, double n, NipStem& stem, double guess_N) const {

@@ -14,6 +14,11 @@ double nip_load_factor(const PlantConfig& config, double diameter_mm) {
          std::max(1e-6, held_length_m(config.mechanism, diameter_mm));
 }
 
+double strength_size_factor(const SeedlingConfig& seedlings, double diameter_mm) {
+  return std::pow(diameter_mm / seedlings.reference_diameter_mm,
+                  seedlings.strength_diameter_exponent);
+}
+
 SeedlingProcess::SeedlingProcess(const PlantConfig& config, std::uint64_t seed)
     : cfg_(config), rng_(seed) {
   seedlings_.reserve(2048);
@@ -55,10 +60,8 @@ Seedling SeedlingProcess::sample(double t_s) {
   s.length_mm = sc.length_min_mm + (sc.length_max_mm - sc.length_min_mm) * u01(rng_);
   // Lognormal strength (sim/seedling/measured_strength.h), one standard normal draw.
   std::normal_distribution<double> z(0.0, 1.0);
-  // Not the DEM's slope of the peak with the diameter: that came from its particle scaling
-  // (docs/simulator.md); the assumed power of the diameter.
   s.strength_N = lognormal_strength_N(sc.strength_mean(), sc.strength_sd(), z(rng_)) *
-                 std::pow(s.diameter_mm / sc.reference_diameter_mm, sc.strength_diameter_exponent);
+                 strength_size_factor(sc, s.diameter_mm);
   if (nip_) {
     s.nip.diameter_mm = s.diameter_mm;
     s.nip.load_factor = 1.0 / nip_load_factor(cfg_, s.diameter_mm);

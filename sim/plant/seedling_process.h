@@ -20,6 +20,10 @@ namespace planter::sim {
 // Elastic Stability", ch. 7, the ring's collapse load per unit length).
 double nip_load_factor(const PlantConfig& config, double diameter_mm);
 
+// A stem's strength over its lognormal draw: (d / d_ref)^exponent, the assumed power of the
+// diameter (not the DEM's slope of its peak, which came from its particle scaling).
+double strength_size_factor(const SeedlingConfig& seedlings, double diameter_mm);
+
 struct Seedling {
   double diameter_mm = 0;
   double length_mm = 0;

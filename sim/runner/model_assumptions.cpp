@@ -25,15 +25,14 @@ std::string format(const char* fmt, Args... args) {
 std::string nip_law(const PlantConfig& p, double ceiling_N) {
   const SeedlingConfig& c = p.seedlings;
   const double d_lo = c.diameter_min_mm, d_hi = c.diameter_max_mm, d_ref = c.reference_diameter_mm;
-  auto size = [&](double d) { return std::pow(d / d_ref, c.strength_diameter_exponent); };
   // The nip's force at which a stem passes its first peak: its strength at the nip's scale.
   auto peak_at_nip = [&](double d, double z, double test_length_mm) {
     PlantConfig q = p;
     q.seedlings.strength_test_length_mm = test_length_mm;
-    return lognormal_strength_N(c.strength_mean(), c.strength_sd(), z) * size(d) /
-           nip_load_factor(q, d);
+    return lognormal_strength_N(c.strength_mean(), c.strength_sd(), z) *
+           strength_size_factor(c, d) / nip_load_factor(q, d);
   };
-  // The weakest diameter's first percentile: thinner stems are weaker (F_p) but held longer.
+  // The weakest diameter's first percentile: a thicker stem is held over less of its length.
   constexpr double kFirstPercentileZ = -2.3263;
   double ceiling_rule_N = 1e9, weakest_d = d_lo;
   for (int i = 0; i <= 20; ++i) {

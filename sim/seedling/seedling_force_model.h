@@ -28,10 +28,6 @@ struct SeedlingForceModel {
   [[nodiscard]] double peak_force(double d_mm) const {
     return std::max(1.0, peak_force_N + peak_force_slope_N_per_mm * (d_mm - reference_diameter_mm));
   }
-  [[nodiscard]] double peak_displacement(double d_mm) const {
-    return std::max(
-        0.05, peak_displacement_mm + peak_displacement_slope * (d_mm - reference_diameter_mm));
-  }
   // Force at compression delta (mm) and its rate (mm/s), before any collapse.
   [[nodiscard]] double force_N(double d_mm, double delta_mm, double rate_mm_s) const {
     if (delta_mm <= 0.0) return 0.0;

@@ -294,7 +294,10 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     c.clamp.model_x0_mm = ctl->number(mk("control.clamp_model_x0_mm"));
     c.clamp.model_n = ctl->number(mk("control.clamp_model_n"));
     c.clamp.position_max_mm = ctl->number(mk("control.clamp_position_max_mm"));
-    c.clamp.stem_step_N = ctl->number(mk("control.clamp_stem_step_N"));
+    c.clamp.per_stem_grip = ctl->boolean(mk("control.clamp_per_stem_grip"));
+    c.clamp.stem.thickness_gain = ctl->number(mk("control.clamp_stem_gain"));
+    c.clamp.stem.reference_diameter_mm = ctl->number(mk("control.clamp_stem_reference_mm"));
+    c.clamp.stem.collapse_mm = ctl->number(mk("control.clamp_collapse_mm"));
     c.depth.target_mm = ctl->number(mk("control.depth_mm"));
     c.depth.rate_mm_per_s = ctl->number(mk("control.depth_rate_mm_per_s"));
     c.depth.ki_per_s = ctl->number(mk("control.depth_ki_per_s"));

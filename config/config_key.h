@@ -72,8 +72,10 @@ constexpr ConfigKey required_integer_key(FileKind f, std::string_view table, std
   return {f, table, name, KeyType::kInteger, kNoDefault, min, max, "", meaning, {}, true};
 }
 constexpr ConfigKey bool_key(FileKind f, std::string_view table, std::string_view name,
-                             bool fallback, std::string_view meaning) {
-  return {f, table, name, KeyType::kBoolean, fallback ? 1.0 : 0.0, 0, 0, "", meaning, {}, false};
+                             bool fallback, std::string_view meaning,
+                             std::string_view default_text = {}) {
+  return {f,       table,        name, KeyType::kBoolean, fallback ? 1.0 : 0.0, 0, 0, "",
+          meaning, default_text, false};
 }
 // `fallback` is the value when the key is absent; `required` refuses a file without it.
 constexpr ConfigKey string_key(FileKind f, std::string_view table, std::string_view name,

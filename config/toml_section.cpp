@@ -214,6 +214,11 @@ bool TomlSection::boolean(const ConfigKey& k) {
   return boolean(std::string(k.name), k.fallback != 0.0);
 }
 
+bool TomlSection::boolean(const ConfigKey& k, bool fallback) {
+  own(k);
+  return boolean(std::string(k.name), fallback);
+}
+
 std::string TomlSection::string(const ConfigKey& k) {
   own(k);
   if (k.required && !has(std::string(k.name)))

@@ -42,6 +42,7 @@ class TomlSection {
   std::int64_t integer(const ConfigKey& k);
   std::int64_t integer(const ConfigKey& k, std::int64_t fallback);
   bool boolean(const ConfigKey& k);
+  bool boolean(const ConfigKey& k, bool fallback);
   std::string string(const ConfigKey& k);  // default_text when absent
   std::string string(const ConfigKey& k, const std::string& fallback);
   std::vector<std::string> strings(const ConfigKey& k);

@@ -64,7 +64,8 @@ std::string to_json(const LiveSample& s, const std::string& recording) {
         {std::string(signal_key("skips")), p.skips},
         {std::string(signal_key("multiples")), p.multiples},
         {std::string(signal_key("singulation_pct")), spaced ? number(p.singulation_pct) : nullptr},
-        {"empty_clamps_in_row", p.empty_clamps_in_row}}},
+        {"empty_clamps_in_row", p.empty_clamps_in_row},
+        {std::string(signal_key("damage_seen")), p.damage_seen}}},
       {"recording", recording.empty() ? nlohmann::json() : nlohmann::json(recording)}};
   return j.dump();
 }

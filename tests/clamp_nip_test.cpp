@@ -21,7 +21,7 @@ struct Nip {
   double law_N(double gap_mm) const {
     return gap_mm > 0 ? drive.clamp_k_N * std::pow(gap_mm, drive.clamp_n) : 0.0;
   }
-  NipStem stem(double d_mm, double peak_N = 1e9) const { return {d_mm, 0.98, peak_N, false}; }
+  NipStem stem(double d_mm, double peak_N = 1e9) const { return {d_mm, 0.98, peak_N, false, 1.0}; }
   double force(double gap_mm, NipStem&& s) const { return force(gap_mm, s); }
   double force(double gap_mm, NipStem& s) const {
     return nip.force_N(gap_mm, drive.clamp_k_N, drive.clamp_n, s, 50.0);
@@ -69,6 +69,34 @@ TEST(ClampNip, ACollapsingStemShowsTheDrop) {
   EXPECT_GE(at, n.law.residual_fraction * 100.0 - 1e-6);
   // Closed further, the flattened wall stiffens again.
   EXPECT_GT(n.force(6.0, s), at);
+}
+
+// While the lips close on a thick stem, it adds its share; half in, half its thickness.
+TEST(ClampNip, AStemComingInAddsItsShare) {
+  const Nip n;
+  const double gap = 4.0;
+  NipStem half = n.stem(12.0);
+  half.share = 0.5;
+  const double empty = n.force(gap, n.stem(10.0)), full = n.force(gap, n.stem(12.0));
+  const double partly = n.force(gap, half);
+  EXPECT_GT(partly, empty + 5.0);
+  EXPECT_LT(partly, full - 5.0);
+  NipStem none = n.stem(12.0);
+  none.share = 0.0;
+  EXPECT_NEAR(n.force(gap, none), empty, 1e-4);  // not yet touched: the law alone
+}
+
+// The stem carries the nip's force in its share: partly in, it holds a force past its peak.
+TEST(ClampNip, AStemPartlyInCarriesItsShareOfTheForce) {
+  const Nip n;
+  NipStem s = n.stem(10.0, 100.0);
+  s.share = 0.5;
+  const double f = n.force(5.5, s);  // some 120 N through the nip
+  ASSERT_GT(f, 100.0);
+  EXPECT_FALSE(s.collapsed);
+  s.share = 1.0;
+  n.force(5.5, s);
+  EXPECT_TRUE(s.collapsed);
 }
 
 TEST(ClampNip, NoContactReadsNothing) {

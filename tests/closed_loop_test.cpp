@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <vector>
 
 #include "firmware/canopen/cia402.h"
 #include "sim/plant/truth_columns.h"
@@ -476,4 +477,44 @@ TEST(Summary, ReadsBackWhatItWrote) {
   ASSERT_TRUE(s.monitor_fitted);
   const std::string text = s.to_json();
   EXPECT_EQ(Summary::from_json(text).to_json(), text);
+}
+
+// "Damage seen" (the clamp's reading of a wall giving way) against the simulator's truth, over
+// the field run with stems of 5-15 mm: each collapse the loop counts is laid against the stem
+// in the nip at that tick (or one just left it: the load cell's path is two ticks late).
+TEST(DamageSeen, FindsTheStemsThatCollapsedAndFewOthers) {
+  Scenario s = field();
+  s.plant.seedlings.diameter_min_mm = 5.0;
+  s.plant.seedlings.diameter_max_mm = 15.0;
+  LockstepRunner runner(s);
+  std::vector<std::size_t> seen_in;  // the stem in the nip (1-based) at each collapse seen
+  double last_seen = 0;
+  std::size_t last_in_nip = 0;
+  runner.set_observer([&](const TickRecord& row) {
+    if (row.truth.seedling_in_nip != 0) last_in_nip = row.truth.seedling_in_nip;
+    for (; last_seen < row.controller.planting.damage_seen; last_seen += 1.0)
+      seen_in.push_back(last_in_nip);
+  });
+  const Summary summary = runner.run();
+  const auto& stems = runner.plant().seedlings().seedlings();
+  std::vector<bool> found(stems.size() + 1, false);
+  int false_seen = 0;
+  for (const std::size_t id : seen_in) {
+    if (id == 0 || !stems[id - 1].damaged)
+      ++false_seen;
+    else
+      found[id] = true;
+  }
+  int damaged = 0, damaged_found = 0;
+  for (std::size_t i = 0; i < stems.size(); ++i) {
+    if (!stems[i].damaged) continue;
+    ++damaged;
+    damaged_found += found[i + 1] ? 1 : 0;
+  }
+  std::printf("damage seen: %d of %d damaged stems found, %d false of %zu stems\n", damaged_found,
+              damaged, false_seen, stems.size());
+  ASSERT_GE(damaged, 10) << "too few damaged stems to judge";
+  EXPECT_GE(damaged_found, 0.9 * damaged);
+  EXPECT_LT(false_seen, 0.01 * static_cast<double>(stems.size()));
+  EXPECT_EQ(summary.monitor.damage_seen, static_cast<double>(seen_in.size()));
 }

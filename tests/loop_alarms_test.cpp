@@ -58,6 +58,17 @@ const Case kCases[] = {
 
 }  // namespace
 
+// A stem giving way is said the tick it is seen, held for the operator's glance.
+TEST(LoopAlarms, AStemGivingWayIsSaidAtOnce) {
+  const LoopAlarmConfig cfg;
+  LoopAlarms a{cfg};
+  LoopAlarmInputs in = gripping();
+  in.clamp.stem_gave_way = true;
+  EXPECT_EQ(a.update(in), warning::kStemGaveWay);
+  EXPECT_EQ(hold(a, gripping(), cfg.hold_s - 0.1), warning::kStemGaveWay);
+  EXPECT_EQ(hold(a, gripping(), 0.2), 0u);
+}
+
 TEST(LoopAlarms, NominalRaisesNothing) {
   LoopAlarms a{LoopAlarmConfig{}};
   EXPECT_EQ(hold(a, gripping(), 10.0), 0u);

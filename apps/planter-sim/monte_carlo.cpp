@@ -8,8 +8,10 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
+#include "apps/planter-sim/grip_benchmark.h"
 #include "apps/planter-sim/latin_hypercube.h"
 #include "apps/planter-sim/run_figures.h"
 #include "apps/planter-sim/sweep.h"
@@ -47,6 +49,18 @@ Distribution distribution_of(std::vector<double> v) {
   return d;
 }
 
+// "5-15" -> {5, 15}, within the scenario keys' range; a clear message otherwise.
+std::pair<double, double> stems_range_mm(const std::string& text) {
+  double lo = 0, hi = 0;
+  char dash = 0;
+  std::istringstream in(text);
+  if (!(in >> lo >> dash >> hi) || dash != '-' || !in.eof() || !(lo >= 1.0) || !(hi <= 30.0) ||
+      !(lo <= hi))
+    throw std::runtime_error("--stems-mm: '" + text +
+                             "' is not MIN-MAX in mm with 1 <= MIN <= MAX <= 30 (e.g. 5-15)");
+  return {lo, hi};
+}
+
 }  // namespace
 
 int run_monte_carlo(const std::string& scenario_path, const std::string& out_dir,
@@ -72,10 +86,17 @@ int run_monte_carlo(const std::string& scenario_path, const std::string& out_dir
                               values[f].low + coded[i][f] * (values[f].high - values[f].low));
     plan.runs.push_back(run);
   }
+  if (!o.stems_mm.empty()) {
+    const auto [lo, hi] = stems_range_mm(o.stems_mm);
+    for (PlannedRun& run : plan.runs)
+      run.disturbances = {{"seedlings.diameter_min_mm", lo}, {"seedlings.diameter_max_mm", hi}};
+  }
+  if (o.grip) add_grip_benchmark_runs(plan, n);
   std::fprintf(stderr,
-               "planter-sim montecarlo: %zu runs of %.0f m (a Latin hypercube over %zu values, "
-               "one seed a run)\n",
-               n, o.distance_m, k);
+               "planter-sim montecarlo: %zu draws of %.0f m (a Latin hypercube over %zu values, "
+               "one seed a draw)%s\n",
+               n, o.distance_m, k,
+               o.grip ? ", each also at every constant force of the sweep's trade-off" : "");
   const std::vector<Summary> all =
       execute_plan(runs_folder(out_dir) + "/runs", plan, executor_for(o.executor, o.jobs, o.force),
                    "montecarlo");
@@ -118,6 +139,12 @@ int run_monte_carlo(const std::string& scenario_path, const std::string& out_dir
   }
   j["paper"] = {{"uprightness_pct", kPaperCentreUprightness_pct},
                 {"damage_pct", kPaperCentreDamage_pct}};
+  GripBenchmark grip;
+  if (o.grip) {
+    grip = grip_benchmark(all, n);
+    j["grip_benchmark"] = grip.json;
+    out.write("grip_benchmark.csv", grip.csv);
+  }
   out.write("montecarlo.csv", csv.str());
   out.write("montecarlo.json", j.dump(2) + "\n");
   out.commit();
@@ -134,6 +161,7 @@ int run_monte_carlo(const std::string& scenario_path, const std::string& out_dir
       "paper: %.1f %% and %.0f %%, a comparison and not a target\n",
       dist[0].p5, dist[0].p95, dist[1].p5, dist[1].p95, kPaperCentreUprightness_pct,
       kPaperCentreDamage_pct);
+  if (o.grip) std::printf("%s\n", grip.line.c_str());
   return 0;
 }
 

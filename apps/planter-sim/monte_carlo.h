@@ -17,6 +17,10 @@ struct MonteCarloOptions {
   int jobs = 0;              // runs at a time (0: one per core)
   bool force = false;
   ExecutorOptions executor;
+  // Each draw also against each constant force of the sweep's trade-off (grip_benchmark.h).
+  bool grip = false;
+  // Stems of this diameter range in every run, "MIN-MAX" in mm (empty: the scenario's).
+  std::string stems_mm;
 };
 
 // Writes OUT/{montecarlo.csv,montecarlo.json}; prints each figure's mean with its standard

@@ -78,6 +78,8 @@ void print_summary(const Summary& s) {
   std::printf("uprightness         %.2f %%, %d lodged   (paper: 94.8 predicted, 93.86 field)\n",
               s.uprightness_pct, s.seedlings_lodged);
   std::printf("damage rate         %.2f %%   (paper: 3 predicted, 2.76 field)\n", s.damage_pct);
+  std::printf("damage seen         %.0f by the clamp's reading (truth: %d damaged)\n",
+              s.monitor.damage_seen, s.seedlings_damaged);
   if (s.seedlings_damaged > 0)
     std::printf(
         "damaged seedlings   mean strength %.1f N, %d below the weakest measured (%.1f N)\n",
@@ -292,6 +294,11 @@ int main(int argc, char** argv) {
   monte_carlo->add_option("--runs", monte_carlo_options.runs, "runs (seasons) to draw")
       ->capture_default_str()
       ->check(planter::config::finite_range(2, 100000));
+  monte_carlo->add_flag("--grip", monte_carlo_options.grip,
+                        "also run each draw at every constant clamp force of the sweep's "
+                        "trade-off: does gripping each stem halve the damage?");
+  monte_carlo->add_option("--stems-mm", monte_carlo_options.stems_mm,
+                          "stems of this diameter range in every run, MIN-MAX (e.g. 5-15)");
   RobustnessOptions robustness_options;
   auto* robustness = add_study(
       app, "robustness",

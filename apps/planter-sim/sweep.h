@@ -33,6 +33,9 @@ std::vector<PlannedRun> design_runs(const Scenario& base, const PlannedRun& at);
 // The sweep's and the sensitivity analysis's executor for `--jobs` and `--force`.
 ExecutorOptions executor_for(const ExecutorOptions& o, int jobs, bool force);
 
+// The clamp force set-points of the grip's trade-off (the sweep's centre, the grip benchmark).
+inline constexpr double kClampForceCurve_N[] = {40.0, 60.0, 80.0, 90.0, 100.0, 120.0};
+
 // Writes OUT/{sweep.csv,sweep.json,report.html}; prints the figures, the optimum last.
 int run_sweep(const std::string& scenario_path, const std::string& out_dir, const SweepOptions& o);
 

@@ -4,12 +4,16 @@
 #include <cmath>
 
 namespace planter {
+namespace {
+// Below this the law's inverse is steep and the load cell's noise reads as millimetres.
+constexpr double kStemReadMinN = 10.0;
+}  // namespace
 
 void ClampForceLoop::reset() {
   ramped_setpoint_N_ = 0.0;
   integral_mm_ = 0.0;
   status_ = ClampStatus{};
-  has_last_ = false;
+  stem_.reset();
 }
 
 double ClampForceLoop::model_slope_N_per_mm(double position_mm) const {
@@ -17,19 +21,17 @@ double ClampForceLoop::model_slope_N_per_mm(double position_mm) const {
          std::pow(std::max(0.1, position_mm - cfg_.model_x0_mm), cfg_.model_n - 1.0);
 }
 
-void ClampForceLoop::read_stem(double force_N, double roller_mm, bool gripping) {
-  if (gripping && has_last_ && cfg_.stem_step_N > 0.0) {
-    const double slope = model_slope_N_per_mm(roller_mm);
-    const double step_N = (force_N - last_force_N_) - slope * (roller_mm - last_roller_mm_);
-    if (std::abs(step_N) > cfg_.stem_step_N) {
-      // The gap the law sees moved by step / slope: the roller follows it now.
-      integral_mm_ -= step_N / slope;
-      ++stems_read_;
-    }
-  }
-  last_force_N_ = force_N;
-  last_roller_mm_ = roller_mm;
-  has_last_ = true;
+double ClampForceLoop::stem_ceiling_N(double rim_speed_mm_per_s) const {
+  const double d_mm = stem_.diameter_mm(rim_speed_mm_per_s);
+  const double d_ref_mm = cfg_.stem.reference_diameter_mm;
+  return ceiling_share_ * (d_mm > d_ref_mm ? cfg_.ceiling_N * d_ref_mm / d_mm : cfg_.ceiling_N);
+}
+
+void ClampForceLoop::learn_from_collapses(double dt_s) {
+  const long seen = stem_.collapses();
+  for (; collapses_taken_ < seen; ++collapses_taken_) ceiling_share_ *= 1.0 - cfg_.collapse_backoff;
+  ceiling_share_ =
+      std::clamp(ceiling_share_ + cfg_.backoff_recovery_per_s * dt_s, cfg_.backoff_floor, 1.0);
 }
 
 double ClampForceLoop::model_position_mm(double force_N) const {
@@ -42,19 +44,25 @@ double ClampForceLoop::model_force_N(double position_mm) const {
   return compression > 0.0 ? cfg_.model_k_N * std::pow(compression, cfg_.model_n) : 0.0;
 }
 
-double ClampForceLoop::update(double force_N, double roller_mm, double dt_s, bool enabled) {
+double ClampForceLoop::update(double force_N, double roller_mm, double rim_speed_mm_per_s,
+                              double dt_s, bool enabled) {
   if (!enabled) {
     reset();
     return cfg_.release_position_mm;
   }
-  // Never aim closer than 5 % below the ceiling; back off from 3 % below it.
-  const double target = std::min(cfg_.setpoint_N, 0.95 * cfg_.ceiling_N);
+  // The stem in the nip, read once the lips carry a force the law resolves.
+  const long collapses_before = stem_.collapses();
+  if (force_N > kStemReadMinN) stem_.update(model_position_mm(force_N) - roller_mm, dt_s);
+  if (cfg_.per_stem_grip) learn_from_collapses(dt_s);
+  // Never aim closer than 5 % below the ceiling (the stem's own, per_stem_grip); back off from
+  // 3 % below the machine's.
+  const double ceiling_N = cfg_.per_stem_grip ? stem_ceiling_N(rim_speed_mm_per_s) : cfg_.ceiling_N;
+  const double target = std::min(cfg_.setpoint_N, 0.95 * ceiling_N);
   const double guard_N = 0.97 * cfg_.ceiling_N;
   ramped_setpoint_N_ = std::min(target, ramped_setpoint_N_ + cfg_.ramp_N_per_s * dt_s);
   const double error = ramped_setpoint_N_ - force_N;
-  const double feed_forward = model_position_mm(ramped_setpoint_N_);
+  const double feed_forward = model_position_mm(ramped_setpoint_N_) - stem_.stem_ahead_mm();
   const bool ramped = ramped_setpoint_N_ >= target - 1e-9;
-  read_stem(force_N, roller_mm, ramped);
 
   // The ceiling's second path: the roller never goes past where the law gives the guard force,
   // whatever the load cell says. A fixed position: it does not move with the trim.
@@ -76,7 +84,8 @@ double ClampForceLoop::update(double force_N, double roller_mm, double dt_s, boo
   } else {
     integral_mm_ += cfg_.ki_mm_per_Ns * error * dt_s;
   }
-  status_ = {true, ramped, at_travel, ceiling, model_N, force_N};
+  status_ = {
+      true, ramped, at_travel, ceiling, model_N, force_N, stem_.collapses() > collapses_before};
   return limited;
 }
 

@@ -6,6 +6,8 @@
 // when the command is limited, the integral is set to what gives the limited command, so the
 // loop neither winds up into a limit nor latches at one.
 
+#include "firmware/control/stem_reader.h"
+
 namespace planter {
 
 struct ClampLoopConfig {
@@ -17,12 +19,23 @@ struct ClampLoopConfig {
   // roller's 0.05 s lag and the two ticks of the load cell's path (docs/control.md).
   double kp_mm_per_N = 0.017;
   double ki_mm_per_Ns = 0.28;
-  // A stem entering or leaving the nip steps the force while the roller stands (the nip's law,
-  // sim/plant/clamp_nip.h): a step beyond this, less what the roller's own move explains through
-  // the law's slope, is read as that stem's added compression and taken into the trim at once
-  // (docs/control.md). Above the load cell's noise between two ticks (1 N each: 1.4 N) by four
-  // times; 0 turns the reading off.
-  double stem_step_N = 6.0;
+  // The stem in the nip, read each tick (stem_reader.h): what it adds to the law's compression
+  // goes into the feed-forward, and with per_stem_grip each stem is gripped under its own
+  // ceiling: the machine's ceiling, held by the reference stem, over the stem's diameter
+  // relative to it. The nip loads a stem over contact area / diameter of its length, so a
+  // thicker one carries more per millimetre at the same force; the paper measures no relation
+  // of strength to diameter, so none is taken (assumed; docs/control.md). Off: one set-point.
+  StemReaderConfig stem;
+  bool per_stem_grip = true;
+  // A collapse seen says this batch is weaker than the ceiling assumes: every stem's ceiling is
+  // lowered by this share, thickest stems first (theirs is lowest), and comes back at the rate
+  // below. In balance one collapse in 1 / (rate / share) = 50 s: about 1 % of the stems at the
+  // paper's pace of two a second. Set once (assumed), not tuned. Never below half the machine's
+  // ceiling: 60 N, where the sweep's trade-off has uprightness some 7 points under its plateau,
+  // so the soil's grip is given up no further (docs/control.md).
+  double collapse_backoff = 0.05;
+  double backoff_recovery_per_s = 0.001;
+  double backoff_floor = 0.5;
   double position_min_mm = 0.0;
   double position_max_mm = 12.0;
   double release_position_mm = 0.0;  // roller position when not clamping
@@ -40,6 +53,7 @@ struct ClampStatus {
   bool ceiling = false;      // either path above the ceiling's margin
   double model_force_N = 0;  // the clamp law at the roller's measured position
   double measured_N = 0;
+  bool stem_gave_way = false;  // a collapse seen this tick (damage seen)
 };
 
 class ClampForceLoop {
@@ -47,8 +61,10 @@ class ClampForceLoop {
   explicit ClampForceLoop(const ClampLoopConfig& config) : cfg_(config) {}
 
   void reset();
-  // Returns the roller position command in mm. `enabled` false -> release position.
-  double update(double force_measured_N, double roller_mm, double dt_s, bool enabled);
+  // Returns the roller position command in mm. `enabled` false -> release position. The rim's
+  // speed tells how soon a stem coming under the roller is in (StemReaderConfig::entry_mm).
+  double update(double force_measured_N, double roller_mm, double rim_speed_mm_per_s, double dt_s,
+                bool enabled);
 
   [[nodiscard]] double setpoint_N() const { return ramped_setpoint_N_; }
   // The force to clamp at (an increase ramps, a decrease is taken at once).
@@ -62,20 +78,24 @@ class ClampForceLoop {
   [[nodiscard]] double model_force_N(double position_mm) const;
   // The law's slope (N/mm) at a roller position, floored where the law is flat.
   [[nodiscard]] double model_slope_N_per_mm(double position_mm) const;
-  // Stems read in the nip since the start (steps taken into the trim).
-  [[nodiscard]] long stems_read() const { return stems_read_; }
+  [[nodiscard]] const StemReader& stem() const { return stem_; }
+  // The force this stem may be gripped with: the machine's ceiling over its diameter's ratio to
+  // the reference (never above the ceiling); the set-point stays below it by 5 %.
+  [[nodiscard]] double stem_ceiling_N(double rim_speed_mm_per_s) const;
+  // The share of the ceiling the collapses seen have left (1: none lately).
+  [[nodiscard]] double ceiling_share() const { return ceiling_share_; }
 
  private:
   ClampLoopConfig cfg_;
   double ramped_setpoint_N_ = 0.0;
   double integral_mm_ = 0.0;
   ClampStatus status_;
-  double last_force_N_ = 0.0, last_roller_mm_ = 0.0;
-  bool has_last_ = false;
-  long stems_read_ = 0;
+  StemReader stem_{cfg_.stem};
+  // Kept while the clamp opens and closes: it is the batch's, not the stem's.
+  double ceiling_share_ = 1.0;
+  long collapses_taken_ = 0;
 
-  // The step a stem makes in the force, taken into the trim (stem_step_N).
-  void read_stem(double force_N, double roller_mm, bool gripping);
+  void learn_from_collapses(double dt_s);
 };
 
 }  // namespace planter

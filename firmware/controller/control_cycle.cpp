@@ -32,6 +32,7 @@ void ControlCycle::tick(std::int64_t now_ns, std::int64_t dt_ns) {
   telemetry_.overruns = controller_.overruns();
   telemetry_.warnings = controller_.warnings();
   telemetry_.planting = controller_.planting();
+  telemetry_.planting.damage_seen = static_cast<double>(controller_.damage_seen());
 }
 
 }  // namespace planter

@@ -139,12 +139,13 @@ void Controller::decide_outputs(const MachineState& in, SupervisorState state, d
   double clamp_pos_cmd = cfg_.clamp.release_position_mm;
   double depth_cmd = cfg_.depth.raised_mm;
   const double force_N = load_cell_zero_.corrected_N(in.clamp_force_N);
+  const double rim_mm_per_s = std::abs(in.omega_radps) * cfg_.sigma.disc_radius_m * 1e3;
   if (state == SupervisorState::kRunning) {
     omega_cmd = sigma_loop_.update(in.distance_m, in.v_wheel_mps, in.disc_angle_rad, dt_s);
-    clamp_pos_cmd = clamp_loop_.update(force_N, in.clamp_pos_mm, dt_s, !zeroing_);
+    clamp_pos_cmd = clamp_loop_.update(force_N, in.clamp_pos_mm, rim_mm_per_s, dt_s, !zeroing_);
     depth_cmd = depth_loop_.update(in.depth_mm, dt_s, true);
   } else if (state == SupervisorState::kStopping) {
-    clamp_pos_cmd = clamp_loop_.update(force_N, in.clamp_pos_mm, dt_s, !zeroing_);
+    clamp_pos_cmd = clamp_loop_.update(force_N, in.clamp_pos_mm, rim_mm_per_s, dt_s, !zeroing_);
     depth_cmd = depth_loop_.update(in.depth_mm, dt_s, true);
   } else if (state == SupervisorState::kFault || state == SupervisorState::kEStop) {
     // Safe outputs: every drive quick-stops where it is; commands are held at the measured values.

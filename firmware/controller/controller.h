@@ -37,6 +37,8 @@ class Controller {
   void request_stop() { stop_requested_ = true; }
   void request_fault_reset() { reset_requested_ = true; }
 
+  // Stems whose wall the clamp loop saw give way since start.
+  [[nodiscard]] long damage_seen() const { return clamp_loop_.stem().collapses(); }
   [[nodiscard]] SupervisorState state() const { return supervisor_.state(); }
   [[nodiscard]] std::uint32_t faults() const { return supervisor_.latched_faults(); }
   // Latched faults and those seen in the last update.

@@ -148,6 +148,9 @@ inline constexpr std::array kSignals = {
                            &PlantingFigures::multiples),
     signal_decl::monitored("singulation_pct", "%", "100 - skips - multiples, in % of spacings", 2,
                            &PlantingFigures::singulation_pct),
+    signal_decl::monitored("damage_seen", "count",
+                           "stems whose wall the clamp saw give way since start", 0,
+                           &PlantingFigures::damage_seen),
     // The operator's set-point, which the depth command ramps to (firmware/control/
     // furrow_depth_loop.h): a change from the console shows here on the next tick.
     signal_decl::commanded("depth_target_mm", "mm", "furrow depth target (operator's set-point)", 1,

@@ -45,6 +45,9 @@ struct PlantingFigures {
   // seedling of a stretch: before it, the disc is still carrying the first seedlings down.
   double empty_clamps_in_row = 0;
   bool empty_belt = false;  // empty_clamps_in_row >= empty_clamps_to_warn: a warning, not a fault
+  // Stems whose wall the clamp saw give way since start (firmware/control/stem_reader.h): not
+  // the photo-eye's, but counted with the planting so the operator reads them together.
+  double damage_seen = 0;
 };
 
 class PlantingMonitor {

@@ -21,7 +21,7 @@ bool LoopAlarms::Timer::update(bool condition, double dt_s, double delay_s, doub
 }
 
 void LoopAlarms::reset() {
-  too_fast_ = lagging_ = short_ = disagrees_ = ceiling_ = depth_ = depth_off_ = Timer{};
+  too_fast_ = lagging_ = short_ = disagrees_ = ceiling_ = depth_ = depth_off_ = gave_way_ = Timer{};
   weak_grip_angle_rad_ = -1e9;
   gripping_s_ = disagree_lp_N_ = disagree_ref_N_ = 0;
   drift_ref_taken_ = false;
@@ -57,6 +57,8 @@ std::uint32_t LoopAlarms::update(const LoopAlarmInputs& in) {
   }
   if (disagrees_.update(gripping && disagree, dt, 0.5, hold)) w |= warning::kLoadCellDisagrees;
   if (ceiling_.update(run && c.ceiling, dt, 0.1, hold)) w |= warning::kClampAtCeiling;
+  // A stem's wall seen to give way (damage seen): at once, the tick it is seen.
+  if (gave_way_.update(c.stem_gave_way, dt, 0.0, hold)) w |= warning::kStemGaveWay;
   // Empty clamps: dropped seedlings when the grip was weak within a carry, else an empty belt.
   if (gripping && c.measured_N < cfg_.weak_grip_share * in.clamp_setpoint_N)
     weak_grip_angle_rad_ = in.disc_angle_rad;

@@ -63,7 +63,7 @@ class LoopAlarms {
     bool update(bool condition, double dt_s, double delay_s, double hold_s);
   };
   LoopAlarmConfig cfg_;
-  Timer too_fast_, lagging_, short_, disagrees_, ceiling_, depth_, depth_off_;
+  Timer too_fast_, lagging_, short_, disagrees_, ceiling_, depth_, depth_off_, gave_way_;
   double weak_grip_angle_rad_ = -1e9;
   double gripping_s_ = 0;      // since the grip began
   double disagree_lp_N_ = 0;   // the disagreement's slow mean

@@ -20,7 +20,8 @@ const char* warning::name(int bit) {
                                                  "clamp force at its ceiling",
                                                  "seedlings falling from the clamp",
                                                  "opener at its end stop",
-                                                 "furrow depth off by more than 2 mm"};
+                                                 "furrow depth off by more than 2 mm",
+                                                 "a stem gave way in the clamp"};
   return bit >= 0 && bit < kCount ? kNames[bit] : "";
 }
 

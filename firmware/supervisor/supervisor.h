@@ -45,11 +45,12 @@ constexpr std::uint32_t kClampAtCeiling = 1u << 5;     // force held back at the
 constexpr std::uint32_t kSeedlingsFalling = 1u << 6;   // empty clamps after a weak grip
 constexpr std::uint32_t kDepthUnreachable = 1u << 7;   // the opener at its end stop, depth short
 constexpr std::uint32_t kDepthOffBand = 1u << 8;       // the measured depth out of its band
-constexpr int kCount = 9;
+constexpr std::uint32_t kStemGaveWay = 1u << 9;        // a stem's wall collapsed in the clamp
+constexpr int kCount = 10;
 // Which alarms speak for which loop (the disturbance suite's verdicts read these).
 constexpr std::uint32_t kSigmaAlarms = kTooFastForDisc | kDiscLagging;
 constexpr std::uint32_t kClampAlarms =
-    kClampShort | kLoadCellDisagrees | kClampAtCeiling | kSeedlingsFalling;
+    kClampShort | kLoadCellDisagrees | kClampAtCeiling | kSeedlingsFalling | kStemGaveWay;
 constexpr std::uint32_t kDepthAlarms = kDepthUnreachable | kDepthOffBand;
 // The name of warning bit `bit` (0-based), in the operator's words; "" past the last.
 const char* name(int bit);

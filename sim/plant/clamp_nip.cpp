@@ -21,8 +21,8 @@ double ClampNip::stem_compression_mm(const NipStem& stem, double force_N) const 
 }
 
 double ClampNip::added_compression_mm(const NipStem& stem, double force_N) const {
-  return gain_ * (stem.diameter_mm - ref_d_mm_) - stem_compression_mm(stem, force_N) +
-         intact_compression_mm(ref_d_mm_, ref_a_, force_N);
+  return stem.share * (gain_ * (stem.diameter_mm - ref_d_mm_) - stem_compression_mm(stem, force_N) +
+                       intact_compression_mm(ref_d_mm_, ref_a_, force_N));
 }
 
 // The stem's compression at F, the intact branch or past its collapse, and its slope
@@ -51,7 +51,8 @@ double ClampNip::force_N(double gap_mm, double k_N, double n, NipStem& stem, dou
   // touch when it is positive. h falls as F rises (the law's compression grows faster than the
   // two stems' difference), so Newton from the last step's force, kept inside the bracket
   // [lo, hi] that the signs of h build, converges in a few steps; bisection where it would leave.
-  const double touch_mm = gap_mm + gain_ * (stem.diameter_mm - ref_d_mm_);
+  const double share = stem.share;
+  const double touch_mm = gap_mm + share * gain_ * (stem.diameter_mm - ref_d_mm_);
   if (touch_mm <= 0.0) return 0.0;
   auto solve = [&]() {
     double lo = 0.0, hi = kForceMaxN;
@@ -60,8 +61,9 @@ double ClampNip::force_N(double gap_mm, double k_N, double n, NipStem& stem, dou
       const Compression stem_c = stem_compression(stem, f);
       const double ref_mm = intact_compression_mm(ref_d_mm_, ref_a_, f);
       const double law_mm = std::pow(f / k_N, 1.0 / n);
-      const double hf = touch_mm - stem_c.mm + ref_mm - law_mm;
-      const double slope = -stem_c.mm_per_N + ref_mm / (law_.exponent * f) - law_mm / (n * f);
+      const double hf = touch_mm - share * (stem_c.mm - ref_mm) - law_mm;
+      const double slope =
+          share * (-stem_c.mm_per_N + ref_mm / (law_.exponent * f)) - law_mm / (n * f);
       if (hf > 0.0)
         lo = f;
       else
@@ -75,7 +77,8 @@ double ClampNip::force_N(double gap_mm, double k_N, double n, NipStem& stem, dou
     return f;
   };
   double f = solve();
-  if (!stem.collapsed && f > stem.peak_N) {
+  // The stem carries the nip's force in its share; the rest passes from lip to lip beside it.
+  if (!stem.collapsed && share * f > stem.peak_N) {
     stem.collapsed = true;  // the wall gives: the same gap now carries less
     f = solve();
   }

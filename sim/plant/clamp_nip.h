@@ -17,8 +17,9 @@
 // from there (the DEM's curve after its drop densifies, models/seedling_dem.toml; the form of
 // that rise is assumed: the intact law from the peak's compression). The force through the nip
 // then drops: the load cell sees the collapse. The DEM's damping term (1e-4 N s/mm) is left out.
-// An empty nip reads the law at g (d - d_ref) = 0, as a reference stem would: the lips' own law
-// alone is not known apart from the calibration (docs/simulator.md).
+// While the lips close on the stem and open again, what it adds comes in and goes out in
+// proportion (NipStem::share). An empty nip reads the law at g (d - d_ref) = 0, as a reference stem
+// would: the lips' own law alone is not known apart from the calibration (docs/simulator.md).
 #include "sim/seedling/seedling_force_model.h"
 
 namespace planter::sim {
@@ -29,6 +30,11 @@ struct NipStem {
   double load_factor = 1.0;  // a = w / L_test: the nip's force per unit of the test's force
   double peak_N = 0.0;       // its first peak at the nip's scale (a times its strength)
   bool collapsed = false;    // its wall has passed the first peak
+  // How far the lips have closed on it (0-1): what it adds to the law's compression, thickness
+  // and compliance alike, and the share of the nip's force it carries (the rest passes from lip
+  // to lip beside it), while it comes under the roller and leaves (assumed linear:
+  // mechanism.nip_entry_mm).
+  double share = 1.0;
 };
 
 class ClampNip {

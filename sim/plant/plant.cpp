@@ -96,11 +96,13 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   const double clamp_k_N = cfg_.drive.clamp_k_N * fx.changed(fx.clamp_stiffness_change_pct, t);
   const double gap_mm = roller_.position_mm() - cfg_.drive.clamp_x0_mm;
   double nip_mm = 0.0, elastic = 0.0;
-  if (const auto nip = seedlings_.nip_force(gap_mm, clamp_k_N, cfg_.drive.clamp_n, t, elastic_N_)) {
+  const SeedlingProcess::NipClock nip_now{t, disc_.disc_angle(), disc_.disc_omega()};
+  if (const auto nip =
+          seedlings_.nip_force(gap_mm, clamp_k_N, cfg_.drive.clamp_n, nip_now, elastic_N_)) {
     nip_mm = nip->added_mm;
     elastic = nip->force_N;
   } else {
-    nip_mm = seedlings_.nip_thickness_mm(t);
+    nip_mm = seedlings_.nip_thickness_mm(nip_now);
     if (const double squeezed_mm = std::max(0.0, gap_mm + nip_mm);
         squeezed_mm != clamp_compression_mm_) {
       clamp_compression_mm_ = squeezed_mm;

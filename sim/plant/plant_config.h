@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "firmware/control/stem_reader.h"
 #include "sim/seedling/measured_strength.h"
 #include "sim/seedling/seedling_force_model.h"
 #include "sim/soil/opener_draft.h"
@@ -57,7 +58,7 @@ struct SoilConfig {
 struct SeedlingSpread {
   double length_min_mm = 182.6, length_max_mm = 210.8;
   double diameter_min_mm = 8.3, diameter_max_mm = 11.4;
-  double reference_diameter_mm = 10.0;
+  double reference_diameter_mm = StemReaderConfig{}.reference_diameter_mm;
   // Along the disc rim; planted spacing = pitch / sigma. The machine's clamp pitch
   // (machines/*.toml [planting_monitor] clamp_pitch_mm): the Plant sets it from the board.
   double feed_pitch_mm = 0.0;
@@ -99,6 +100,10 @@ struct MechanismConfig {
   double protrusion_band_mm = 40.0;
   double carry_angle_deg = 150.0;  // pickup to release
   double nip_time_s = 0.3;         // how long a seedling stays in the roller nip
+  // The rim's travel over which the lips close on a stem as it comes under the roller, and open
+  // as it leaves (the controller's reading takes the same declared value). The stem's share in
+  // the nip grows linearly over it (assumed form).
+  double nip_entry_mm = StemReaderConfig{}.entry_mm;
   // The release (sim/plant/seedling_release.h). None of these is tuned: the first three are set
   // once, before any sweep, as the paper gives no value for them; the rest are the paper's or
   // assumed. (The one calibrated value of the release is the seedlings' tilt_noise_deg.)
@@ -129,7 +134,9 @@ struct DriveModelConfig {
   double clamp_k_N = 14.85;  // F = k (x - x0)^n, x in mm
   double clamp_x0_mm = 2.0;
   double clamp_n = 1.3;
-  double seedling_thickness_gain = 0.5;  // extra lip compression per mm of seedling over reference
+  // Extra lip compression per mm of seedling over reference; the controller's reading takes the
+  // same declared value (firmware/control/stem_reader.h).
+  double seedling_thickness_gain = StemReaderConfig{}.thickness_gain;
   double force_noise_N = 1.0;
   double depth_travel_max_mm = 165.0;  // mechanical end stop of the opener actuator
 };

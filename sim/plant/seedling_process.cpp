@@ -29,21 +29,32 @@ SeedlingProcess::SeedlingProcess(const PlantConfig& config, std::uint64_t seed)
                  cfg_.drive.seedling_thickness_gain);
 }
 
+double SeedlingProcess::nip_share(const Seedling& s, const NipClock& now) const {
+  const double entry_mm = cfg_.mechanism.nip_entry_mm;
+  if (!(entry_mm > 0.0)) return 1.0;
+  const double in_mm = (now.disc_angle_rad - s.pickup_angle_rad) * cfg_.disc_radius_m * 1e3;
+  const double out_mm = (s.pickup_time_s + cfg_.mechanism.nip_time_s - now.t_s) *
+                        std::abs(now.omega_radps) * cfg_.disc_radius_m * 1e3;
+  return std::clamp(std::min(in_mm, out_mm) / entry_mm, 0.0, 1.0);
+}
+
 std::optional<SeedlingProcess::NipForce> SeedlingProcess::nip_force(double gap_mm, double k_N,
-                                                                    double n, double t_s,
+                                                                    double n, const NipClock& now,
                                                                     double guess_N) {
-  if (!nip_ || seedling_in_nip(t_s) == 0) return std::nullopt;
-  NipStem& stem = seedlings_.back().nip;
+  if (!nip_ || seedling_in_nip(now.t_s) == 0) return std::nullopt;
+  Seedling& s = seedlings_.back();
+  NipStem& stem = s.nip;
+  stem.share = nip_share(s, now);
   const double f = nip_->force_N(gap_mm, k_N, n, stem, guess_N);
   return NipForce{f, nip_->added_compression_mm(stem, f)};
 }
 
-double SeedlingProcess::nip_thickness_mm(double t_s) const {
+double SeedlingProcess::nip_thickness_mm(const NipClock& now) const {
   if (seedlings_.empty()) return 0.0;
   const Seedling& s = seedlings_.back();
-  if (t_s - s.pickup_time_s > cfg_.mechanism.nip_time_s) return 0.0;
-  return std::max(0.0, (s.diameter_mm - cfg_.seedlings.reference_diameter_mm) *
-                           cfg_.drive.seedling_thickness_gain);
+  if (now.t_s - s.pickup_time_s > cfg_.mechanism.nip_time_s) return 0.0;
+  return nip_share(s, now) * std::max(0.0, (s.diameter_mm - cfg_.seedlings.reference_diameter_mm) *
+                                               cfg_.drive.seedling_thickness_gain);
 }
 
 std::size_t SeedlingProcess::seedling_in_nip(double t_s) const {
@@ -109,12 +120,12 @@ void SeedlingProcess::step(double disc_angle_rad, double clamp_force_N,
   if (!seedlings_.empty()) {
     Seedling& s = seedlings_.back();
     if (now.t_s - s.pickup_time_s <= mc.nip_time_s) {
-      s.peak_force_N =
-          std::max(s.peak_force_N, clamp_force_N * nip_load_factor(cfg_, s.diameter_mm));
+      const double carried_N = nip_ ? s.nip.share * clamp_force_N : clamp_force_N;
+      s.peak_force_N = std::max(s.peak_force_N, carried_N * nip_load_factor(cfg_, s.diameter_mm));
       if (nip_) {
         s.damaged = s.nip.collapsed;
         s.peak_compression_mm =
-            std::max(s.peak_compression_mm, nip_->stem_compression_mm(s.nip, clamp_force_N));
+            std::max(s.peak_compression_mm, nip_->stem_compression_mm(s.nip, carried_N));
       } else {
         s.damaged = s.peak_force_N > s.strength_N;
       }

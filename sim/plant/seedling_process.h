@@ -55,9 +55,16 @@ class SeedlingProcess {
   // Called every step with the disc's angle; picks up and releases seedlings.
   void step(double disc_angle_rad, double clamp_force_N, const ReleaseConditions& now,
             double vibration_tilt_deg);
+  // Where the nip is now: the time and the disc's angle and speed, for how far the lips have
+  // closed on the stem in it (mechanism.nip_entry_mm).
+  struct NipClock {
+    double t_s = 0;
+    double disc_angle_rad = 0;
+    double omega_radps = 0;
+  };
   // Extra lip compression (mm) from the seedling currently in the nip, for the clamp model
   // without the DEM's law: its thickness over the reference diameter's.
-  [[nodiscard]] double nip_thickness_mm(double t_s) const;
+  [[nodiscard]] double nip_thickness_mm(const NipClock& now) const;
   // With the DEM's law (clamp_nip.h): the clamp's force at the law's gap x - x0 (law k_N, n)
   // with the stem in the nip now, which may collapse; nullopt when the nip is empty or the
   // scenario names no law. `added_mm` is what the stem adds to the law's compression.
@@ -65,8 +72,8 @@ class SeedlingProcess {
     double force_N;
     double added_mm;
   };
-  [[nodiscard]] std::optional<NipForce> nip_force(double gap_mm, double k_N, double n, double t_s,
-                                                  double guess_N);
+  [[nodiscard]] std::optional<NipForce> nip_force(double gap_mm, double k_N, double n,
+                                                  const NipClock& now, double guess_N);
   // The seedling in the nip now, counted from 1 (0: the nip is empty).
   [[nodiscard]] std::size_t seedling_in_nip(double t_s) const;
 
@@ -76,6 +83,9 @@ class SeedlingProcess {
   [[nodiscard]] std::size_t released() const { return next_release_; }
 
  private:
+  // How far the lips have closed on `s` (0-1): in over the rim's first nip_entry_mm past its
+  // pickup, out over the nip time's last nip_entry_mm at the rim's speed now.
+  [[nodiscard]] double nip_share(const Seedling& s, const NipClock& now) const;
   // A seedling as the feed delivers it to the clamp now, drawn from the configured spread.
   Seedling sample(double t_s);
 

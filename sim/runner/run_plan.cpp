@@ -48,6 +48,7 @@ std::string plan_json(const RunPlan& plan) {
                                 {"depth_mm", r.operating_point->depth_mm},
                                 {"contact_area_mm2", r.operating_point->contact_area_mm2}};
     if (r.clamp_setpoint_N) one["clamp_setpoint_N"] = *r.clamp_setpoint_N;
+    if (r.per_stem_grip) one["per_stem_grip"] = *r.per_stem_grip;
     if (!r.values.empty()) {
       nlohmann::ordered_json values;
       for (const auto& [key, value] : r.values) values[key] = value;
@@ -85,6 +86,7 @@ RunPlan read_plan(const std::string& path) {
       }
       if (one.contains("clamp_setpoint_N"))
         r.clamp_setpoint_N = one.at("clamp_setpoint_N").get<double>();
+      if (one.contains("per_stem_grip")) r.per_stem_grip = one.at("per_stem_grip").get<bool>();
       if (one.contains("values"))
         for (const auto& [key, value] : one.at("values").items())
           r.values.emplace_back(key, value.get<double>());
@@ -124,6 +126,7 @@ Scenario planned_scenario(const Scenario& base, const PlannedRun& run) {
   if (run.operating_point)
     set_operating_point(s, run.operating_point->sigma, run.operating_point->depth_mm,
                         run.operating_point->contact_area_mm2);
+  if (run.per_stem_grip) s.board.controller.clamp.per_stem_grip = *run.per_stem_grip;
   if (run.clamp_setpoint_N) {
     s.board.controller.clamp.setpoint_N = *run.clamp_setpoint_N;
     s.board.controller.clamp.ceiling_N =

@@ -177,6 +177,7 @@ Scenario load_scenario(const std::string& path) {
     m.handoff_speed_mismatch_mps = t->number(sk("mechanism.handoff_speed_mismatch_mps"));
     m.protrusion_band_mm = t->number(sk("mechanism.protrusion_band_mm"));
     m.nip_time_s = t->number(sk("mechanism.nip_time_s"));
+    m.nip_entry_mm = t->number(sk("mechanism.nip_entry_mm"));
     m.residual_grip_share = t->number(sk("mechanism.residual_grip_share"));
     m.root_protrusion_mm = t->number(sk("mechanism.root_protrusion_mm"));
     m.lip_friction = t->number(sk("mechanism.lip_friction"));
@@ -212,6 +213,7 @@ Scenario load_scenario(const std::string& path) {
     auto& c = s.board.controller;
     c.sigma.sigma = t->number(sk("controller.sigma"), c.sigma.sigma);
     c.clamp.setpoint_N = t->number(sk("controller.clamp_force_N"), c.clamp.setpoint_N);
+    c.clamp.per_stem_grip = t->boolean(sk("controller.clamp_per_stem_grip"), c.clamp.per_stem_grip);
     if (c.clamp.setpoint_N >= c.clamp.ceiling_N)
       t->fail(sk("controller.clamp_force_N"), "must be below the board's clamp_ceiling_N");
     c.depth.target_mm = t->number(sk("controller.depth_mm"), c.depth.target_mm);

@@ -117,6 +117,7 @@ std::string Summary::to_json() const {
   j["damaged_strength_mean_N"] = damaged_strength_mean_N;
   j["damaged_below_weakest_measured"] = damaged_below_measured;
   j["damage_pct"] = damage_pct;
+  j["damage_seen"] = monitor.damage_seen;  // by the clamp's reading, photo-eye or not
   j["spacing_mean_mm"] = spacing_mean_mm;
   j["spacing_cv_pct"] = spacing_cv_pct;
   if (monitor_fitted) {
@@ -174,6 +175,7 @@ Summary Summary::from_json(const std::string& text) {
   s.damaged_strength_mean_N = j.at("damaged_strength_mean_N").get<double>();
   s.damaged_below_measured = j.at("damaged_below_weakest_measured").get<int>();
   s.damage_pct = j.at("damage_pct").get<double>();
+  s.monitor.damage_seen = j.at("damage_seen").get<double>();
   s.spacing_mean_mm = j.at("spacing_mean_mm").get<double>();
   s.spacing_cv_pct = j.at("spacing_cv_pct").get<double>();
   if (j.contains("monitor")) {

@@ -12,6 +12,7 @@ constexpr double kStemReadMinN = 10.0;
 void ClampForceLoop::reset() {
   ramped_setpoint_N_ = 0.0;
   integral_mm_ = 0.0;
+  aim_N_ = 0.0;
   status_ = ClampStatus{};
   stem_.reset();
 }
@@ -56,8 +57,10 @@ double ClampForceLoop::update(double force_N, double roller_mm, double rim_speed
   if (cfg_.per_stem_grip) learn_from_collapses(dt_s);
   // Never aim closer than 5 % below the ceiling (the stem's own, per_stem_grip); back off from
   // 3 % below the machine's.
-  const double ceiling_N = cfg_.per_stem_grip ? stem_ceiling_N(rim_speed_mm_per_s) : cfg_.ceiling_N;
+  const bool per_stem = cfg_.per_stem_grip && stem_trusted_ && stem_.settled();
+  const double ceiling_N = per_stem ? stem_ceiling_N(rim_speed_mm_per_s) : cfg_.ceiling_N;
   const double target = std::min(cfg_.setpoint_N, 0.95 * ceiling_N);
+  aim_N_ = target;
   const double guard_N = 0.97 * cfg_.ceiling_N;
   ramped_setpoint_N_ = std::min(target, ramped_setpoint_N_ + cfg_.ramp_N_per_s * dt_s);
   const double error = ramped_setpoint_N_ - force_N;

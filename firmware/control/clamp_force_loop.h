@@ -67,9 +67,14 @@ class ClampForceLoop {
                 bool enabled);
 
   [[nodiscard]] double setpoint_N() const { return ramped_setpoint_N_; }
+  // Whether the stem's reading may set its grip: not while the load cell and the roller disagree
+  // (warning::kLoadCellDisagrees), when the law it reads through is not the lips'.
+  void set_stem_reading_trusted(bool trusted) { stem_trusted_ = trusted; }
   // The force to clamp at (an increase ramps, a decrease is taken at once).
   void set_target_N(double target_N) { cfg_.setpoint_N = target_N; }
   [[nodiscard]] double target_N() const { return cfg_.setpoint_N; }
+  // What the set-point ramps to this tick: the target under the stem's ceiling.
+  [[nodiscard]] double aim_N() const { return aim_N_; }
   [[nodiscard]] double trim_mm() const { return integral_mm_; }
   [[nodiscard]] bool ceiling_active() const { return status_.ceiling; }
   [[nodiscard]] const ClampStatus& status() const { return status_; }
@@ -89,6 +94,8 @@ class ClampForceLoop {
   ClampLoopConfig cfg_;
   double ramped_setpoint_N_ = 0.0;
   double integral_mm_ = 0.0;
+  double aim_N_ = 0.0;
+  bool stem_trusted_ = true;
   ClampStatus status_;
   StemReader stem_{cfg_.stem};
   // Kept while the clamp opens and closes: it is the batch's, not the stem's.

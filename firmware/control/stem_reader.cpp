@@ -23,6 +23,7 @@ void StemReader::update(double added_mm, double dt_s) {
     has_baseline_ = true;
   }
   if (has_last_ && added_mm - last_added_mm_ < -cfg_.collapse_mm) ++collapses_;
+  read_s_ += dt_s;
   // First-order lags (exact discretisation is not needed at dt << tau).
   baseline_mm_ += (added_mm - baseline_mm_) * std::min(1.0, dt_s / cfg_.baseline_tau_s);
   const double stem_now = added_mm - baseline_mm_;

@@ -56,6 +56,9 @@ class StemReader {
     return cfg_.reference_diameter_mm + stem_in_mm(rim_speed_mm_per_s) / cfg_.thickness_gain;
   }
   [[nodiscard]] long collapses() const { return collapses_; }
+  // The baseline has had two of its time constants to find the lips' own reading: before that
+  // a stem cannot be told from the lips (or from a load cell's error).
+  [[nodiscard]] bool settled() const { return read_s_ >= 2.0 * cfg_.baseline_tau_s; }
   [[nodiscard]] const StemReaderConfig& config() const { return cfg_; }
 
  private:
@@ -66,6 +69,7 @@ class StemReader {
   double last_added_mm_ = 0.0;
   bool has_last_ = false, has_baseline_ = false;
   long collapses_ = 0;
+  double read_s_ = 0.0;  // time read since the baseline's start
 };
 
 }  // namespace planter

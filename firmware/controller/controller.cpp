@@ -140,6 +140,7 @@ void Controller::decide_outputs(const MachineState& in, SupervisorState state, d
   double depth_cmd = cfg_.depth.raised_mm;
   const double force_N = load_cell_zero_.corrected_N(in.clamp_force_N);
   const double rim_mm_per_s = std::abs(in.omega_radps) * cfg_.sigma.disc_radius_m * 1e3;
+  clamp_loop_.set_stem_reading_trusted((warnings_ & warning::kLoadCellDisagrees) == 0);
   if (state == SupervisorState::kRunning) {
     omega_cmd = sigma_loop_.update(in.distance_m, in.v_wheel_mps, in.disc_angle_rad, dt_s);
     clamp_pos_cmd = clamp_loop_.update(force_N, in.clamp_pos_mm, rim_mm_per_s, dt_s, !zeroing_);
@@ -163,6 +164,7 @@ void Controller::decide_outputs(const MachineState& in, SupervisorState state, d
   command_.depth_cmd_mm = depth_cmd;
   command_.depth_target_mm = depth_loop_.target_mm();
   command_.clamp_force_target_N = clamp_loop_.target_N();
+  command_.clamp_force_aim_N = clamp_loop_.aim_N();
   command_.drives_enabled = operating;
   command_.commissioning = state == SupervisorState::kCommissioning;
   command_.status_lamp = state == SupervisorState::kRunning;

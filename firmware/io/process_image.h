@@ -53,6 +53,9 @@ struct MachineCommand {
   // What the controller reports with its command (not sent to a node).
   double clamp_force_cmd_N = 0.0;     // the set-point the roller position is trimmed towards
   double clamp_force_target_N = 0.0;  // the operator's clamp force (the ramp's end)
+  // What the set-point ramps to for the stem in the nip now: the operator's force, or below it
+  // under the stem's own ceiling (ClampLoopConfig::per_stem_grip).
+  double clamp_force_aim_N = 0.0;
   double depth_target_mm = 0.0;       // the operator's furrow depth
   double sigma = 0.0;                 // R*omega / v as the controller sees it
 };

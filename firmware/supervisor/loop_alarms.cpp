@@ -42,12 +42,15 @@ std::uint32_t LoopAlarms::update(const LoopAlarmInputs& in) {
   const bool short_of_band = c.measured_N < (1.0 - cfg_.band_pct / 100.0) * in.clamp_setpoint_N;
   if (short_.update(gripping && c.at_travel && short_of_band, dt, 0.3, hold))
     w |= warning::kClampShort;
-  const double disagreement = std::abs(c.measured_N - c.model_force_N);
-  bool disagree = disagreement > cfg_.disagree_share * c.model_force_N + cfg_.disagree_offset_N;
+  // Against the law alone: the stem's reading goes through the load cell, so it would take a
+  // cell's error in as a stem until its baseline caught up (5 s): too late for the second.
+  const double expected_N = c.model_force_N;
+  const double disagreement = std::abs(c.measured_N - expected_N);
+  bool disagree = disagreement > cfg_.disagree_share * expected_N + cfg_.disagree_offset_N;
   if (gripping) {
     gripping_s_ += dt;
     disagree_lp_N_ +=
-        (c.measured_N - c.model_force_N - disagree_lp_N_) * std::min(1.0, dt / cfg_.drift_tau_s);
+        (c.measured_N - expected_N - disagree_lp_N_) * std::min(1.0, dt / cfg_.drift_tau_s);
     if (!drift_ref_taken_ && gripping_s_ >= cfg_.drift_settle_s) {
       disagree_ref_N_ = disagree_lp_N_;
       drift_ref_taken_ = true;

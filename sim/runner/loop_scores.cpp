@@ -92,9 +92,10 @@ void LoopScorer::add_clamp(const Telemetry& c, const PlantTruth& t, bool running
     above_ceiling_s_ += period_s_;
     if (first_above_s_ < 0) first_above_s_ = time_s;
   }
+  // Judged against what the loop aims at for this stem (its own ceiling may hold it below the
+  // operator's force), once the set-point has ramped to it.
   const double setpoint = c.clamp_force_cmd_N;
-  const bool ramped =
-      setpoint > 0 && setpoint >= std::min(c.clamp_force_target_N, 0.95 * ceiling_N_) - 1e-6;
+  const bool ramped = setpoint > 0 && setpoint >= c.clamp_force_aim_N - 1e-6;
   const std::size_t id = running && ramped ? t.seedling_in_nip : 0;
   if (id != passage_id_) {
     close_passage();

@@ -56,8 +56,8 @@ struct MachineCommand {
   // What the set-point ramps to for the stem in the nip now: the operator's force, or below it
   // under the stem's own ceiling (ClampLoopConfig::per_stem_grip).
   double clamp_force_aim_N = 0.0;
-  double depth_target_mm = 0.0;       // the operator's furrow depth
-  double sigma = 0.0;                 // R*omega / v as the controller sees it
+  double depth_target_mm = 0.0;  // the operator's furrow depth
+  double sigma = 0.0;            // R*omega / v as the controller sees it
 };
 
 }  // namespace planter

@@ -5,11 +5,11 @@
 // the law's position for the measured force, less the roller's measured position, is what the
 // stem in the nip adds to the law's compression (a disturbance observer: Ohnishi, Shibata and
 // Murakami, "Motion control for advanced mechatronics", IEEE/ASME Trans. Mechatronics 1(1),
-// 1996: the input disturbance from the plant's model and its measured output). What the lips themselves drift by (a stiffer batch, wear)
-// changes slowly and is taken out as a baseline over many stems, which assumes the batch's mean
-// stem is near the reference one. A collapse of a stem's wall (the DEM's first peak) opens the
-// gap by about a millimetre between two ticks, faster than any stem comes under the roller at
-// the disc's speeds here: that drop is counted as damage seen.
+// 1996: the input disturbance from the plant's model and its measured output). What the lips
+// themselves drift by (a stiffer batch, wear) changes slowly and is taken out as a baseline over
+// many stems, which assumes the batch's mean stem is near the reference one. A collapse of a stem's
+// wall (the DEM's first peak) opens the gap by about a millimetre between two ticks, faster than
+// any stem comes under the roller at the disc's speeds here: that drop is counted as damage seen.
 
 namespace planter {
 

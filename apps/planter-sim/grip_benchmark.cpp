@@ -56,18 +56,18 @@ GripBenchmark grip_benchmark(const std::vector<Summary>& all, std::size_t draws)
     const Summary& best = constants[v.best];
     csv << i + 1 << ',' << all[i].uprightness_pct << ',' << all[i].damage_pct << ','
         << kClampForceCurve_N[v.best] << ',' << best.uprightness_pct << ',' << best.damage_pct
-        << ',' << (v.no_damage ? "no damage" : v.halved ? "yes" : "no") << '\n';
+        << ','
+        << (v.no_damage ? "no damage"
+            : v.halved  ? "yes"
+                        : "no")
+        << '\n';
   }
   b.csv = csv.str();
   const std::size_t compared = draws - no_damage;
   const double share_pct =
       compared > 0 ? 100.0 * static_cast<double>(halved) / static_cast<double>(compared) : 0.0;
-  b.json = {{"draws", draws},
-            {"compared", compared},
-            {"no_damage_either", no_damage},
-            {"halved", halved},
-            {"halved_pct", share_pct},
-            {"goal_pct", 90.0}};
+  b.json = {{"draws", draws},   {"compared", compared},    {"no_damage_either", no_damage},
+            {"halved", halved}, {"halved_pct", share_pct}, {"goal_pct", 90.0}};
   char line[256];
   std::snprintf(line, sizeof line,
                 "per-stem grip: damage at most half the best constant force's, at equal or "

@@ -20,9 +20,9 @@ namespace planter::sim {
 void add_grip_benchmark_runs(RunPlan& plan, std::size_t draws);
 
 struct GripVerdict {
-  std::size_t best = 0;       // index into the constant forces
-  bool halved = false;        // per stem: damage <= half the best's
-  bool no_damage = false;     // neither damaged a seedling: no comparison to make
+  std::size_t best = 0;    // index into the constant forces
+  bool halved = false;     // per stem: damage <= half the best's
+  bool no_damage = false;  // neither damaged a seedling: no comparison to make
 };
 GripVerdict judge_grip(const Summary& per_stem, const std::vector<Summary>& constants);
 

@@ -31,6 +31,7 @@ bench/run_realtime_factor.sh "$root/build"
 "$root/build/bench/planter_bench_latency" "$root/scenarios/zhangqiu-field.toml" 60
 "$root/build/bench/planter_bench_can"
 bench/executor_overhead.sh "$root/build"
+bench/grip_benchmark.sh "$root/build"
 # The controller under disturbance (docs/control.md): the table, then its time and
 # `robustness: N of M cases held, S silent` last.
 "$root/build/apps/planter-sim/planter-sim" robustness "$root/scenarios/zhangqiu-field.toml" \

@@ -85,6 +85,10 @@ const std::array kValues{
     ModelValue{"mechanism.nip_time_s", "s", O::assumed, 0.15, 0.5,
                "assumed: how long a seedling stays in the roller's nip",
                [](PlantConfig& c) -> double& { return c.mechanism.nip_time_s; }},
+    ModelValue{"mechanism.nip_entry_mm", "mm", O::assumed, 5.0, 20.0,
+               "assumed: the rim's travel over which the lips close on a stem (the paper's 20 mm "
+               "roller's radius, 10 mm; its diameter at most)",
+               [](PlantConfig& c) -> double& { return c.mechanism.nip_entry_mm; }},
     ModelValue{"soil.unit_weight_kN_per_m3", "kN/m^3", O::assumed, 12.0, 16.0,
                "assumed: the returned, loose loam",
                [](PlantConfig& c) -> double& { return c.soil.backflow.unit_weight_kN_per_m3; }},

@@ -7,14 +7,20 @@ mkdir -p "$root/build"
 echo "field-trial: installing what is missing and building planter-sim in build/ (the first" \
   "time takes a few minutes; log: build/field-trial-setup.log)" >&2
 # Only the program this job runs is built; its steps are counted on the terminal as they go.
+# Read line by line in bash: Debian's awk (mawk) reads a pipe in blocks, which froze the count
+# for most of a minute at a time.
 progress() {
-  if [ -t 2 ]; then
-    awk '/^\[[0-9]+\/[0-9]+\]/ { printf "\rfield-trial: build step %s", $1 > "/dev/stderr"; fflush("/dev/stderr") }
-         END { printf "\n" > "/dev/stderr" }'
-  else
-    awk '/^\[[0-9]+\/[0-9]+\]/ { s = $1; gsub(/[][]/, "", s); split(s, n, "/")
-         if (n[1] % 20 == 0 || n[1] == n[2]) print "field-trial: build step " $1 > "/dev/stderr" }'
-  fi
+  local line step n total
+  while IFS= read -r line; do
+    [[ $line =~ ^\[([0-9]+)/([0-9]+)\] ]] || continue
+    step=${BASH_REMATCH[0]} n=${BASH_REMATCH[1]} total=${BASH_REMATCH[2]}
+    if [ -t 2 ]; then
+      printf '\rfield-trial: build step %s' "$step" >&2
+    elif ((n % 20 == 0 || n == total)); then
+      echo "field-trial: build step $step" >&2
+    fi
+  done
+  if [ -t 2 ]; then printf '\n' >&2; fi
 }
 if ! PLANTER_BUILD_TARGETS=planter-sim "$root/scripts/setup.sh" "$root/build" 2>&1 | tee "$log" |
   progress; then

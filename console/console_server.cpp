@@ -29,6 +29,23 @@ constexpr const char* kContentSecurityPolicy =
 
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
 
+// Why a request's framing is refused (RFC 9112: Sec. 3.2, one Host; Sec. 6.3, a message with
+// both Transfer-Encoding and Content-Length, or Content-Lengths that disagree, cannot be framed
+// safely; Sec. 5.5, no control characters in a field value), or nullptr.
+const char* framing_refusal(const httplib::Request& req) {
+  if (req.get_header_value_count("Host") != 1) return "a request names exactly one Host";
+  if (req.get_header_value_count("Content-Length") > 1) return "more than one Content-Length";
+  if (req.has_header("Content-Length") && req.has_header("Transfer-Encoding"))
+    return "both Content-Length and Transfer-Encoding";
+  for (const auto& [name, value] : req.headers) {
+    for (const char c : value) {
+      const auto u = static_cast<unsigned char>(c);
+      if ((u < 0x20 && u != '\t') || u == 0x7f) return "a control character in a header's value";
+    }
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 void leave_the_loop(int loop_cpu) {
@@ -163,14 +180,20 @@ void ConsoleServer::start() {
   });
   // Every request names this machine in Host, or it is refused before any route (DNS
   // rebinding: another site's page that made its own name resolve here).
+  // A request framed two ways is refused first (framing_refusal); either refusal closes the
+  // connection (guarded_server.h).
   srv.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    if (const char* why = framing_refusal(req)) {
+      res.status = 400;
+      res.set_content(std::string("refused: ") + why + "\n", "text/plain");
+      return httplib::Server::HandlerResponse::Handled;
+    }
     std::lock_guard<std::mutex> lock(host_names_mutex_);
     if (host_names_.allowed(req.get_header_value("Host")))
       return httplib::Server::HandlerResponse::Unhandled;
+    // Not the names it answers to: a page that rebinds a name here must learn none of them.
     res.status = 421;
-    res.set_content("refused: this console is reached as one of " + host_names_.known() +
-                        ", not as '" + req.get_header_value("Host").substr(0, 100) + "'\n",
-                    "text/plain");
+    res.set_content("refused: this console is not reached by that name\n", "text/plain");
     return httplib::Server::HandlerResponse::Handled;
   });
   install_command_routes(srv);

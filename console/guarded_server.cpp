@@ -69,6 +69,7 @@ class BoundedStream final : public httplib::Stream {
     consumed_ = 0;
     cut_ = Cut::kNone;
     answer_started_ = replacing_ = false;
+    status_ = 0;
     read_deadline_ = Clock::now() + times_.request_read;
     write_deadline_.reset();
   }
@@ -80,6 +81,10 @@ class BoundedStream final : public httplib::Stream {
   // The request could not be read whole (too large, too slow, or the client went): the
   // connection ends after the answer.
   [[nodiscard]] bool cut() const { return cut_ != Cut::kNone; }
+  // The answer refused the request (4xx, 5xx): the connection ends after it, as what follows on
+  // the wire may be the refused request's unread body or a request smuggled behind it (RFC 9112,
+  // Sec. 11.2; after a framing error the server cannot know where the next request starts).
+  [[nodiscard]] bool refused() const { return status_ >= 400; }
 
   bool is_readable() const override { return have_ > used_ || wait(POLLIN, read_deadline_); }
   bool is_writable() const override { return wait(POLLOUT, write_deadline()); }
@@ -116,6 +121,7 @@ class BoundedStream final : public httplib::Stream {
   ssize_t write(const char* ptr, size_t size) override {
     if (!answer_started_) {
       answer_started_ = true;
+      status_ = status_code(std::string_view(ptr, size));
       // cpp-httplib answers a request it could not read with a bare 400; this one says why.
       // Its other answers (413 for a declared body too large, say) go out as they are.
       static constexpr std::string_view kBare400 = "HTTP/1.1 400 ";
@@ -178,6 +184,18 @@ class BoundedStream final : public httplib::Stream {
   std::size_t consumed_ = 0;
   enum class Cut { kNone, kTooLarge, kTooSlow, kGone } cut_ = Cut::kNone;
   bool answer_started_ = false, replacing_ = false;
+  int status_ = 0;  // of this request's answer, from its status line
+
+  static int status_code(std::string_view line) {
+    static constexpr std::string_view kVersion = "HTTP/1.1 ";
+    if (line.size() < kVersion.size() + 3 || line.substr(0, kVersion.size()) != kVersion) return 0;
+    int code = 0;
+    for (char c : line.substr(kVersion.size(), 3)) {
+      if (c < '0' || c > '9') return 0;
+      code = code * 10 + (c - '0');
+    }
+    return code;
+  }
   Clock::time_point read_deadline_{};
   std::optional<Clock::time_point> write_deadline_;
 };
@@ -225,7 +243,7 @@ bool GuardedServer::serve(socket_t sock, Endpoint peer) {
     stream.next_request();
     bool closed = false;
     ok = process_request(stream, n + 1 == times_.requests_per_connection, closed, nullptr);
-    if (!ok || closed || stream.cut()) break;
+    if (!ok || closed || stream.cut() || stream.refused()) break;
   }
   return ok;
 }

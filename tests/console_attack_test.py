@@ -82,6 +82,55 @@ def header_flood(port):
             time.sleep(0.1)
 
 
+def answers_on_one_connection(port, payload):
+    """Sends `payload` on one connection and reads until the server closes it (or 3 s pass):
+    the status of every answer, and whether it closed."""
+    s = connect("127.0.0.4", port)
+    s.sendall(payload)
+    data, closed = b"", False
+    s.settimeout(3.0)
+    try:
+        while True:
+            chunk = s.recv(65536)
+            if not chunk:
+                closed = True
+                break
+            data += chunk
+    except OSError:
+        pass
+    s.close()
+    return [int(m) for m in re.findall(rb"HTTP/1\.1 (\d\d\d) ", data)], closed, data
+
+
+# Issue 53, items 7-9: a request the server cannot frame is answered once and the connection
+# closed; what follows it on the wire (a smuggled request) is never served.
+FRAMING = [
+    ("garbage, then a GET", b"NOT HTTP AT ALL\r\n\r\nGET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"),
+    ("Content-Length and chunked, a GET smuggled behind",
+     b"POST /api/login HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 4\r\n"
+     b"Transfer-Encoding: chunked\r\n\r\n0\r\n\r\nGET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"),
+    ("two Host headers", b"GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\nHost: evil.example\r\n\r\n"
+     b"GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"),
+    ("two Content-Lengths", b"POST /api/login HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 2\r\n"
+     b"Content-Length: 2\r\n\r\n{}GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"),
+    ("NUL in a header's value", b"GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\nX-A: a\x00b\r\n\r\n"
+     b"GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"),
+]
+
+
+def framing_checks(port):
+    for name, payload in FRAMING:
+        codes, closed, _ = answers_on_one_connection(port, payload)
+        check(len(codes) == 1 and codes[0] == 400 and closed,
+              "framing: %s is answered 400 once and the connection closed" % name,
+              "answers %s, closed %s" % (codes, closed))
+    codes, closed, data = answers_on_one_connection(
+        port, b"GET /api/info HTTP/1.1\r\nHost: rebound.example\r\n\r\n")
+    check(codes == [421] and b"rebound" not in data.split(b"\r\n\r\n", 1)[-1]
+          and b"127.0.0.1" not in data.split(b"\r\n\r\n", 1)[-1],
+          "a foreign Host is answered 421 naming none of this machine's names", data[-200:])
+
+
 def idle_holder(source, port, n, key):
     held = []
     while not stop_attack.is_set():
@@ -208,6 +257,7 @@ try:
         time.sleep(0.1)
     check(first[0] == 200 and first[2] == 200, "the operator logs in and presses Stop before the attack",
           first)
+    framing_checks(port)
     audit_path = os.path.join(live_dir, "audit.log")
     audit_before = os.path.getsize(audit_path)
 

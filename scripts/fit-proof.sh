@@ -15,7 +15,8 @@ fit=$build/apps/planter-fit/planter-fit
 source "$root/scripts/fit-base-scenario.sh"
 # Two cases run at a time (FIT_PROOF_JOBS), planter-fit with one thread each: the clamp's
 # channel dominates a fit, so two cases keep both cores busy. Each case writes its result line
-# to OUT/NAME.line; they are printed in order at the end.
+# to OUT/NAME.line and says it on stderr as it finishes (the whole proof takes minutes); the
+# lines are printed again in order at the end, with the count.
 jobs_max=${FIT_PROOF_JOBS:-2}
 names=()
 spawn() {  # spawn WORKER NAME ARGS...
@@ -24,7 +25,10 @@ spawn() {  # spawn WORKER NAME ARGS...
   [[ -z ${FIT_PROOF_ONLY:-} || $name =~ $FIT_PROOF_ONLY ]] || return 0
   names+=("$name")
   while [ "$(jobs -rp | wc -l)" -ge "$jobs_max" ]; do wait -n; done
-  "$@" >"$out/$name.line" 2>&1 &
+  {
+    "$@" >"$out/$name.line" 2>&1
+    echo "fit-proof: $(head -n 1 "$out/$name.line")" >&2
+  } &
 }
 judge() {  # judge NAME EXPECT: prints the case's line from its fit.json
   /usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/$1-fit/fit.json" "$1" "$2" \

@@ -166,6 +166,13 @@ int main(int argc, char** argv) {
     reader.require_rows(rec, 50);
     planter::config::OutputSet outputs(out, "planter-fit", force);  // refuses before the work
     if (!model.empty()) o.start_model = load_augmented_model(model);
+    // The first channels take the longest (the clamp's, with every effect tried): say the work
+    // has begun, on a terminal, before the first one ends.
+    if (isatty(STDERR_FILENO))
+      std::fprintf(stderr,
+                   "planter-fit: %zu rows read (%zu columns); fitting each channel's nominal "
+                   "model, then the effects it lacks (the first channel takes longest)\n",
+                   rec.t.size(), rec.signals.size());
     FitReport rep = analyse(rec, o);
     if (reader.more()) rep.day = track_day(reader, rec, rep, o);
     const Recording analysed = analysed_rows_of(rec, rep);

@@ -17,6 +17,16 @@ expect() {  # expect NAME PATTERN -- command...   (exit code 2, or $want_rc)
     echo "ok   $name: $out"
   fi
 }
+# Issue 53, items 13 and 15: a subcommand's typo is named (its bytes escaped), and --help,
+# --version and --list-keys that cannot write say so and fail.
+expect subcommand-typo "^planter-sim: 'runn' is not a subcommand" -- "$sim" runn
+expect subcommand-escaped "'ru.x1b.0;x.x07n' is not a subcommand" -- "$sim" $'ru\x1b]0;x\x07n'
+want_rc=1 expect list-keys-full "^planter-sim: cannot write the key reference" -- \
+  bash -c "\"$sim\" --list-keys >/dev/full"
+want_rc=1 expect help-full "^planter-sim: cannot write to standard output" -- \
+  bash -c "\"$sim\" --help >/dev/full"
+want_rc=1 expect version-full "^planter-sim: cannot write to standard output" -- \
+  bash -c "\"$sim\" --version >/dev/full"
 cp "$src/scenarios/zhangqiu-field.toml" "$tmp/s.toml"
 sed -i "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" "$tmp/s.toml"
 printf '\n[route2]\nx = 1\n' >>"$tmp/s.toml"

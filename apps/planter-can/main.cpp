@@ -18,6 +18,7 @@
 #include "apps/planter-can/cmd_traffic.h"
 #include "apps/planter-can/sim_link.h"
 #include "apps/planter-can/socket_link.h"
+#include "apps/version/cli_errors.h"
 #include "apps/version/version.h"
 #include "config/cli_range.h"
 #include "config/config_error.h"
@@ -186,8 +187,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    return fail(kExitBadInput, std::string(e.what()) + " (planter-can --help lists the commands)");
+    return planter::apps::parse_ended(app, e, "planter-can", argc, argv, kExitBadInput);
   }
 
   // On sim with neither a board nor a scenario: the host-sim board, where the package installs it

@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "apps/version/cli_errors.h"
 #include "apps/version/executor_options.h"
 #include "apps/version/list_keys.h"
 #include "apps/version/version.h"
@@ -282,8 +283,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);
-    return fail(2, std::string(e.what()) + " (planter-dem --help lists the options)");
+    return planter::apps::parse_ended(app, e, "planter-dem", argc, argv, 2);
   }
   try {
     if (*compress_cmd) return compress(common, threads);

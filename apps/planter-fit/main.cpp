@@ -13,6 +13,7 @@
 #include "analysis/day_tracks.h"
 #include "analysis/fit_outputs.h"
 #include "analysis/model_file.h"
+#include "apps/version/cli_errors.h"
 #include "apps/version/version.h"
 #include "config/cli_range.h"
 #include "config/config_error.h"
@@ -145,8 +146,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);
-    return fail(2, std::string(e.what()) + " (planter-fit --help lists the options)");
+    return planter::apps::parse_ended(app, e, "planter-fit", argc, argv, 2);
   }
   try {
     const auto t0 = std::chrono::steady_clock::now();

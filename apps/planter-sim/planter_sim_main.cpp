@@ -28,6 +28,7 @@
 #ifdef PLANTER_WITH_REPLAY
 #include "analysis/recording.h"
 #endif
+#include "apps/version/cli_errors.h"
 #include "apps/version/executor_options.h"
 #include "apps/version/list_keys.h"
 #include "apps/version/version.h"
@@ -375,8 +376,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
+    return planter::apps::parse_ended(app, e, "planter-sim", argc, argv, 2);
   }
   try {
     if (*run) return run_scenario(scenario, out, quiet, force);

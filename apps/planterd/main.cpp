@@ -30,6 +30,7 @@
 #ifdef PLANTERD_WITH_CONSOLE
 #include "console/console_server.h"
 #endif
+#include "apps/version/cli_errors.h"
 #include "apps/version/list_keys.h"
 #include "apps/version/version.h"
 #include "config/board_keys.h"
@@ -424,8 +425,7 @@ int parse_options(int argc, char** argv, Options& opt) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    return fail(2, std::string(e.what()) + " (planterd --help lists the options)");
+    return planter::apps::parse_ended(app, e, "planterd", argc, argv, 2);
   }
   return -1;
 }

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <charconv>
 #include <cstring>
 #include <filesystem>
@@ -122,6 +123,23 @@ std::string OutputSet::path(const std::string& name) {
   }
   names_.push_back(name);
   return staging_ + "/" + name;
+}
+
+bool output_set_whole(const std::string& dir, const std::string& tool) {
+  std::ifstream in(dir + "/" + kRunManifest);
+  if (!in) return false;
+  const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
+  if (!manifest.is_object() || manifest.value("tool", std::string()) != tool) return false;
+  const auto files = manifest.find("files");
+  if (files == manifest.end() || !files->is_object() || files->empty()) return false;
+  for (const auto& [name, size] : files->items()) {
+    struct stat st {};
+    const std::string p = dir + "/" + name;
+    if (!size.is_number_unsigned() || ::lstat(p.c_str(), &st) != 0 || !S_ISREG(st.st_mode) ||
+        static_cast<std::uint64_t>(st.st_size) != size.get<std::uint64_t>())
+      return false;
+  }
+  return true;
 }
 
 void OutputSet::write(const std::string& name, const std::string& data) {

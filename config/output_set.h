@@ -48,6 +48,11 @@ class OutputSet {
 [[nodiscard]] std::string output_dir_refusal(const std::string& dir, const std::string& tool,
                                              bool force);
 
+// Whether `dir` holds a whole run of `tool`: its manifest names the tool, and every file it lists
+// is there as a regular file of the size it records. A run the disk or a kill tore is not whole
+// and is run again (plan runs and the DEM's kept runs alike).
+[[nodiscard]] bool output_set_whole(const std::string& dir, const std::string& tool);
+
 // The manifest's file name.
 inline constexpr const char* kRunManifest = "run.json";
 

@@ -142,11 +142,10 @@ std::string run_dir(const std::string& plan_dir, std::size_t index) {
   return plan_dir + name;
 }
 
+// Whole by its manifest (config/output_set.h): a torn summary.json beside a whole run.json is
+// run again, as the DEM runs a torn KEY.json again.
 bool run_complete(const std::string& plan_dir, std::size_t index) {
-  std::error_code ec;
-  return std::filesystem::is_regular_file(run_dir(plan_dir, index) + "/" + config::kRunManifest,
-                                          ec) &&
-         std::filesystem::is_regular_file(run_dir(plan_dir, index) + "/summary.json", ec);
+  return config::output_set_whole(run_dir(plan_dir, index), kPlanTool);
 }
 
 Scenario plan_base(const std::string& plan_path, const RunPlan& plan, const std::string& made_by) {

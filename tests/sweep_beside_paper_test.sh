@@ -26,10 +26,14 @@ if j["paper_centre"] != {"uprightness_pct": 94.8, "damage_pct": 3.0}:
     fail.append("the paper's centre point is not beside the model's")
 if "paper: 255 mm^2, 0.278 rad/s, 102 mm" not in out.splitlines()[-1]:
     fail.append("the last line does not print the paper's optimum beside the model's")
-curve = j["force_curve"]
+# The constant forces, then the clamp that grips each stem under its own ceiling (issue 50).
+per_stem = [c for c in j["force_curve"] if c.get("grip") == "per stem"]
+curve = [c for c in j["force_curve"] if c.get("grip") == "constant"]
 forces = [c["clamp_force_N"] for c in curve]
 if forces != [40, 60, 80, 90, 100, 120]:
     fail.append("force curve set-points %s" % forces)
+if len(per_stem) != 1 or j["force_curve"][-1] is not per_stem[0]:
+    fail.append("the per-stem grip is not the force table's last row")
 damage = [c["damage_pct"] for c in curve]
 if any(b < a - 1e-9 for a, b in zip(damage, damage[1:])):
     fail.append("damage falls as the clamp force rises: %s" % damage)

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "config/durable_file.h"
@@ -66,6 +67,16 @@ void remove_abandoned_staging(const std::string& dir) {
   }
 }
 
+// The files an earlier run of `tool` in `dir` lists in its manifest (name -> size; an empty
+// object when it lists none), or nothing when `dir` holds no manifest of that tool.
+std::optional<nlohmann::json> manifest_files(const std::string& dir, const std::string& tool) {
+  std::ifstream in(dir + "/" + kRunManifest);
+  if (!in) return std::nullopt;
+  const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
+  if (!manifest.is_object() || manifest.value("tool", std::string()) != tool) return std::nullopt;
+  return manifest.value("files", nlohmann::json::object());
+}
+
 }  // namespace
 
 std::string output_dir_refusal(const std::string& dir, const std::string& tool, bool force) {
@@ -78,15 +89,12 @@ std::string output_dir_refusal(const std::string& dir, const std::string& tool, 
   const std::string other = "holds files that are not the output of '" + tool +
                             "' (no run.json of it); choose another --out, or give --force to "
                             "replace the directory";
-  std::ifstream in(dir + "/" + kRunManifest);
-  if (!in) return other;
-  const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
-  if (!manifest.is_object() || manifest.value("tool", std::string()) != tool) return other;
+  const std::optional<nlohmann::json> files = manifest_files(dir, tool);
+  if (!files) return other;
   // Every file in it must be one the earlier run wrote: a file someone left there is theirs.
-  const nlohmann::json files = manifest.value("files", nlohmann::json::object());
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (name != kRunManifest && !(files.is_object() && files.contains(name)))
+    if (name != kRunManifest && !(files->is_object() && files->contains(name)))
       return "holds " + name +
              ", which the earlier run did not write; move it, or give --force "
              "to replace the directory";
@@ -126,12 +134,8 @@ std::string OutputSet::path(const std::string& name) {
 }
 
 bool output_set_whole(const std::string& dir, const std::string& tool) {
-  std::ifstream in(dir + "/" + kRunManifest);
-  if (!in) return false;
-  const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
-  if (!manifest.is_object() || manifest.value("tool", std::string()) != tool) return false;
-  const auto files = manifest.find("files");
-  if (files == manifest.end() || !files->is_object() || files->empty()) return false;
+  const std::optional<nlohmann::json> files = manifest_files(dir, tool);
+  if (!files || !files->is_object() || files->empty()) return false;
   for (const auto& [name, size] : files->items()) {
     struct stat st {};
     const std::string p = dir + "/" + name;

@@ -28,9 +28,8 @@ double ClampForceLoop::stem_ceiling_N(double rim_speed_mm_per_s) const {
   return ceiling_share_ * (d_mm > d_ref_mm ? cfg_.ceiling_N * d_ref_mm / d_mm : cfg_.ceiling_N);
 }
 
-void ClampForceLoop::learn_from_collapses(double dt_s) {
-  const long seen = stem_.collapses();
-  for (; collapses_taken_ < seen; ++collapses_taken_) ceiling_share_ *= 1.0 - cfg_.collapse_backoff;
+void ClampForceLoop::learn_from_collapses(long new_collapses, double dt_s) {
+  for (long i = 0; i < new_collapses; ++i) ceiling_share_ *= 1.0 - cfg_.collapse_backoff;
   ceiling_share_ =
       std::clamp(ceiling_share_ + cfg_.backoff_recovery_per_s * dt_s, cfg_.backoff_floor, 1.0);
 }
@@ -54,7 +53,8 @@ double ClampForceLoop::update(double force_N, double roller_mm, double rim_speed
   // The stem in the nip, read once the lips carry a force the law resolves.
   const long collapses_before = stem_.collapses();
   if (force_N > kStemReadMinN) stem_.update(model_position_mm(force_N) - roller_mm, dt_s);
-  if (cfg_.per_stem_grip) learn_from_collapses(dt_s);
+  const long new_collapses = stem_.collapses() - collapses_before;
+  if (cfg_.per_stem_grip) learn_from_collapses(new_collapses, dt_s);
   // Never aim closer than 5 % below the ceiling (the stem's own, per_stem_grip); back off from
   // 3 % below the machine's.
   const bool per_stem = cfg_.per_stem_grip && stem_trusted_ && stem_.settled();
@@ -87,8 +87,7 @@ double ClampForceLoop::update(double force_N, double roller_mm, double rim_speed
   } else {
     integral_mm_ += cfg_.ki_mm_per_Ns * error * dt_s;
   }
-  status_ = {
-      true, ramped, at_travel, ceiling, model_N, force_N, stem_.collapses() > collapses_before};
+  status_ = {true, ramped, at_travel, ceiling, model_N, force_N, new_collapses > 0};
   return limited;
 }
 

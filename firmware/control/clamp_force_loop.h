@@ -100,9 +100,9 @@ class ClampForceLoop {
   StemReader stem_{cfg_.stem};
   // Kept while the clamp opens and closes: it is the batch's, not the stem's.
   double ceiling_share_ = 1.0;
-  long collapses_taken_ = 0;
 
-  void learn_from_collapses(double dt_s);
+  // Each collapse seen this tick lowers every stem's ceiling; the share recovers with time.
+  void learn_from_collapses(long new_collapses, double dt_s);
 };
 
 }  // namespace planter

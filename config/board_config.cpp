@@ -150,6 +150,27 @@ void parse_node(TomlSection& nodes, NodeRole role, NodeConfig& out, std::set<int
   t->reject_unknown_keys();
 }
 
+// [gnss]: which receiver, where gpsd is, and the fix limits the ground fusion takes.
+void read_gnss(TomlSection& g, BoardConfig& b) {
+  GnssBoardConfig& r = b.gnss;
+  r.receiver = g.string(bk("gnss.receiver"));
+  if (r.receiver != "none" && r.receiver != "sim" && r.receiver != "gpsd")
+    g.fail(bk("gnss.receiver"), "must be none, sim or gpsd");
+  r.gpsd_host = g.string(bk("gnss.gpsd_host"));
+  g.reject_control_characters("gpsd_host", r.gpsd_host);
+  r.gpsd_port = static_cast<int>(g.integer(bk("gnss.gpsd_port")));
+  GroundFusionConfig& f = b.controller.ground;
+  f.gnss_fitted = r.receiver != "none";
+  f.min_satellites = static_cast<int>(g.integer(bk("gnss.min_satellites")));
+  f.max_hdop = g.number(bk("gnss.max_hdop"));
+  f.scale_walk_per_sqrt_m = g.number(bk("gnss.slip_walk_per_sqrt_m"));
+  f.scale_start_sd = g.number(bk("gnss.slip_start_sd"));
+  f.apply_beyond_sd = g.number(bk("gnss.apply_beyond_sd"));
+  f.fix_timeout_s = static_cast<double>(g.integer(bk("gnss.fix_timeout_ms"))) * 1e-3;
+  f.max_speed_mps = b.controller.supervisor.ground_speed_plausible_max_mps;
+  g.reject_unknown_keys();
+}
+
 }  // namespace
 
 BoardConfig load_board(const std::string& path, const std::string& calibration_override) {
@@ -366,6 +387,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     b.realtime.require = rt->boolean(bk("realtime.require"));
     rt->reject_unknown_keys();
   }
+  if (auto g = root.table("gnss")) read_gnss(*g, b);
   if (auto con = root.table("console")) {
     b.console.port = static_cast<int>(con->integer(bk("console.port")));
     b.console.bind = con->string(bk("console.bind"));

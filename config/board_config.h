@@ -29,6 +29,13 @@ struct RealtimeConfig {
   bool require = false;  // refuse to start when SCHED_FIFO or mlockall is refused
 };
 
+// [gnss]: the GNSS receiver, where the board has one (its limits go to ControllerConfig::ground).
+struct GnssBoardConfig {
+  std::string receiver = "none";  // none, sim or gpsd
+  std::string gpsd_host = "127.0.0.1";
+  int gpsd_port = 2947;
+};
+
 // [console]: the operator's web console that planterd serves (console/console_server.h).
 struct ConsoleConfig {
   int port = 0;                  // 0: no console
@@ -50,6 +57,7 @@ struct BoardConfig {
   std::string can_interface = "sim";
   GpioLines gpio;
   RealtimeConfig realtime;
+  GnssBoardConfig gnss;
   ConsoleConfig console;
   ControllerConfig controller;
   double planned_bus_load_pct = 0;    // config/board_checks.h

@@ -15,6 +15,7 @@ namespace board_defaults {
 inline constexpr ClampLoopConfig kClamp{};
 inline constexpr DepthLoopConfig kDepth{};
 inline constexpr PlantingMonitorConfig kMonitor{};
+inline constexpr GroundFusionConfig kGround{};
 }  // namespace board_defaults
 
 namespace key_rows {
@@ -50,6 +51,15 @@ inline constexpr ConfigKey kBoardKeys[] = {
   integer_key(kBoard, "realtime", "priority", 80, 0, 99, "", "the loop thread's SCHED_FIFO priority"),
   integer_key(kBoard, "realtime", "cpu", -1, -1, 1023, "", "the CPU the loop is pinned to (-1: not pinned)"),
   bool_key(kBoard, "realtime", "require", false, "refuse to run without real-time scheduling"),
+  string_key(kBoard, "gnss", "receiver", "none", "the GNSS receiver: none, sim (the simulator's), or gpsd (a receiver that gpsd serves)"),
+  string_key(kBoard, "gnss", "gpsd_host", "127.0.0.1", "where gpsd listens"),
+  integer_key(kBoard, "gnss", "gpsd_port", 2947, 1, 65535, "", "gpsd's TCP port (its own default: 2947)"),
+  integer_key(kBoard, "gnss", "min_satellites", board_defaults::kGround.min_satellites, 0, 64, "", "a fix with fewer satellites is not used (assumed)"),
+  number_key(kBoard, "gnss", "max_hdop", board_defaults::kGround.max_hdop, 0.5, 99.0, "", "a fix with a larger HDOP is not used (assumed)"),
+  number_key(kBoard, "gnss", "slip_walk_per_sqrt_m", board_defaults::kGround.scale_walk_per_sqrt_m, 0.0, 1.0, "1/sqrt(m)", "how fast the wheel's slip may change along the row, 1 sigma (assumed): faster follows the soil, slower averages the receiver's noise"),
+  number_key(kBoard, "gnss", "slip_start_sd", board_defaults::kGround.scale_start_sd, 0.001, 0.5, "", "how far the slip may be from the wheel's calibration at the start, 1 sigma (assumed)"),
+  number_key(kBoard, "gnss", "apply_beyond_sd", board_defaults::kGround.apply_beyond_sd, 0.0, 5.0, "", "the slip learned moves the distance only by what it holds beyond this many of its SD"),
+  integer_key(kBoard, "gnss", "fix_timeout_ms", static_cast<std::int64_t>(board_defaults::kGround.fix_timeout_s * 1000), 100, 900, "ms", "no usable fix for this long: the soil wheel alone, and the alarm"),
   integer_key(kBoard, "console", "port", 0, 0, 65535, "", "the operator console's TCP port (0: no console)"),
   string_key(kBoard, "console", "bind", "0.0.0.0", "the address the console listens on"),
   string_key(kBoard, "console", "viewer_secret", "", "a secret of at least 12 letters or digits that viewing needs (unset: viewing is open)"),

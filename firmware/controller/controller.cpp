@@ -8,6 +8,7 @@ namespace planter {
 
 Controller::Controller(const ControllerConfig& config)
     : cfg_(config),
+      ground_(config.ground),
       sigma_loop_(config.sigma),
       clamp_loop_(config.clamp),
       depth_loop_(config.depth),
@@ -22,7 +23,10 @@ const MachineCommand& Controller::update(const MachineState& in, std::int64_t no
           {now_ns, in.link_up, in.link_downs, supervisor_.state(), supervisor_.latched_faults()})) {
     reset_requested_ = true;
   }
-  command_.sigma = sigma_loop_.sigma_seen(in.omega_radps, in.v_wheel_mps);
+  ground_.update(in, now_ns);
+  command_.sigma = sigma_loop_.sigma_seen(in.omega_radps, ground_.speed_mps());
+  command_.ground_speed_mps = ground_.speed_mps();
+  command_.slip_est = ground_.slip();
 
   SupervisorInputs sv;
   sv.estop = in.estop;
@@ -38,7 +42,7 @@ const MachineCommand& Controller::update(const MachineState& in, std::int64_t no
   const SupervisorState state = supervisor_.update(sv);
   if (state != previous_state_) {
     if (state == SupervisorState::kRunning) {
-      sigma_loop_.engage(in.distance_m, in.disc_angle_rad);
+      sigma_loop_.engage(ground_.distance_m(), in.disc_angle_rad);
       clamp_loop_.reset();
       depth_loop_.reset(in.depth_mm);
       alarms_.reset();
@@ -54,7 +58,13 @@ const MachineCommand& Controller::update(const MachineState& in, std::int64_t no
       in.clamp_pos_mm < cfg_.clamp.model_x0_mm - cfg_.load_cell_zero.clear_of_contact_mm;
   load_cell_zero_.update(in.clamp_force_N, lips_open);
   decide_outputs(in, state, static_cast<double>(dt_ns) * 1e-9);
-  monitor_.update(in, state == SupervisorState::kRunning || state == SupervisorState::kStopping);
+  // The planting monitor measures spacings on the fused ground, as the sigma loop holds them.
+  on_ground_ = in;
+  on_ground_.distance_m = ground_.distance_m();
+  for (std::uint32_t i = 0; i < MachineState::kMaxSeedlingsPerTick; ++i)
+    on_ground_.seedling_at_m[i] = ground_.ground_m(in.seedling_at_m[i]);
+  monitor_.update(on_ground_,
+                  state == SupervisorState::kRunning || state == SupervisorState::kStopping);
   LoopAlarmInputs alarm_in;
   alarm_in.running = state == SupervisorState::kRunning;
   alarm_in.dt_s = static_cast<double>(dt_ns) * 1e-9;
@@ -64,6 +74,7 @@ const MachineCommand& Controller::update(const MachineState& in, std::int64_t no
   alarm_in.clamp = clamp_loop_.status();
   alarm_in.depth = depth_loop_.status();
   alarm_in.empty_belt = monitor_.figures().empty_belt;
+  alarm_in.wheel_alone = ground_.wheel_alone();
   warnings_ = alarms_.update(alarm_in);
   faults_seen_ = supervisor_.latched_faults() | sv.faults;
   return command_;
@@ -142,7 +153,8 @@ void Controller::decide_outputs(const MachineState& in, SupervisorState state, d
   const double rim_mm_per_s = std::abs(in.omega_radps) * cfg_.sigma.disc_radius_m * 1e3;
   clamp_loop_.set_stem_reading_trusted((warnings_ & warning::kLoadCellDisagrees) == 0);
   if (state == SupervisorState::kRunning) {
-    omega_cmd = sigma_loop_.update(in.distance_m, in.v_wheel_mps, in.disc_angle_rad, dt_s);
+    omega_cmd =
+        sigma_loop_.update(ground_.distance_m(), ground_.speed_mps(), in.disc_angle_rad, dt_s);
     clamp_pos_cmd = clamp_loop_.update(force_N, in.clamp_pos_mm, rim_mm_per_s, dt_s, !zeroing_);
     depth_cmd = depth_loop_.update(in.depth_mm, dt_s, true);
   } else if (state == SupervisorState::kStopping) {

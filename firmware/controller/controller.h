@@ -11,6 +11,7 @@
 #include "firmware/controller/controller_config.h"
 #include "firmware/controller/operator_command.h"
 #include "firmware/io/process_image.h"
+#include "firmware/sensing/ground_fusion.h"
 #include "firmware/sensing/load_cell_zero.h"
 #include "firmware/sensing/planting_monitor.h"
 #include "firmware/supervisor/link_recovery.h"
@@ -51,12 +52,16 @@ class Controller {
   [[nodiscard]] std::uint32_t link_resets() const { return link_recovery_.resets(); }
   // The load cell's zero taken while the lips were open (load_cell_zero.h).
   [[nodiscard]] double load_cell_offset_N() const { return load_cell_zero_.offset_N(); }
+  // The ground as the sigma loop sees it: distance, speed, the slip and the GNSS fix's use.
+  [[nodiscard]] const GroundFusion& ground() const { return ground_; }
 
  private:
   std::uint32_t check_faults(const MachineState& in, std::int64_t dt_ns);
   void decide_outputs(const MachineState& in, SupervisorState state, double dt_s);
 
   ControllerConfig cfg_;
+  GroundFusion ground_;
+  MachineState on_ground_;  // this tick's state with the fused distances, for the monitor
   SigmaLoop sigma_loop_;
   ClampForceLoop clamp_loop_;
   FurrowDepthLoop depth_loop_;

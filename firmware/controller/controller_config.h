@@ -8,6 +8,7 @@
 #include "firmware/control/furrow_depth_loop.h"
 #include "firmware/control/sigma_loop.h"
 #include "firmware/io/io_config.h"
+#include "firmware/sensing/ground_fusion.h"
 #include "firmware/sensing/load_cell_zero.h"
 #include "firmware/sensing/planting_monitor.h"
 #include "firmware/supervisor/link_recovery.h"
@@ -20,6 +21,7 @@ struct ControllerConfig {
   CanConfig can;
   std::array<NodeConfig, kNodeCount> nodes{};
   EncoderConfig encoder;
+  GroundFusionConfig ground;  // the wheel, and GNSS where the board has a receiver
   SigmaLoopConfig sigma;
   ClampLoopConfig clamp;
   DepthLoopConfig depth;

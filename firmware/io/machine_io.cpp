@@ -27,6 +27,11 @@ const MachineState& MachineIo::read(std::int64_t now_ns) {
   read_encoder(now_ns);
   read_process_values();
   state_.estop = hal_.estop.asserted();
+  if (hal_.gnss != nullptr) {
+    state_.gnss_fitted = true;
+    state_.gnss_connected = hal_.gnss->connected();
+    if (hal_.gnss->latest(state_.gnss)) state_.v_gnss_mps = state_.gnss.speed_mps;
+  }
   const hal::CanBusCounters bus = hal_.can.counters();
   state_.link_up = bus.link_up;
   state_.link_downs = bus.link_downs;

@@ -5,6 +5,8 @@
 #include <array>
 #include <cstdint>
 
+#include "planter/hal/gnss.h"
+
 namespace planter {
 
 struct MachineState {
@@ -13,6 +15,13 @@ struct MachineState {
   double distance_m = 0.0;
   double v_wheel_mps = 0.0;
   std::uint32_t encoder_invalid = 0;  // quadrature transitions that skipped a state
+
+  // The GNSS receiver, where the board has one (hal::GnssSource): its newest fix (sequence 0:
+  // none yet) and its speed over ground (0 before the first).
+  bool gnss_fitted = false;
+  bool gnss_connected = false;
+  hal::GnssFix gnss;
+  double v_gnss_mps = 0.0;
 
   // Process values from the nodes' TPDOs.
   double omega_radps = 0.0;
@@ -58,6 +67,10 @@ struct MachineCommand {
   double clamp_force_aim_N = 0.0;
   double depth_target_mm = 0.0;  // the operator's furrow depth
   double sigma = 0.0;            // R*omega / v as the controller sees it
+  // The ground as the sigma loop sees it (firmware/sensing/ground_fusion.h): the wheel's,
+  // corrected for the slip GNSS measured where a receiver is fitted.
+  double ground_speed_mps = 0.0;
+  double slip_est = 0.0;  // the soil wheel's slip beyond its calibration, as estimated
 };
 
 }  // namespace planter

@@ -33,6 +33,7 @@ enum class SignalSource : std::uint8_t {
   kSupervisor,  // the supervisor's state name
   kWarnings,    // the supervisor's warning:: bits, as a number
   kMonitor,     // the planting monitor, from the seedling photo-eye
+  kGnss,        // the GNSS receiver, where the board has one (hal/gnss.h)
 };
 
 struct SignalDecl {
@@ -81,6 +82,10 @@ constexpr SignalDecl commanded(std::string_view column, std::string_view unit,
                     decimals, recorded, nullptr, field,
                     nullptr,  role,     index,   0,
                     scale};
+}
+constexpr SignalDecl gnss(std::string_view column, std::string_view unit, std::string_view meaning,
+                          int decimals, double MS::*field) {
+  return SignalDecl{column, unit, meaning, SignalSource::kGnss, decimals, true, field};
 }
 constexpr SignalDecl monitored(std::string_view column, std::string_view unit,
                                std::string_view meaning, int decimals,
@@ -155,6 +160,15 @@ inline constexpr std::array kSignals = {
     // furrow_depth_loop.h): a change from the console shows here on the next tick.
     signal_decl::commanded("depth_target_mm", "mm", "furrow depth target (operator's set-point)", 1,
                            &MachineCommand::depth_target_mm),
+    // The ground as the sigma loop sees it (firmware/sensing/ground_fusion.h).
+    signal_decl::gnss("v_gnss", "m/s", "speed over ground in the GNSS receiver's newest fix", 4,
+                      &MachineState::v_gnss_mps),
+    signal_decl::commanded("ground_speed", "m/s",
+                           "ground speed the sigma loop uses: the wheel's, slip corrected", 5,
+                           &MachineCommand::ground_speed_mps),
+    signal_decl::commanded("slip_est", "1",
+                           "the soil wheel's slip beyond its calibration, estimated", 4,
+                           &MachineCommand::slip_est),
     // In the process image, not a recording column.
     signal_decl::commanded("clamp_pos_cmd_mm", "mm", "roller position command", 4,
                            &MachineCommand::clamp_pos_cmd_mm, NodeRole::kRollerActuator,

@@ -21,7 +21,8 @@ bool LoopAlarms::Timer::update(bool condition, double dt_s, double delay_s, doub
 }
 
 void LoopAlarms::reset() {
-  too_fast_ = lagging_ = short_ = disagrees_ = ceiling_ = depth_ = depth_off_ = gave_way_ = Timer{};
+  too_fast_ = lagging_ = short_ = disagrees_ = ceiling_ = depth_ = depth_off_ = gave_way_ =
+      wheel_alone_ = Timer{};
   weak_grip_angle_rad_ = -1e9;
   gripping_s_ = disagree_lp_N_ = disagree_ref_N_ = 0;
   drift_ref_taken_ = false;
@@ -62,6 +63,8 @@ std::uint32_t LoopAlarms::update(const LoopAlarmInputs& in) {
   if (ceiling_.update(run && c.ceiling, dt, 0.1, hold)) w |= warning::kClampAtCeiling;
   // A stem's wall seen to give way (damage seen): at once, the tick it is seen.
   if (gave_way_.update(c.stem_gave_way, dt, 0.0, hold)) w |= warning::kStemGaveWay;
+  // The GNSS fix lost or poor: at once, the fusion already waited its fix timeout (0.5 s).
+  if (wheel_alone_.update(run && in.wheel_alone, dt, 0.0, hold)) w |= warning::kGnssLost;
   // Empty clamps: dropped seedlings when the grip was weak within a carry, else an empty belt.
   if (gripping && c.measured_N < cfg_.weak_grip_share * in.clamp_setpoint_N)
     weak_grip_angle_rad_ = in.disc_angle_rad;

@@ -46,7 +46,8 @@ struct LoopAlarmInputs {
   SigmaStatus sigma;
   ClampStatus clamp;
   DepthStatus depth;
-  bool empty_belt = false;  // the planting monitor's
+  bool empty_belt = false;   // the planting monitor's
+  bool wheel_alone = false;  // a GNSS receiver is fitted and its speed is not in use
 };
 
 class LoopAlarms {
@@ -63,7 +64,8 @@ class LoopAlarms {
     bool update(bool condition, double dt_s, double delay_s, double hold_s);
   };
   LoopAlarmConfig cfg_;
-  Timer too_fast_, lagging_, short_, disagrees_, ceiling_, depth_, depth_off_, gave_way_;
+  Timer too_fast_, lagging_, short_, disagrees_, ceiling_, depth_, depth_off_, gave_way_,
+      wheel_alone_;
   double weak_grip_angle_rad_ = -1e9;
   double gripping_s_ = 0;      // since the grip began
   double disagree_lp_N_ = 0;   // the disagreement's slow mean

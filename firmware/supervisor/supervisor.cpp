@@ -21,7 +21,8 @@ const char* warning::name(int bit) {
                                                  "seedlings falling from the clamp",
                                                  "opener at its end stop",
                                                  "furrow depth off by more than 2 mm",
-                                                 "a stem gave way in the clamp"};
+                                                 "a stem gave way in the clamp",
+                                                 "no GNSS fix: speed from the soil wheel alone"};
   return bit >= 0 && bit < kCount ? kNames[bit] : "";
 }
 

@@ -46,9 +46,10 @@ constexpr std::uint32_t kSeedlingsFalling = 1u << 6;   // empty clamps after a w
 constexpr std::uint32_t kDepthUnreachable = 1u << 7;   // the opener at its end stop, depth short
 constexpr std::uint32_t kDepthOffBand = 1u << 8;       // the measured depth out of its band
 constexpr std::uint32_t kStemGaveWay = 1u << 9;        // a stem's wall collapsed in the clamp
-constexpr int kCount = 10;
+constexpr std::uint32_t kGnssLost = 1u << 10;          // ground speed from the soil wheel alone
+constexpr int kCount = 11;
 // Which alarms speak for which loop (the disturbance suite's verdicts read these).
-constexpr std::uint32_t kSigmaAlarms = kTooFastForDisc | kDiscLagging;
+constexpr std::uint32_t kSigmaAlarms = kTooFastForDisc | kDiscLagging | kGnssLost;
 constexpr std::uint32_t kClampAlarms =
     kClampShort | kLoadCellDisagrees | kClampAtCeiling | kSeedlingsFalling | kStemGaveWay;
 constexpr std::uint32_t kDepthAlarms = kDepthUnreachable | kDepthOffBand;

@@ -18,6 +18,8 @@ namespace planter::sim {
 
 class SimulatedMachine {
  public:
+  // The board's GNSS receiver: the plant's receiver model delivers its fixes here.
+  void fit_gnss(hal::sim::SimGnss& gnss) { devices_->gnss = &gnss; }
   SimulatedMachine(const Scenario& scenario, hal::sim::VirtualCanBus& bus);
 
   // Devices read their frames and answer (SDO, NMT, PDO on SYNC, heartbeats).

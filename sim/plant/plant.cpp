@@ -41,6 +41,7 @@ Plant::Plant(const PlantConfig& config, const ControllerConfig& board, std::uint
       roller_(config.drive.actuator_time_constant_s),
       depth_(config.drive.actuator_time_constant_s, 0.0, config.drive.depth_travel_max_mm),
       seedlings_(cfg_, seed ^ 0x5eed11u),
+      gnss_(config.gnss, seed),
       noise_rng_(seed) {}
 
 void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
@@ -75,6 +76,7 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
           std::sin(kTwoPi * ground_.x_m() / cfg_.soil.slip_variation_wavelength_m);
   const double slip_pct = soil_slip_pct + fx.slip_per_kN * draft * 1e-3;
   wheel_.roll(ground_.x_m() - x_before, slip_pct * 0.01, t_ns, dt_ns, edges);
+  if (dev.gnss != nullptr) gnss_.step(t_ns + dt_ns, ground_.x_m(), ground_.v_mps(), *dev.gnss);
 
   // Disc drive (profile velocity).
   disc_.step(

@@ -9,6 +9,7 @@
 #include "hal/sim/sim_gpio.h"
 #include "sim/devices/cia402_drive_device.h"
 #include "sim/plant/drive_models.h"
+#include "sim/plant/gnss_receiver.h"
 #include "sim/plant/ground.h"
 #include "sim/plant/plant_config.h"
 #include "sim/plant/seedling_process.h"
@@ -21,6 +22,7 @@ struct PlantDevices {
   Cia402DriveDevice& roller;
   Cia402DriveDevice& depth;
   Cia404ForceSensor& force;
+  hal::sim::SimGnss* gnss = nullptr;  // the GNSS receiver, where the board has one
 };
 
 // Ground truth, for the recording and the summary (the controller never sees it).
@@ -62,6 +64,7 @@ class Plant {
   LinearActuatorModel roller_;
   LinearActuatorModel depth_;
   SeedlingProcess seedlings_;
+  GnssReceiverModel gnss_;
   std::mt19937_64 noise_rng_;
   double draft_share_ = 0.0;  // the soil draft's mobilised share (sim/soil/opener_draft.h)
   double draft_decay_dt_s_ = -1.0, draft_decay_ = 1.0;  // rest_decay of the last step's length

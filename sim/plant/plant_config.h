@@ -178,7 +178,27 @@ struct FaultEvents {
   double silent_at_s = -1.0;
 };
 
+// The GNSS receiver on the machine, as receivers report themselves (sim/plant/gnss_receiver.h).
+// Figures of a consumer receiver's datasheet (u-blox NEO-M8, UBX-15031086: velocity accuracy
+// 0.05 m/s, navigation rate up to 10 Hz); the rest assumed, with their plausible ranges.
+struct GnssConfig {
+  double rate_hz = 10.0;          // fixes a second (receivers: 1-10 Hz, some to 25)
+  double speed_noise_mps = 0.05;  // on each horizontal axis, 1 sigma, white (the datasheet's)
+  double latency_s = 0.05;        // measurement to controller (assumed: 0.02-0.1 s)
+  int satellites = 12;            // open sky (assumed, 8-20)
+  double hdop = 0.9;              // open sky (assumed, 0.6-1.5)
+  // The fix is lost here along the row for this long (a tree line, a building): -1 never.
+  double dropout_at_m = -1.0;
+  double dropout_s = 5.0;
+  // Where the row starts and which way it runs (any field: the figures do not depend on it).
+  double origin_lat_deg = 36.7;
+  double origin_lon_deg = 117.5;
+  double heading_deg = 90.0;
+  double position_noise_m = 1.5;  // standalone fix, 1 sigma per axis (assumed, 0.5-3 m)
+};
+
 struct PlantConfig {
+  GnssConfig gnss;
   RouteConfig route;
   TerrainConfig terrain;
   SoilConfig soil;

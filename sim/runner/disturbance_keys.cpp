@@ -72,6 +72,14 @@ std::vector<DisturbanceKey> make_keys() {
       "1: the paper's drive, the disc at a fixed ratio from the soil wheel, in place of the "
       "sigma loop",
       [](Scenario& s, double v) { s.board.controller.sigma.fixed_ratio = v >= 0.5; });
+  add("controller.gnss", 0.0, 1.0, "", "1: the simulated GNSS receiver fitted, 0: none",
+      [](Scenario& s, double v) { s.board.controller.ground.gnss_fitted = v >= 0.5; });
+  add("gnss.speed_noise_mps", 0.0, 5.0, "m/s", "the receiver's velocity noise on each axis",
+      [](Scenario& s, double v) { s.plant.gnss.speed_noise_mps = v; });
+  add("gnss.dropout_at_m", -1.0, 1e4, "m", "where the fix is lost (-1: never)",
+      [](Scenario& s, double v) { s.plant.gnss.dropout_at_m = v; });
+  add("gnss.dropout_s", 0.0, 3600.0, "s", "for how long",
+      [](Scenario& s, double v) { s.plant.gnss.dropout_s = v; });
   return k;
 }
 

@@ -14,8 +14,10 @@ LockstepRunner::LockstepRunner(const Scenario& scenario)
   controller_endpoint_ = &bus_.add_endpoint(512);
   hal_ = std::make_unique<hal::ControllerHal>(
       hal::ControllerHal{*controller_endpoint_, edges_, estop_, lamp_});
+  if (cfg.ground.gnss_fitted) hal_->gnss = &gnss_;
   controller_ = std::make_unique<ControlCycle>(cfg, *hal_);
   machine_ = std::make_unique<SimulatedMachine>(scenario_, bus_);
+  if (cfg.ground.gnss_fitted) machine_->fit_gnss(gnss_);
   summary_.configure(cfg.sigma.sigma, cfg.depth.target_mm, cfg.clamp.ceiling_N, 8.0, cfg.monitor);
   // The depth is judged once the opener has had time to ramp down from raised, and a second.
   scores_.configure(

@@ -65,6 +65,7 @@ class LockstepRunner {
   hal::sim::SimEdgeSource edges_;  // encoder A/B and the photo-eye
   hal::sim::SimDigitalInput estop_;
   hal::sim::SimDigitalOutput lamp_;
+  hal::sim::SimGnss gnss_;  // fitted when the board has a receiver
   hal::sim::VirtualCanEndpoint* controller_endpoint_;
   std::unique_ptr<hal::ControllerHal> hal_;
   std::unique_ptr<ControlCycle> controller_;

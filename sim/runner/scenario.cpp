@@ -199,6 +199,21 @@ Scenario load_scenario(const std::string& path) {
     d.depth_travel_max_mm = t->number(sk("plant.depth_travel_max_mm"));
     t->reject_unknown_keys();
   }
+  if (auto t = root.table("gnss")) {
+    GnssConfig& g = p.gnss;
+    g.rate_hz = t->number(sk("gnss.rate_hz"));
+    g.speed_noise_mps = t->number(sk("gnss.speed_noise_mps"));
+    g.latency_s = t->number(sk("gnss.latency_s"));
+    g.satellites = static_cast<int>(t->integer(sk("gnss.satellites")));
+    g.hdop = t->number(sk("gnss.hdop"));
+    g.dropout_at_m = t->number(sk("gnss.dropout_at_m"));
+    g.dropout_s = t->number(sk("gnss.dropout_s"));
+    g.origin_lat_deg = t->number(sk("gnss.origin_lat_deg"));
+    g.origin_lon_deg = t->number(sk("gnss.origin_lon_deg"));
+    g.heading_deg = t->number(sk("gnss.heading_deg"));
+    g.position_noise_m = t->number(sk("gnss.position_noise_m"));
+    t->reject_unknown_keys();
+  }
   if (auto t = root.table("effects")) {
     Effects& e = p.effects;
     for (std::size_t i = 0; i < kEffectKeys.size(); ++i)
@@ -214,6 +229,7 @@ Scenario load_scenario(const std::string& path) {
     c.sigma.sigma = t->number(sk("controller.sigma"), c.sigma.sigma);
     c.clamp.setpoint_N = t->number(sk("controller.clamp_force_N"), c.clamp.setpoint_N);
     c.clamp.per_stem_grip = t->boolean(sk("controller.clamp_per_stem_grip"), c.clamp.per_stem_grip);
+    c.ground.gnss_fitted = t->boolean(sk("controller.gnss"), c.ground.gnss_fitted);
     if (c.clamp.setpoint_N >= c.clamp.ceiling_N)
       t->fail(sk("controller.clamp_force_N"), "must be below the board's clamp_ceiling_N");
     c.depth.target_mm = t->number(sk("controller.depth_mm"), c.depth.target_mm);

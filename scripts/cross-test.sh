@@ -32,7 +32,7 @@ for p in "${presets[@]}"; do
     exit 2
   fi
 done
-libs=(libgpiod-dev libsocketcan-dev libtomlplusplus-dev libgtest-dev libgmock-dev pkgconf)
+libs=(libgpiod-dev libsocketcan-dev libgps-dev libtomlplusplus-dev libgtest-dev libgmock-dev pkgconf)
 # help2man makes the man pages the packages carry (run under qemu-user: cmake/man_pages.cmake).
 wanted=(qemu-user binutils-multiarch help2man)
 for p in "${presets[@]}"; do

@@ -1,6 +1,7 @@
 #include "apps/planterd/board_hardware.h"
 
 #include "hal/linux/hal_error.h"
+#include "hal/linux/monotonic_clock.h"
 
 namespace planter::daemon {
 namespace {
@@ -14,6 +15,20 @@ const std::string& checked_interface(const config::BoardConfig& board) {
   return board.can_interface;
 }
 
+std::unique_ptr<hal::linux_backend::GpsdReceiver> gnss_of(const config::BoardConfig& board) {
+  if (board.gnss.receiver == "sim")
+    throw hal::linux_backend::HalError(
+        "'gnss.receiver': board '" + board.name +
+        "' names the simulator's receiver; on a board planterd reads a receiver through gpsd "
+        "(receiver = \"gpsd\")");
+  if (board.gnss.receiver != "gpsd") return nullptr;
+  hal::linux_backend::GpsdOptions o;
+  o.host = board.gnss.gpsd_host;
+  o.port = board.gnss.gpsd_port;
+  return std::make_unique<hal::linux_backend::GpsdReceiver>(
+      o, [] { return hal::linux_backend::monotonic_now_ns(); });
+}
+
 }  // namespace
 
 BoardHardware::BoardHardware(const config::BoardConfig& board)
@@ -24,6 +39,9 @@ BoardHardware::BoardHardware(const config::BoardConfig& board)
       estop_(chip_, board.gpio.estop, board.controller.estop_active_low, "gpio.estop_line"),
       status_(chip_, board.gpio.status, "gpio.status_line"),
       probe_(edges_),
-      hal_{can_, probe_, estop_, status_} {}
+      gnss_(gnss_of(board)),
+      hal_{can_, probe_, estop_, status_} {
+  hal_.gnss = gnss_.get();
+}
 
 }  // namespace planter::daemon

@@ -73,20 +73,21 @@ void GroundFusion::set_estimate(double k, double wheel_now_m) {
   k_ = applied;
 }
 
-GnssUse GroundFusion::judge(const hal::GnssFix& fix) const {
+GnssUse judge_fix(const GroundFusionConfig& cfg, const hal::GnssFix& fix,
+                  std::int64_t last_fix_ns) {
   if (fix.mode != hal::GnssMode::k2D && fix.mode != hal::GnssMode::k3D) return GnssUse::kNoFix;
   if (!std::isfinite(fix.speed_mps) || !std::isfinite(fix.track_deg) || fix.speed_mps < 0 ||
-      fix.speed_mps > cfg_.max_speed_mps) {
+      fix.speed_mps > cfg.max_speed_mps) {
     return GnssUse::kRefused;
   }
-  if ((fix.satellites > 0 && fix.satellites < cfg_.min_satellites) ||
-      (fix.hdop > 0 && fix.hdop > cfg_.max_hdop) ||
-      (fix.speed_err_mps > 0 && fix.speed_err_mps > cfg_.max_speed_err_mps) ||
+  if ((fix.satellites > 0 && fix.satellites < cfg.min_satellites) ||
+      (fix.hdop > 0 && fix.hdop > cfg.max_hdop) ||
+      (fix.speed_err_mps > 0 && fix.speed_err_mps > cfg.max_speed_err_mps) ||
       !std::isfinite(fix.hdop) || !std::isfinite(fix.speed_err_mps)) {
     return GnssUse::kPoorFix;
   }
   // A time that stands still or runs back is a receiver (or a log) that stopped.
-  if (last_fix_ns_ != 0 && fix.valid_ns <= last_fix_ns_) return GnssUse::kStale;
+  if (last_fix_ns != 0 && fix.valid_ns <= last_fix_ns) return GnssUse::kStale;
   return GnssUse::kUsing;
 }
 
@@ -134,7 +135,7 @@ void GroundFusion::update(const MachineState& in, std::int64_t now_ns) {
       why = GnssUse::kDisconnected;
     } else if (in.gnss.sequence != 0 && in.gnss.sequence != last_seq_) {
       last_seq_ = in.gnss.sequence;
-      const GnssUse judged = judge(in.gnss);
+      const GnssUse judged = judge_fix(cfg_, in.gnss, last_fix_ns_);
       const double age_s = static_cast<double>(now_ns - in.gnss.valid_ns) * 1e-9;
       if (judged == GnssUse::kUsing && age_s <= cfg_.fix_timeout_s && age_s >= 0) {
         const std::uint64_t refused_before = refused_;

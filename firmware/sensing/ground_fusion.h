@@ -93,7 +93,6 @@ class GroundFusion {
   };
   void remember(std::int64_t now_ns, double wheel_m);
   [[nodiscard]] bool wheel_at(std::int64_t t_ns, double& wheel_m) const;
-  [[nodiscard]] GnssUse judge(const hal::GnssFix& fix) const;
   void take(const hal::GnssFix& fix);
   void set_estimate(double k, double wheel_now_m);
 
@@ -116,6 +115,11 @@ class GroundFusion {
   std::array<WheelSample, kHistory> history_{};
   std::size_t head_ = 0, filled_ = 0;
 };
+
+// Whether a fix is good enough to use by itself (mode, figures, quality, a time that moves on
+// from `last_fix_ns`, the last fix taken; 0: none): kUsing, or why not.
+GnssUse judge_fix(const GroundFusionConfig& config, const hal::GnssFix& fix,
+                  std::int64_t last_fix_ns);
 
 // The operator's words for a GnssUse.
 const char* gnss_use_name(GnssUse use);

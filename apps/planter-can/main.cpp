@@ -11,6 +11,7 @@
 #include "apps/planter-can/cmd_calibrate.h"
 #include "apps/planter-can/cmd_check.h"
 #include "apps/planter-can/cmd_configure.h"
+#include "apps/planter-can/cmd_gnss.h"
 #include "apps/planter-can/cmd_info.h"
 #include "apps/planter-can/cmd_lss.h"
 #include "apps/planter-can/cmd_scan.h"
@@ -171,6 +172,17 @@ int main(int argc, char** argv) {
   CheckOptions check;
   double check_listen_s = 2.0;
   bool skip_encoder = false;
+  GnssOptions gnss;
+  gnss.stop = &g_stop;
+  auto* c_gnss = app.add_subcommand(
+      "gnss", "the GNSS receiver through gpsd: each fix and whether it is used (no bus)");
+  c_gnss->add_option("--host", gnss.host, "gpsd's host (default: the board's, else 127.0.0.1)");
+  c_gnss->add_option("--port", gnss.port, "gpsd's port (default: the board's, else 2947)")
+      ->check(planter::config::finite_range(1, 65535));
+  c_gnss->add_option("--duration", gnss.duration_s, "seconds to watch (default 10)")
+      ->check(planter::config::finite_range(0.1, 86400.0));
+  c_gnss->add_option("--log", gnss.log_path,
+                     "check this NMEA log instead (checksums, time, speed)");
   auto* c_check = app.add_subcommand("check", "the commissioning checklist; exit 1 on any fail");
   c_check->add_option("--listen-s", check_listen_s, "how long to watch the bus")
       ->check(planter::config::finite_range(0.1, 600.0));
@@ -216,6 +228,7 @@ int main(int argc, char** argv) {
   if (c_decode->parsed())
     return run_decode(have_board ? &board : nullptr, decode_log, decode_out, std::cout, std::cerr);
 
+  if (c_gnss->parsed()) return run_gnss(have_board ? &board : nullptr, gnss, std::cout, std::cerr);
   if (iface.empty()) return fail(kExitBadInput, "--iface is required (can0, vcan0, ... or sim)");
   std::unique_ptr<ToolLink> link;
   try {

@@ -14,6 +14,7 @@
 #include "apps/planter-sim/replay.h"
 #include "config/cli_range.h"
 #include "config/config_error.h"
+#include "config/nmea.h"
 #include "config/output_set.h"
 #include "config/recording_format.h"
 #include "hal/linux/hal_error.h"
@@ -145,6 +146,16 @@ std::string seedlings_csv(const SeedlingProcess& process) {
   return csv.str();
 }
 
+// The simulated receiver's fixes as NMEA (RMC, GGA), for gpsfake and other NMEA tools. The run
+// starts at an assumed 2026-05-01 08:00:00 UTC: the times are the run's, the date any.
+std::string gnss_nmea(const std::vector<hal::GnssFix>& fixes) {
+  constexpr double kRunStartUtcS = 1777622400.0;
+  std::string out;
+  for (const hal::GnssFix& f : fixes)
+    out += config::nmea_sentences(f, kRunStartUtcS + static_cast<double>(f.valid_ns) * 1e-9);
+  return out;
+}
+
 // The scenario (with another board if one is given), its board's warnings printed once: every
 // subcommand runs a board, so every one says what is in range but doubtful about it.
 Scenario load_scenario_warned(const std::string& scenario_path, const std::string& board_path) {
@@ -182,10 +193,13 @@ int run_scenario(const std::string& scenario_path, const std::string& out_dir, b
   out.write("summary.json", summary.to_json() + "\n");
   out.write("seedlings.csv", seedlings_csv(runner.plant().seedlings()));
   out.write("report.html", report_html(scenario, summary, series, runner.plant().seedlings()));
+  const bool gnss = scenario.board.controller.ground.gnss_fitted;
+  if (gnss) out.write("gnss.nmea", gnss_nmea(runner.gnss_fixes()));
   out.commit();
   if (!quiet) print_summary(summary);
   for (const auto& note : summary.notes) std::printf("note: %s\n", note.c_str());
-  std::printf("wrote %s/{recording.csv,seedlings.csv,summary.json,report.html}\n", out_dir.c_str());
+  std::printf("wrote %s/{recording.csv,seedlings.csv,summary.json,report.html%s}\n",
+              out_dir.c_str(), gnss ? ",gnss.nmea" : "");
   // A machine that never moved, with no fault the scenario scripted, is a broken board or
   // machine file, not a result (issue 28, item 12: an hour of a boot fault exited 0).
   const FaultEvents& scripted = scenario.faults;

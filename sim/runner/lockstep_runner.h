@@ -44,6 +44,8 @@ class LockstepRunner {
   ControlCycle& controller() { return *controller_; }
   hal::sim::VirtualCanBus& bus() { return bus_; }
   hal::sim::SimDigitalInput& estop() { return estop_; }
+  // The simulated receiver's fixes as delivered (empty when the board has none).
+  [[nodiscard]] const std::vector<hal::GnssFix>& gnss_fixes() const { return gnss_.log(); }
   hal::sim::VirtualCanEndpoint& device_endpoint(NodeRole role);
   // The controller's own connection to the bus (unplug it to pull the controller's cable).
   hal::sim::VirtualCanEndpoint& controller_endpoint() { return *controller_endpoint_; }

@@ -36,6 +36,13 @@ LiveSample live_sample(double t_s, const Telemetry& t) {
   s.depth_mm = t.depth_mm;
   s.depth_target_mm = t.depth_target_mm;
   s.planting = t.planting;
+  s.gnss_fitted = t.gnss_fitted;
+  s.gnss_use = t.gnss_use;
+  s.slip_est = t.slip_est;
+  s.v_gnss_mps = t.v_gnss_mps;
+  s.gnss_mode = static_cast<int>(t.gnss.mode);
+  s.satellites = t.gnss.satellites;
+  s.hdop = t.gnss.hdop;
   return s;
 }
 
@@ -66,6 +73,15 @@ std::string to_json(const LiveSample& s, const std::string& recording) {
         {std::string(signal_key("singulation_pct")), spaced ? number(p.singulation_pct) : nullptr},
         {"empty_clamps_in_row", p.empty_clamps_in_row},
         {std::string(signal_key("damage_seen")), p.damage_seen}}},
+      {"gnss", s.gnss_fitted
+                   ? nlohmann::json{{"use", gnss_use_name(s.gnss_use)},
+                                    {"in_use", s.gnss_use == GnssUse::kUsing},
+                                    {std::string(signal_key("slip_est")), number(s.slip_est)},
+                                    {std::string(signal_key("v_gnss")), number(s.v_gnss_mps)},
+                                    {"mode", s.gnss_mode},
+                                    {"satellites", s.satellites},
+                                    {"hdop", number(s.hdop)}}
+                   : nlohmann::json()},
       {"recording", recording.empty() ? nlohmann::json() : nlohmann::json(recording)}};
   return j.dump();
 }

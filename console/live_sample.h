@@ -25,6 +25,15 @@ struct LiveSample {
   double depth_mm = 0.0;
   double depth_target_mm = 0.0;
   PlantingFigures planting;
+  // The GNSS receiver, where the board has one: how the fusion uses it, the slip it has
+  // learned, and the newest fix's figures.
+  bool gnss_fitted = false;
+  GnssUse gnss_use = GnssUse::kNone;
+  double slip_est = 0.0;
+  double v_gnss_mps = 0.0;
+  int gnss_mode = 0;
+  int satellites = 0;
+  double hdop = 0.0;
 };
 
 // The console gets ten samples a second (the page polls five times a second): one every this

@@ -35,7 +35,8 @@ TEST(ConsoleSignalNames, ThePageReadsOnlyTheSignalTablesNames) {
   // planting block and its counters that are not recording columns, the recording's name.
   const std::set<std::string> the_consoles_own = {
       "t_s",      "state",     "faults",   "warnings",
-      "planting", "recording", "spacings", "empty_clamps_in_row"};
+      "planting", "recording", "spacings", "empty_clamps_in_row",
+      "gnss"};
   // s.NAME (a state), h.NAME (the history), p.NAME (its planting block), rows(["NAME", ...]).
   std::set<std::string> names;
   const std::regex field(R"(\b[shp]\.([a-z_]+)\b)");

@@ -27,6 +27,7 @@ const MachineCommand& Controller::update(const MachineState& in, std::int64_t no
   command_.sigma = sigma_loop_.sigma_seen(in.omega_radps, ground_.speed_mps());
   command_.ground_speed_mps = ground_.speed_mps();
   command_.slip_est = ground_.slip();
+  command_.gnss_use = ground_.use();
 
   SupervisorInputs sv;
   sv.estop = in.estop;

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 
+#include "firmware/sensing/gnss_use.h"
 #include "planter/hal/gnss.h"
 
 namespace planter {
@@ -71,6 +72,7 @@ struct MachineCommand {
   // corrected for the slip GNSS measured where a receiver is fitted.
   double ground_speed_mps = 0.0;
   double slip_est = 0.0;  // the soil wheel's slip beyond its calibration, as estimated
+  GnssUse gnss_use = GnssUse::kNone;
 };
 
 }  // namespace planter

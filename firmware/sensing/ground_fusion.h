@@ -18,6 +18,7 @@
 #include <cstdint>
 
 #include "firmware/io/process_image.h"
+#include "firmware/sensing/gnss_use.h"
 
 namespace planter {
 
@@ -46,17 +47,6 @@ struct GroundFusionConfig {
   // A speed further than this many sigma from the wheel's times k is refused (a jump).
   double gate_sigma = 5.0;
   double max_speed_mps = 1.0;  // above this a speed is implausible (the supervisor's)
-};
-
-// Why the last fix was not used (the console says it in words).
-enum class GnssUse : std::uint8_t {
-  kNone,          // no receiver on the board
-  kUsing,         // fixes used
-  kNoFix,         // no fix yet, or the receiver says none
-  kPoorFix,       // satellites, HDOP or the speed error past the limits
-  kStale,         // no new fix for fix_timeout_s (the receiver or gpsd stopped)
-  kRefused,       // the speed jumped (the gate) or was implausible
-  kDisconnected,  // gpsd or the receiver's link is down
 };
 
 class GroundFusion {
@@ -120,8 +110,5 @@ class GroundFusion {
 // from `last_fix_ns`, the last fix taken; 0: none): kUsing, or why not.
 GnssUse judge_fix(const GroundFusionConfig& config, const hal::GnssFix& fix,
                   std::int64_t last_fix_ns);
-
-// The operator's words for a GnssUse.
-const char* gnss_use_name(GnssUse use);
 
 }  // namespace planter

@@ -159,6 +159,8 @@ void read_gnss(TomlSection& g, BoardConfig& b) {
   r.gpsd_host = g.string(bk("gnss.gpsd_host"));
   g.reject_control_characters("gpsd_host", r.gpsd_host);
   r.gpsd_port = static_cast<int>(g.integer(bk("gnss.gpsd_port")));
+  r.antenna_ahead_m = g.number(bk("gnss.antenna_ahead_m"));
+  r.antenna_left_m = g.number(bk("gnss.antenna_left_m"));
   GroundFusionConfig& f = b.controller.ground;
   f.gnss_fitted = r.receiver != "none";
   f.min_satellites = static_cast<int>(g.integer(bk("gnss.min_satellites")));

@@ -34,6 +34,10 @@ struct GnssBoardConfig {
   std::string receiver = "none";  // none, sim or gpsd
   std::string gpsd_host = "127.0.0.1";
   int gpsd_port = 2947;
+  // The antenna's place from where seedlings leave the disc: ahead along the row, and to the
+  // left of it (metres). As-planted positions are the antenna's less this.
+  double antenna_ahead_m = 0.0;
+  double antenna_left_m = 0.0;
 };
 
 // [console]: the operator's web console that planterd serves (console/console_server.h).

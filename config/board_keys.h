@@ -54,6 +54,8 @@ inline constexpr ConfigKey kBoardKeys[] = {
   string_key(kBoard, "gnss", "receiver", "none", "the GNSS receiver: none, sim (the simulator's), or gpsd (a receiver that gpsd serves)"),
   string_key(kBoard, "gnss", "gpsd_host", "127.0.0.1", "where gpsd listens"),
   integer_key(kBoard, "gnss", "gpsd_port", 2947, 1, 65535, "", "gpsd's TCP port (its own default: 2947)"),
+  number_key(kBoard, "gnss", "antenna_ahead_m", 0.0, -20.0, 20.0, "m", "the antenna's place ahead of where seedlings leave the disc, along the row"),
+  number_key(kBoard, "gnss", "antenna_left_m", 0.0, -20.0, 20.0, "m", "and to the left of it"),
   integer_key(kBoard, "gnss", "min_satellites", board_defaults::kGround.min_satellites, 0, 64, "", "a fix with fewer satellites is not used (assumed)"),
   number_key(kBoard, "gnss", "max_hdop", board_defaults::kGround.max_hdop, 0.5, 99.0, "", "a fix with a larger HDOP is not used (assumed)"),
   number_key(kBoard, "gnss", "slip_walk_per_sqrt_m", board_defaults::kGround.scale_walk_per_sqrt_m, 0.0, 1.0, "1/sqrt(m)", "how fast the wheel's slip may change along the row, 1 sigma (assumed): faster follows the soil, slower averages the receiver's noise"),

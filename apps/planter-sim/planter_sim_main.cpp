@@ -11,6 +11,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "apps/planter-sim/as_planted.h"
 #include "apps/planter-sim/replay.h"
 #include "config/cli_range.h"
 #include "config/config_error.h"
@@ -125,13 +126,16 @@ void print_summary(const Summary& s) {
   std::printf(")\n");
 }
 
-std::string seedlings_csv(const SeedlingProcess& process) {
+// `places` (one per released seedling) adds lat_deg and lon_deg, empty where no fix placed it.
+std::string seedlings_csv(const SeedlingProcess& process,
+                          const std::vector<PlantedPlace>* places = nullptr) {
   std::ostringstream csv;
   // tilt_deg: + top forward, 90 lodged; sigma_at_release empty when released standing.
   // fell_in_carry 1: dropped from the clamp before the soil (a skip; no position or tilt).
   csv << "x_m,release_t,diameter_mm,length_mm,strength_N,peak_force_N,damaged,tilt_deg,sigma_"
          "at_release,burial_mm,clamp_turn_deg,lip_drag_deg,lodged,clamp_slip_mm,fall_deg,"
-         "fell_in_carry\n";
+         "fell_in_carry"
+      << (places ? ",lat_deg,lon_deg\n" : "\n");
   for (std::size_t i = 0; i < process.released(); ++i) {
     const Seedling& s = process.seedlings()[i];
     csv << s.x_m << ',' << s.release_time_s << ',' << s.diameter_mm << ',' << s.length_mm << ','
@@ -141,7 +145,14 @@ std::string seedlings_csv(const SeedlingProcess& process) {
     csv << ',' << s.release.burial_mm << ',' << s.release.clamp_turn_deg << ','
         << s.release.lip_drag_deg << ',' << (s.release.lodged ? 1 : 0) << ','
         << s.release.clamp_slip_mm << ',' << s.release.fall_deg << ','
-        << (s.release.fell_in_carry ? 1 : 0) << '\n';
+        << (s.release.fell_in_carry ? 1 : 0);
+    if (places) {
+      const PlantedPlace& p = (*places)[i];
+      char ll[64] = ",,";
+      if (p.known) std::snprintf(ll, sizeof ll, ",%.8f,%.8f", p.lat_deg, p.lon_deg);
+      csv << ll;
+    }
+    csv << '\n';
   }
   return csv.str();
 }
@@ -191,15 +202,25 @@ int run_scenario(const std::string& scenario_path, const std::string& out_dir, b
   summary.assumptions = model_assumptions(scenario);
   recording_thread.close();
   out.write("summary.json", summary.to_json() + "\n");
-  out.write("seedlings.csv", seedlings_csv(runner.plant().seedlings()));
-  out.write("report.html", report_html(scenario, summary, series, runner.plant().seedlings()));
   const bool gnss = scenario.board.controller.ground.gnss_fitted;
-  if (gnss) out.write("gnss.nmea", gnss_nmea(runner.gnss_fixes()));
+  const SeedlingProcess& planted = runner.plant().seedlings();
+  std::vector<PlantedPlace> places;
+  std::string map;
+  if (gnss) {
+    const double target_mm = scenario.board.controller.monitor.target_spacing_mm;
+    places = place_seedlings(planted, runner.gnss_fixes(), scenario.board.gnss);
+    out.write("gnss.nmea", gnss_nmea(runner.gnss_fixes()));
+    out.write("as_planted.geojson",
+              as_planted_geojson(planted, places, runner.gnss_fixes(), target_mm));
+    map = as_planted_svg(planted, places, target_mm);
+  }
+  out.write("seedlings.csv", seedlings_csv(planted, gnss ? &places : nullptr));
+  out.write("report.html", report_html(scenario, summary, series, planted, map));
   out.commit();
   if (!quiet) print_summary(summary);
   for (const auto& note : summary.notes) std::printf("note: %s\n", note.c_str());
   std::printf("wrote %s/{recording.csv,seedlings.csv,summary.json,report.html%s}\n",
-              out_dir.c_str(), gnss ? ",gnss.nmea" : "");
+              out_dir.c_str(), gnss ? ",gnss.nmea,as_planted.geojson" : "");
   // A machine that never moved, with no fault the scenario scripted, is a broken board or
   // machine file, not a result (issue 28, item 12: an hour of a boot fault exited 0).
   const FaultEvents& scripted = scenario.faults;

@@ -42,8 +42,10 @@ struct ReportSeries {
   void add(const TickRecord& row);
 };
 
-// The self-contained report.html; every user string in it is escaped.
+// The self-contained report.html; every user string in it is escaped. `map_html`, when not
+// empty, is the as-planted map's section body (made by the caller, which places the seedlings).
 std::string report_html(const Scenario& scenario, const Summary& summary,
-                        const ReportSeries& series, const SeedlingProcess& seedlings);
+                        const ReportSeries& series, const SeedlingProcess& seedlings,
+                        const std::string& map_html = "");
 
 }  // namespace planter::sim

@@ -19,7 +19,7 @@ using report::Marker;
 }  // namespace
 
 std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries& r,
-                        const SeedlingProcess& seedlings) {
+                        const SeedlingProcess& seedlings, const std::string& map_html) {
   using report::html_escape;
   std::ostringstream out;
   std::vector<double> tilts, spacing, peaks;
@@ -153,8 +153,9 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
               {{strength_N, "#c00", "mean strength"}, {ceiling, "#d60", "clamp ceiling"}},
               {},
               ""},
-             peaks, 40, 200, 80)
-      << "<h2>Model assumptions</h2><p>Written from the configuration that ran.</p><ul>";
+             peaks, 40, 200, 80);
+  if (!map_html.empty()) out << "<h2>The row as planted, by GNSS</h2>" << map_html;
+  out << "<h2>Model assumptions</h2><p>Written from the configuration that ran.</p><ul>";
   for (const std::string& a : s.assumptions) out << "<li>" << html_escape(a) << "</li>";
   out << "</ul></body></html>";
   return out.str();

@@ -27,6 +27,25 @@ want_rc=1 expect help-full "^planter-sim: cannot write to standard output" -- \
   bash -c "\"$sim\" --help >/dev/full"
 want_rc=1 expect version-full "^planter-sim: cannot write to standard output" -- \
   bash -c "\"$sim\" --version >/dev/full"
+# Issue 53, item 3: a plan's run values go through the scenario's key table and ranges.
+plan() {  # plan FILE RUN_JSON: a plan of one run on the field scenario
+  printf '{"kind": "planter-sim run plan", "version": 1, "scenario": "%s", "inputs_hash": "x",\n "runs": [%s]}\n' \
+    "$src/scenarios/zhangqiu-field.toml" "$2" >"$1"
+}
+plan "$tmp/p1.json" '{"seed": 1, "distance_m": 10, "operating_point": {"sigma": 0, "depth_mm": 100, "contact_area_mm2": 255}}'
+expect plan-sigma-0 "p1.json: 'runs\[0\]\.operating_point\.sigma': 0 is outside 0.5 to 3" -- "$sim" plan-run "$tmp/p1.json" 0
+plan "$tmp/p2.json" '{"seed": 1, "distance_m": 1e308}'
+expect plan-distance-huge "p2.json: 'runs\[0\]\.distance_m': 1e\+308 is outside 0.1 to 10000 m" -- "$sim" plan-run "$tmp/p2.json" 0
+plan "$tmp/p3.json" '{"seed": 1, "distance_m": -5}'
+expect plan-distance-negative "p3.json: 'runs\[0\]\.distance_m': -5 is outside" -- "$sim" plan-run "$tmp/p3.json" 0
+plan "$tmp/p4.json" '{"seed": 1, "distance_m": 10, "operating_point": {"sigma": 1.5, "depth_mm": 1e308, "contact_area_mm2": 255}}'
+expect plan-depth-huge "p4.json: 'runs\[0\]\.operating_point\.depth_mm': 1e\+308 is outside 40 to 160 mm" -- "$sim" plan-run "$tmp/p4.json" 0
+plan "$tmp/p5.json" '{"seed": 1, "distance_m": 10, "values": {"seedlings.strength_test_length_mm": 1e308}}'
+expect plan-value-huge "p5.json: 'runs\[0\]\.values\.seedlings\.strength_test_length_mm': 1e\+308 is outside" -- "$sim" plan-run "$tmp/p5.json" 0
+printf '{"kind": "planter-sim run plan",\n "version": 1,\n "runs": [ {"seed": 1,, }\n' >"$tmp/p6.json"
+expect plan-malformed "p6.json:3: is not JSON" -- "$sim" plan-run "$tmp/p6.json" 0
+plan "$tmp/p7.json" '{"seed": -1, "distance_m": 10}'
+expect plan-seed-negative "p7.json: 'runs\[0\]\.seed': is not a whole number" -- "$sim" plan-run "$tmp/p7.json" 0
 cp "$src/scenarios/zhangqiu-field.toml" "$tmp/s.toml"
 sed -i "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" "$tmp/s.toml"
 printf '\n[route2]\nx = 1\n' >>"$tmp/s.toml"

@@ -1,11 +1,13 @@
 #include "sim/runner/run_plan.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "config/config_error.h"
 #include "config/content_hash.h"
 #include "config/durable_file.h"
 #include "config/input_file.h"
@@ -13,6 +15,7 @@
 #include "sim/plant/model_values.h"
 #include "sim/runner/disturbance_keys.h"
 #include "sim/runner/lockstep_runner.h"
+#include "sim/runner/scenario_keys.h"
 
 namespace planter::sim {
 namespace {
@@ -65,41 +68,139 @@ std::string plan_json(const RunPlan& plan) {
   return j.dump(1) + "\n";
 }
 
+namespace {
+
+// A plan's values go through the scenario's key table and its ranges (issue 53, item 3): one
+// message naming the plan, the run and the key, and exit 2, as a scenario's would.
+class PlanReader {
+ public:
+  explicit PlanReader(const std::string& path) : path_(path) {}
+
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw config::ConfigError(path_, 0, where, what);
+  }
+  const nlohmann::json& field(const nlohmann::json& obj, const char* name,
+                              const std::string& where) const {
+    if (!obj.is_object() || !obj.contains(name)) fail(where + name, "is missing");
+    return obj.at(name);
+  }
+  double number(const nlohmann::json& v, const std::string& where, double lo, double hi,
+                std::string_view unit) const {
+    if (!v.is_number()) fail(where, "is not a number");
+    const double x = v.get<double>();
+    if (!std::isfinite(x) || x < lo || x > hi) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "%g is outside %g to %g%s%.*s", x, lo, hi,
+                    unit.empty() ? "" : " ", static_cast<int>(unit.size()), unit.data());
+      fail(where, buf);
+    }
+    return x;
+  }
+  // A number by the scenario key it stands for (its range and unit).
+  double keyed(const nlohmann::json& v, const std::string& where, std::string_view dotted) const {
+    const config::ConfigKey* k = scenario_key(dotted);
+    if (k == nullptr) fail(where, "is no scenario key");
+    return number(v, where, k->min, k->max, k->unit);
+  }
+  static const config::ConfigKey* scenario_key(std::string_view dotted) {
+    for (const auto* rows : {&kScenarioKeys}) {
+      for (const config::ConfigKey& k : *rows) {
+        if (dotted.size() == k.table.size() + 1 + k.name.size() && dotted.starts_with(k.table) &&
+            dotted[k.table.size()] == '.' && dotted.ends_with(k.name))
+          return &k;
+      }
+    }
+    return nullptr;
+  }
+
+ private:
+  const std::string& path_;
+};
+
+PlannedRun read_run(const PlanReader& p, const nlohmann::json& one, std::size_t index) {
+  const std::string at = "runs[" + std::to_string(index) + "].";
+  PlannedRun r;
+  const nlohmann::json& seed = p.field(one, "seed", at);
+  if (!seed.is_number_unsigned()) p.fail(at + "seed", "is not a whole number of at least 0");
+  r.seed = seed.get<std::uint64_t>();
+  r.distance_m = p.keyed(p.field(one, "distance_m", at), at + "distance_m", "route.distance_m");
+  if (one.contains("operating_point")) {
+    const auto& op = one.at("operating_point");
+    const std::string o = at + "operating_point.";
+    r.operating_point =
+        OperatingPoint{p.keyed(p.field(op, "sigma", o), o + "sigma", "controller.sigma"),
+                       p.keyed(p.field(op, "depth_mm", o), o + "depth_mm", "controller.depth_mm"),
+                       p.keyed(p.field(op, "contact_area_mm2", o), o + "contact_area_mm2",
+                               "mechanism.contact_area_mm2")};
+  }
+  if (one.contains("clamp_setpoint_N"))
+    r.clamp_setpoint_N =
+        p.keyed(one.at("clamp_setpoint_N"), at + "clamp_setpoint_N", "controller.clamp_force_N");
+  if (one.contains("per_stem_grip")) {
+    if (!one.at("per_stem_grip").is_boolean()) p.fail(at + "per_stem_grip", "is not true or false");
+    r.per_stem_grip = one.at("per_stem_grip").get<bool>();
+  }
+  if (one.contains("values")) {
+    if (!one.at("values").is_object()) p.fail(at + "values", "is not an object of numbers");
+    for (const auto& [key, value] : one.at("values").items()) {
+      const auto values = model_values();
+      const auto it = std::find_if(values.begin(), values.end(),
+                                   [&](const ModelValue& v) { return key == v.key; });
+      if (it == values.end()) p.fail(at + "values." + key, "is no model value");
+      const config::ConfigKey* k = PlanReader::scenario_key(key);
+      r.values.emplace_back(key,
+                            k ? p.keyed(value, at + "values." + key, key)
+                              : p.number(value, at + "values." + key, it->low, it->high, it->unit));
+    }
+  }
+  if (one.contains("disturbances")) {
+    if (!one.at("disturbances").is_array()) p.fail(at + "disturbances", "is not a list");
+    for (const auto& pair : one.at("disturbances")) {
+      if (!pair.is_array() || pair.size() != 2 || !pair.at(0).is_string() ||
+          !pair.at(1).is_number())
+        p.fail(at + "disturbances", "holds an entry that is not [\"key\", number]");
+      const std::string key = pair.at(0).get<std::string>();
+      const auto keys = disturbance_keys();
+      const auto it = std::find_if(keys.begin(), keys.end(),
+                                   [&](const DisturbanceKey& k) { return k.key == key; });
+      if (it == keys.end()) p.fail(at + "disturbances", "'" + key + "' is no disturbance key");
+      r.disturbances.emplace_back(
+          key, p.number(pair.at(1), at + "disturbances." + key, it->low, it->high, it->unit));
+    }
+  }
+  return r;
+}
+
+// The line a JSON parse error's byte falls on.
+int line_of(const std::string& text, std::size_t byte) {
+  return 1 + static_cast<int>(std::count(
+                 text.begin(),
+                 text.begin() + static_cast<std::ptrdiff_t>(std::min(byte, text.size())), '\n'));
+}
+
+}  // namespace
+
 RunPlan read_plan(const std::string& path) {
   RunPlan plan;
   const std::string text = config::read_input_file(path);
+  nlohmann::json j;
   try {
-    const nlohmann::json j = nlohmann::json::parse(text);
-    if (j.at("kind") != "planter-sim run plan" || j.at("version") != 1)
-      throw std::runtime_error("not a planter-sim run plan of version 1");
-    plan.scenario = j.at("scenario").get<std::string>();
-    plan.inputs_hash = j.at("inputs_hash").get<std::string>();
-    for (const auto& one : j.at("runs")) {
-      PlannedRun r;
-      r.seed = one.at("seed").get<std::uint64_t>();
-      r.distance_m = one.at("distance_m").get<double>();
-      if (one.contains("operating_point")) {
-        const auto& op = one.at("operating_point");
-        r.operating_point =
-            OperatingPoint{op.at("sigma").get<double>(), op.at("depth_mm").get<double>(),
-                           op.at("contact_area_mm2").get<double>()};
-      }
-      if (one.contains("clamp_setpoint_N"))
-        r.clamp_setpoint_N = one.at("clamp_setpoint_N").get<double>();
-      if (one.contains("per_stem_grip")) r.per_stem_grip = one.at("per_stem_grip").get<bool>();
-      if (one.contains("values"))
-        for (const auto& [key, value] : one.at("values").items())
-          r.values.emplace_back(key, value.get<double>());
-      if (one.contains("disturbances"))
-        for (const auto& pair : one.at("disturbances"))
-          r.disturbances.emplace_back(pair.at(0).get<std::string>(), pair.at(1).get<double>());
-      plan.runs.push_back(r);
-    }
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(path + ": not a run plan: " + e.what());
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error(path + ": " + e.what());
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw config::ConfigError(path, line_of(text, e.byte), "",
+                              "is not JSON (a run plan is what planter-sim writes as plan.json)");
   }
+  const PlanReader p(path);
+  if (!j.is_object() || !j.contains("kind") || j.at("kind") != "planter-sim run plan" ||
+      !j.contains("version") || j.at("version") != 1)
+    p.fail("kind", "not a planter-sim run plan of version 1");
+  if (!p.field(j, "scenario", "").is_string()) p.fail("scenario", "is not a path");
+  if (!p.field(j, "inputs_hash", "").is_string()) p.fail("inputs_hash", "is not a string");
+  plan.scenario = j.at("scenario").get<std::string>();
+  plan.inputs_hash = j.at("inputs_hash").get<std::string>();
+  const nlohmann::json& runs = p.field(j, "runs", "");
+  if (!runs.is_array()) p.fail("runs", "is not a list");
+  for (std::size_t i = 0; i < runs.size(); ++i) plan.runs.push_back(read_run(p, runs[i], i));
   return plan;
 }
 

@@ -13,6 +13,7 @@
 #include "dem/calibration_runs.h"
 #include "dem/dem_keys.h"
 #include "plan/executor.h"
+#include "plan/folder_lock.h"
 
 namespace planter::dem {
 namespace {
@@ -185,6 +186,8 @@ std::vector<Factor> screening_factors() {
 
 CalibrationReport calibrate(const CalibrationOptions& o,
                             const std::function<void(const std::string&)>& progress) {
+  const plan::FolderLock lock(
+      o.out_dir, "another planter-dem calibration is writing this folder now (give --out another)");
   CalibrationReport r;
   r.factors = screening_factors();
   const int nf = static_cast<int>(r.factors.size());

@@ -24,6 +24,16 @@ head -c 100 "$torn" >"$tmp/torn" && cat "$tmp/torn" >"$torn"
 cmp -s "$tmp/a/montecarlo.json" "$tmp/b/montecarlo.json" ||
   { echo "FAIL the study with a torn run's summary run again differs"; exit 1; }
 echo "a torn summary.json was run again"
+# Two tools on one plan's folder (issue 53, item 5): while another holds the folder's lock
+# (here flock(1), as a running sweep would), the second is refused at once, with one line.
+mkdir -p "$tmp/c.runs/runs"
+if flock "$tmp/c.runs/runs/.planter.lock" "$sim" montecarlo "$src/scenarios/zhangqiu-field.toml" \
+  --runs 8 --distance 3 --jobs 2 --out "$tmp/c" >"$tmp/c.log" 2>&1; then
+  cat "$tmp/c.log"; echo "FAIL a second tool ran on a plan folder another holds"; exit 1
+fi
+grep -q "c.runs/runs: another planter-sim is running this plan now" "$tmp/c.log" ||
+  { cat "$tmp/c.log"; echo "FAIL the busy plan folder was not said"; exit 1; }
+echo "a plan folder another tool holds is refused: $(tail -1 "$tmp/c.log")"
 
 /usr/bin/python3 - "$tmp/a" <<'PY' || exit 1
 import csv, json, math, sys

@@ -22,6 +22,7 @@
 
 #include "config/recording_format.h"
 #include "console/operator_sessions.h"
+#include "plan/folder_lock.h"
 #include "sim/runner/lockstep_runner.h"
 #include "sim/runner/recording_writer.h"
 #include "sim/runner/summary.h"
@@ -127,27 +128,6 @@ class LiveRecorder : public console::RecordingControl {
   std::string failed_;  // a recording that stopped by itself, until stop() says it
 };
 
-// An exclusive flock on DIR/.planter-live.lock, held while the program runs (the kernel lets
-// it go when the program ends, however it ends).
-class DirectoryLock {
- public:
-  explicit DirectoryLock(const std::string& dir) {
-    const std::string path = dir + "/.planter-live.lock";
-    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0600);
-    if (fd_ < 0) throw std::runtime_error(path + ": cannot be opened: " + std::strerror(errno));
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      ::close(fd_);
-      throw std::runtime_error(dir +
-                               ": another planter-sim live uses this directory (--dir another)");
-    }
-  }
-  DirectoryLock(const DirectoryLock&) = delete;
-  DirectoryLock& operator=(const DirectoryLock&) = delete;
-  ~DirectoryLock() { ::close(fd_); }
-
- private:
-  int fd_ = -1;
-};
 }  // namespace
 
 int run_live(const std::string& scenario_path, const LiveOptions& options) {
@@ -161,11 +141,11 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
   const std::string recordings = options.dir + "/recordings";
   LiveRecorder recorder(recordings, scenario);
   std::string pairing;
-  std::optional<DirectoryLock> lock;
+  std::optional<plan::FolderLock> lock;
   if (!options.view_only) {
     std::filesystem::create_directories(recordings);
     // One live instance per --dir: two would share the audit log and the recordings.
-    lock.emplace(options.dir);
+    lock.emplace(options.dir, "another planter-sim live uses this directory (--dir another)");
     pairing = options.pairing_secret_file.empty()
                   ? console::OperatorSessions::new_secret()
                   : console::OperatorSessions::read_secret_file(options.pairing_secret_file);

@@ -3,10 +3,15 @@
 #include <mutex>
 #include <optional>
 
+#include "plan/folder_lock.h"
+
 namespace planter::sim {
 
 std::vector<Summary> execute_plan(const std::string& plan_dir, const RunPlan& plan,
                                   const ExecutorOptions& o, const std::string& label) {
+  const plan::FolderLock lock(
+      plan_dir,
+      "another planter-sim is running this plan now (wait for it, or give --out another)");
   place_plan(plan_dir, plan, o.replace_other_plan);
   const std::string plan_path = plan_dir + "/plan.json";
   // The scenario is loaded (and checked against the plan's key) once, by the first run here.

@@ -335,9 +335,30 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
     }
   };
   std::vector<bool> present(kCount, false);
+  // PDOs shorter (or longer) than the board maps them carry no value: counted and named, so a
+  // log of them does not pass as a recording of fewer columns (issue 53, item 6).
+  std::size_t bad_pdos = 0;
+  std::string first_bad;
   for (const auto& r : records) {
-    if (r.frame.is_standard_data())
-      for_each_value(r, [&](std::size_t i, double) { present[i] = true; });
+    if (!r.frame.is_standard_data()) continue;
+    for_each_value(r, [&](std::size_t i, double) { present[i] = true; });
+    const DecodedFrame d = decoder.decode(r.frame);
+    if ((d.service == Service::kTpdo || d.service == Service::kRpdo) && d.malformed) {
+      if (bad_pdos++ == 0) first_bad = (d.node_name.empty() ? "" : d.node_name + " ") + d.text;
+    }
+  }
+  if (bad_pdos > 0) {
+    bool any_measured = false;
+    for (std::size_t i = 0; i < kCount; ++i)
+      any_measured = any_measured || (present[i] && columns[i]->source == SignalSource::kNode);
+    err << "planter-can: decode: " << log_path << ": " << bad_pdos
+        << " PDOs do not match the board's maps (the first: " << first_bad
+        << "); their values are not in the CSV\n";
+    if (!any_measured) {
+      err << "planter-can: decode: no PDO of the log could be decoded with this board's maps: is "
+             "it this machine's log, and this board?\n";
+      return kExitFailed;
+    }
   }
   csv << "# source: " << log_path << "\n# board: " << board->name << "\nt";
   for (std::size_t i = 0; i < kCount; ++i) {
@@ -345,7 +366,7 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
   }
   csv << "\n";
   const std::int64_t t0 = records.front().time_ns;
-  std::size_t rows = 0;
+  std::size_t rows = 0, syncs_same_time = 0;
   std::int64_t last_row_ns = 0;
   for (const auto& r : records) {
     if (!r.frame.is_standard_data()) continue;
@@ -356,7 +377,10 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
       });
       continue;
     }
-    if (rows > 0 && r.time_ns <= last_row_ns) continue;  // the CSV's time strictly increases
+    if (rows > 0 && r.time_ns <= last_row_ns) {  // the CSV's time strictly increases
+      ++syncs_same_time;
+      continue;
+    }
     bool complete = true;
     for (std::size_t i = 0; i < kCount; ++i) complete = complete && (seen[i] || !present[i]);
     if (!complete) continue;
@@ -371,6 +395,14 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
     csv << "\n";
     ++rows;
     last_row_ns = r.time_ns;
+  }
+  // A log whose SYNCs share their times (a log without timestamps, or stamped by a clock that
+  // stood) would collapse into a few rows: refused, not written short.
+  if (syncs_same_time > 0 && syncs_same_time * 10 > syncs) {
+    err << "planter-can: decode: " << log_path << ": " << syncs_same_time << " of " << syncs
+        << " SYNC frames have the time of the one before: the log's timestamps do not advance "
+           "(a candump -L log with its times is needed)\n";
+    return kExitFailed;
   }
   if (!out_path.empty()) {
     if (std::string why; !config::write_file_atomic(out_path, file.str(), &why)) {

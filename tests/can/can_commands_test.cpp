@@ -387,6 +387,34 @@ TEST_F(CanToolTest, RecordKeepsTheToolsOwnFramesAndDecodeMakesTheRecordingCsv) {
   int rows = 0;
   while (std::getline(c, line)) ++rows;
   EXPECT_GT(rows, 50);
+
+  // Issue 53, item 6: the same log with every TPDO a byte short, and with every time the same,
+  // is refused (exit 1, said), not written as a recording of fewer columns or of one row.
+  const auto rewrite = [&](const std::string& name, auto&& edit) {
+    std::ifstream src(log);
+    std::ofstream dst((dir_ / name).string());
+    for (std::string l; std::getline(src, l);) dst << edit(l) << "\n";
+    return (dir_ / name).string();
+  };
+  const std::string short_log = rewrite("short.log", [](std::string l) {
+    const auto hash = l.find('#');
+    const int id =
+        std::stoi(l.substr(l.rfind(' ', hash) + 1, hash - l.rfind(' ', hash) - 1), nullptr, 16);
+    const int fn = id & 0x780;
+    const bool tpdo = fn == 0x180 || fn == 0x280 || fn == 0x380 || fn == 0x480;
+    if (tpdo && l.size() >= hash + 3) l.resize(l.size() - 2);
+    return l;
+  });
+  std::ostringstream out2, err2;
+  EXPECT_EQ(run_decode(&board_, short_log, (dir_ / "short.csv").string(), out2, err2), kExitFailed);
+  EXPECT_NE(err2.str().find("PDOs do not match the board's maps"), std::string::npos) << err2.str();
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "short.csv"));
+  const std::string same_log = rewrite(
+      "same.log", [](std::string l) { return "(1700000000.000000)" + l.substr(l.find(')') + 1); });
+  std::ostringstream out3, err3;
+  EXPECT_EQ(run_decode(&board_, same_log, (dir_ / "same.csv").string(), out3, err3), kExitFailed);
+  EXPECT_NE(err3.str().find("timestamps do not advance"), std::string::npos) << err3.str();
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "same.csv"));
 }
 
 }  // namespace

@@ -52,6 +52,14 @@ struct Row {
   }
 };
 
+// The row and the fusion, `ticks` ticks on.
+void drive(Row& row, GroundFusion& f, int ticks) {
+  for (int i = 0; i < ticks; ++i) {
+    row.tick();
+    f.update(row.s, row.t);
+  }
+}
+
 GroundFusionConfig fitted() {
   GroundFusionConfig c;
   c.gnss_fitted = true;
@@ -74,10 +82,7 @@ TEST(GroundFusion, LearnsAConstantSlipFromAGoodReceiver) {
   GroundFusion f(fitted());
   Row row;
   row.noise = 0.005;
-  for (int i = 0; i < 30'000; ++i) {  // 5 minutes, 18 m
-    row.tick();
-    f.update(row.s, row.t);
-  }
+  drive(row, f, 30'000);  // 5 minutes, 18 m
   EXPECT_EQ(f.use(), GnssUse::kUsing);
   EXPECT_NEAR(f.scale_estimate(), 1.05, 2.0 * f.scale_sd()) << "slip " << f.slip();
   EXPECT_LT(f.scale_sd(), 0.02);  // the walk (0.03 per root metre) keeps it from shrinking further
@@ -93,10 +98,7 @@ TEST(GroundFusion, ItsStatedUncertaintyCoversTheTruthWithANoisyReceiver) {
     GroundFusion f(fitted());
     Row row;
     row.rng.seed(seed);
-    for (int i = 0; i < 30'000; ++i) {
-      row.tick();
-      f.update(row.s, row.t);
-    }
+    drive(row, f, 30'000);
     within += std::abs(f.scale_estimate() - 1.05) <= 2.0 * f.scale_sd() ? 1 : 0;
   }
   EXPECT_GE(within, 17);  // 95 % within 2 SD, of 20 rows
@@ -105,10 +107,7 @@ TEST(GroundFusion, ItsStatedUncertaintyCoversTheTruthWithANoisyReceiver) {
 TEST(GroundFusion, ALostFixFallsBackWithinTheTimeoutAndRecovers) {
   GroundFusion f(fitted());
   Row row;
-  for (int i = 0; i < 3000; ++i) {
-    row.tick();
-    f.update(row.s, row.t);
-  }
+  drive(row, f, 3000);
   ASSERT_EQ(f.use(), GnssUse::kUsing);
   row.blocked = true;
   int ticks_to_fallback = 0;
@@ -120,20 +119,14 @@ TEST(GroundFusion, ALostFixFallsBackWithinTheTimeoutAndRecovers) {
   EXPECT_LE(ticks_to_fallback * 0.01, 0.5 + 0.1 + 0.05);  // timeout, a fix period, latency
   EXPECT_EQ(f.use(), GnssUse::kStale);
   row.blocked = false;
-  for (int i = 0; i < 30; ++i) {
-    row.tick();
-    f.update(row.s, row.t);
-  }
+  drive(row, f, 30);
   EXPECT_EQ(f.use(), GnssUse::kUsing);
 }
 
 TEST(GroundFusion, RefusesAnImplausibleSpeedAFrozenTimeAndAPoorFix) {
   GroundFusion f(fitted());
   Row row;
-  for (int i = 0; i < 1000; ++i) {
-    row.tick();
-    f.update(row.s, row.t);
-  }
+  drive(row, f, 1000);
   const double k = f.scale();
   MachineState s = row.s;
   s.gnss.sequence = 1000;
@@ -161,10 +154,7 @@ TEST(GroundFusion, RefusesAnImplausibleSpeedAFrozenTimeAndAPoorFix) {
 TEST(GroundFusion, AReceiverThatDisconnectsIsTheWheelAlone) {
   GroundFusion f(fitted());
   Row row;
-  for (int i = 0; i < 1000; ++i) {
-    row.tick();
-    f.update(row.s, row.t);
-  }
+  drive(row, f, 1000);
   row.s.gnss_connected = false;
   f.update(row.s, row.t + kTickNs);
   EXPECT_TRUE(f.wheel_alone());

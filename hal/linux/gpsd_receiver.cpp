@@ -2,6 +2,7 @@
 
 #include <gps.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -52,6 +53,10 @@ void GpsdReceiver::watch(gps_data_t& data) {
   GnssFix last;
   double last_time_s = -1.0;
   while (!stop_) {
+    // gps_waiting is false both on a timeout and on an error, and says which only through
+    // errno: clear it first, or a value left by the connect (EINPROGRESS) reads as an error and
+    // a 1 Hz receiver's quiet 200 ms would drop the connection.
+    errno = 0;
     if (!gps_waiting(&data, 200'000)) {
       if (errno != 0 && errno != EINTR && errno != EAGAIN) return;
       continue;

@@ -87,6 +87,16 @@ int compress(const Common& c, int threads) {
   dem::CompressionRun run;
   run.setup = load_setup(c);
   config::OutputSet out(c.out, "planter-dem compress", c.force);
+  // Said before the run (seconds of silence otherwise), and which seedling it is: with no
+  // --params these are the paper's published values, not the calibrated seedling (issue 54).
+  if (c.params.empty())
+    std::printf(
+        "parameters: the paper's, as published (no --params); the calibrated seedling is "
+        "models/seedling_dem.toml (--params)\n");
+  else
+    std::printf("parameters: %s\n", c.params.c_str());
+  std::printf("compressing: %ld steps...\n", dem::compression_steps(run.setup));
+  std::fflush(stdout);
   const auto t0 = std::chrono::steady_clock::now();
   run.result = dem::run_compression(run.setup, threads);
   run.wall_s = seconds_since(t0);

@@ -44,6 +44,11 @@ int run_gnss(const config::BoardConfig* board, const GnssOptions& o, std::ostrea
   GroundFusionConfig fusion = board ? board->controller.ground : GroundFusionConfig{};
   fusion.gnss_fitted = true;
   if (!o.log_path.empty()) return check_log(o.log_path, fusion.max_speed_mps, out, err);
+#ifndef PLANTER_HAVE_GPSD
+  err << "planter-can: gnss: this build has no gpsd library (libgps-dev); --log still checks "
+         "a receiver's NMEA log\n";
+  return 2;
+#else
   hal::linux_backend::GpsdOptions g;
   g.host = !o.host.empty() ? o.host : board ? board->gnss.gpsd_host : "127.0.0.1";
   g.port = o.port != 0 ? o.port : board ? board->gnss.gpsd_port : 2947;
@@ -79,6 +84,7 @@ int run_gnss(const config::BoardConfig* board, const GnssOptions& o, std::ostrea
     if (counts[u]) out << ", " << counts[u] << " " << gnss_use_name(static_cast<GnssUse>(u));
   out << "\n";
   return used > 0 ? 0 : 1;
+#endif
 }
 
 }  // namespace planter::cantool

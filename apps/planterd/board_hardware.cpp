@@ -1,5 +1,6 @@
 #include "apps/planterd/board_hardware.h"
 
+#include "hal/linux/gpsd_receiver.h"
 #include "hal/linux/hal_error.h"
 #include "hal/linux/monotonic_clock.h"
 
@@ -15,18 +16,25 @@ const std::string& checked_interface(const config::BoardConfig& board) {
   return board.can_interface;
 }
 
-std::unique_ptr<hal::linux_backend::GpsdReceiver> gnss_of(const config::BoardConfig& board) {
+std::unique_ptr<hal::GnssSource> gnss_of(const config::BoardConfig& board) {
   if (board.gnss.receiver == "sim")
     throw hal::linux_backend::HalError(
         "'gnss.receiver': board '" + board.name +
         "' names the simulator's receiver; on a board planterd reads a receiver through gpsd "
         "(receiver = \"gpsd\")");
   if (board.gnss.receiver != "gpsd") return nullptr;
+#ifndef PLANTER_HAVE_GPSD
+  throw hal::linux_backend::HalError(
+      "'gnss.receiver': board '" + board.name +
+      "' reads its receiver through gpsd, and this planterd was built without gpsd's library "
+      "(libgps-dev); build it where libgps-dev is installed");
+#else
   hal::linux_backend::GpsdOptions o;
   o.host = board.gnss.gpsd_host;
   o.port = board.gnss.gpsd_port;
   return std::make_unique<hal::linux_backend::GpsdReceiver>(
       o, [] { return hal::linux_backend::monotonic_now_ns(); });
+#endif
 }
 
 }  // namespace

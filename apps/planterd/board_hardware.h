@@ -7,7 +7,6 @@
 #include "apps/planterd/edge_latency_probe.h"
 #include "config/board_config.h"
 #include "hal/linux/gpiod_lines.h"
-#include "hal/linux/gpsd_receiver.h"
 #include "hal/linux/socketcan_bus.h"
 #include "planter/hal/controller_hal.h"
 
@@ -19,8 +18,6 @@ class BoardHardware {
   hal::ControllerHal& controller_hal() { return hal_; }
   hal::linux_backend::SocketCanBus& can() { return can_; }
   EdgeLatencyProbe& edge_latency() { return probe_; }
-  // The GNSS receiver through gpsd, where the board has one (nullptr otherwise).
-  const hal::linux_backend::GpsdReceiver* gnss() const { return gnss_.get(); }
 
  private:
   hal::linux_backend::SocketCanBus can_;
@@ -29,7 +26,7 @@ class BoardHardware {
   hal::linux_backend::GpiodInput estop_;
   hal::linux_backend::GpiodOutput status_;
   EdgeLatencyProbe probe_;
-  std::unique_ptr<hal::linux_backend::GpsdReceiver> gnss_;
+  std::unique_ptr<hal::GnssSource> gnss_;  // gpsd's reader, where the board has a receiver
   hal::ControllerHal hal_;
 };
 

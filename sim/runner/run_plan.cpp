@@ -142,7 +142,10 @@ PlannedRun read_run(const PlanReader& p, const nlohmann::json& one, std::size_t 
   }
   if (one.contains("values")) {
     if (!one.at("values").is_object()) p.fail(at + "values", "is not an object of numbers");
-    for (const auto& [key, value] : one.at("values").items()) {
+    for (const auto& item : one.at("values").items()) {
+      // Named copies, not a structured binding: clang 14 does not let a lambda capture one.
+      const std::string key = item.key();
+      const nlohmann::json& value = item.value();
       const auto values = model_values();
       const auto it = std::find_if(values.begin(), values.end(),
                                    [&](const ModelValue& v) { return key == v.key; });
@@ -189,6 +192,8 @@ RunPlan read_plan(const std::string& path) {
   } catch (const nlohmann::json::parse_error& e) {
     throw config::ConfigError(path, line_of(text, e.byte), "",
                               "is not JSON (a run plan is what planter-sim writes as plan.json)");
+  } catch (const nlohmann::json::exception&) {  // a number beyond a double (2e+308), ...
+    throw config::ConfigError(path, 0, "", "holds a number no double can hold, or is not JSON");
   }
   const PlanReader p(path);
   if (!j.is_object() || !j.contains("kind") || j.at("kind") != "planter-sim run plan" ||

@@ -6,27 +6,14 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "sim/plant/local_plane.h"
+
 namespace planter::sim {
 
 namespace {
-constexpr double kDeg = 0.017453292519943295;
-constexpr double kEarthM = 6371000.0;  // mean radius: a local tangent plane over a row
-
 bool fixed(const hal::GnssFix& f) {
   return f.mode == hal::GnssMode::k2D || f.mode == hal::GnssMode::k3D;
 }
-
-struct Plane {
-  double lat0 = 0, lon0 = 0;
-  void to_local(double lat, double lon, double& east, double& north) const {
-    north = (lat - lat0) * kDeg * kEarthM;
-    east = (lon - lon0) * kDeg * kEarthM * std::cos(lat0 * kDeg);
-  }
-  void to_geo(double east, double north, double& lat, double& lon) const {
-    lat = lat0 + north / kEarthM / kDeg;
-    lon = lon0 + east / (kEarthM * std::cos(lat0 * kDeg)) / kDeg;
-  }
-};
 
 // The fix's place at t, between the two fixes around it (both fixed, at most 1 s apart).
 bool place_at(const std::vector<hal::GnssFix>& fixes, std::int64_t t_ns, double& lat, double& lon) {
@@ -65,7 +52,7 @@ std::vector<PlantedPlace> place_seedlings(const SeedlingProcess& seedlings,
   const auto first = std::find_if(fixes.begin(), fixes.end(), fixed);
   const auto last = std::find_if(fixes.rbegin(), fixes.rend(), fixed);
   if (first == fixes.end()) return places;
-  Plane plane{first->lat_deg, first->lon_deg};
+  const LocalPlane plane{first->lat_deg, first->lon_deg};
   // The row's direction from its first fix to its last: the antenna's offset is along it.
   double de = 0, dn = 0;
   plane.to_local(last->lat_deg, last->lon_deg, de, dn);
@@ -89,7 +76,8 @@ std::vector<PlantedPlace> place_seedlings(const SeedlingProcess& seedlings,
 
 std::string as_planted_geojson(const SeedlingProcess& seedlings,
                                const std::vector<PlantedPlace>& places,
-                               const std::vector<hal::GnssFix>& fixes, double target_spacing_mm) {
+                               const std::vector<hal::GnssFix>& fixes,
+                               const PlantingMonitorConfig& monitor) {
   using nlohmann::ordered_json;
   ordered_json track = ordered_json::array();
   for (const hal::GnssFix& f : fixes)
@@ -104,8 +92,10 @@ std::string as_planted_geojson(const SeedlingProcess& seedlings,
     const Seedling& s = seedlings.seedlings()[i];
     ordered_json props = {{"seedling", i + 1}, {"x_m", s.x_m}};
     props["spacing_mm"] = std::isfinite(gaps[i]) ? ordered_json(gaps[i]) : ordered_json();
-    props["skip"] = std::isfinite(gaps[i]) && gaps[i] > 1.5 * target_spacing_mm;
-    props["multiple"] = std::isfinite(gaps[i]) && gaps[i] <= 0.5 * target_spacing_mm;
+    props["skip"] =
+        std::isfinite(gaps[i]) && gaps[i] > monitor.skip_ratio * monitor.target_spacing_mm;
+    props["multiple"] =
+        std::isfinite(gaps[i]) && gaps[i] <= monitor.multiple_ratio * monitor.target_spacing_mm;
     props["damaged"] = s.damaged;
     props["tilt_deg"] = s.tilt_deg;
     features.push_back(
@@ -117,7 +107,8 @@ std::string as_planted_geojson(const SeedlingProcess& seedlings,
 }
 
 std::string as_planted_svg(const SeedlingProcess& seedlings,
-                           const std::vector<PlantedPlace>& places, double target_spacing_mm) {
+                           const std::vector<PlantedPlace>& places,
+                           const PlantingMonitorConfig& monitor) {
   double e0 = 1e300, e1 = -1e300, n0 = 1e300, n1 = -1e300;
   for (const PlantedPlace& p : places) {
     if (!p.known) continue;
@@ -147,8 +138,10 @@ std::string as_planted_svg(const SeedlingProcess& seedlings,
   int skips = 0, multiples = 0;
   for (std::size_t i = 0; i < places.size(); ++i) {
     if (!places[i].known) continue;
-    const bool skip = std::isfinite(gaps[i]) && gaps[i] > 1.5 * target_spacing_mm;
-    const bool multiple = std::isfinite(gaps[i]) && gaps[i] <= 0.5 * target_spacing_mm;
+    const bool skip =
+        std::isfinite(gaps[i]) && gaps[i] > monitor.skip_ratio * monitor.target_spacing_mm;
+    const bool multiple =
+        std::isfinite(gaps[i]) && gaps[i] <= monitor.multiple_ratio * monitor.target_spacing_mm;
     skips += skip, multiples += multiple;
     const char* colour = skip ? "#c00" : multiple ? "#06c" : "#2a2";
     std::snprintf(buf, sizeof buf, "<circle cx='%.1f' cy='%.1f' r='%d' fill='%s'/>",

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "config/board_config.h"
+#include "firmware/sensing/planting_monitor.h"
 #include "planter/hal/gnss.h"
 #include "sim/plant/seedling_process.h"
 
@@ -25,14 +26,17 @@ std::vector<PlantedPlace> place_seedlings(const SeedlingProcess& seedlings,
                                           const config::GnssBoardConfig& antenna);
 
 // The row as planted: a point a seedling (its x along the row, the gap before it, skip or
-// multiple by the Kachman and Smith ratios of the target spacing, damaged), and the receiver's
+// multiple by the planting monitor's ratios of the target spacing, as its figures count them;
+// damaged), and the receiver's
 // track as a line.
 std::string as_planted_geojson(const SeedlingProcess& seedlings,
                                const std::vector<PlantedPlace>& places,
-                               const std::vector<hal::GnssFix>& fixes, double target_spacing_mm);
+                               const std::vector<hal::GnssFix>& fixes,
+                               const PlantingMonitorConfig& monitor);
 
 // The report's map: an SVG in local metres, one scale for both axes; skips and multiples marked.
 std::string as_planted_svg(const SeedlingProcess& seedlings,
-                           const std::vector<PlantedPlace>& places, double target_spacing_mm);
+                           const std::vector<PlantedPlace>& places,
+                           const PlantingMonitorConfig& monitor);
 
 }  // namespace planter::sim

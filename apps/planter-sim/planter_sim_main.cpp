@@ -207,12 +207,12 @@ int run_scenario(const std::string& scenario_path, const std::string& out_dir, b
   std::vector<PlantedPlace> places;
   std::string map;
   if (gnss) {
-    const double target_mm = scenario.board.controller.monitor.target_spacing_mm;
+    const PlantingMonitorConfig& monitor = scenario.board.controller.monitor;
     places = place_seedlings(planted, runner.gnss_fixes(), scenario.board.gnss);
     out.write("gnss.nmea", gnss_nmea(runner.gnss_fixes()));
     out.write("as_planted.geojson",
-              as_planted_geojson(planted, places, runner.gnss_fixes(), target_mm));
-    map = as_planted_svg(planted, places, target_mm);
+              as_planted_geojson(planted, places, runner.gnss_fixes(), monitor));
+    map = as_planted_svg(planted, places, monitor);
   }
   out.write("seedlings.csv", seedlings_csv(planted, gnss ? &places : nullptr));
   out.write("report.html", report_html(scenario, summary, series, planted, map));

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "hal/sim/sim_gnss.h"
+#include "sim/plant/local_plane.h"
 #include "sim/plant/plant_config.h"
 
 namespace planter::sim {
@@ -41,8 +42,7 @@ class GnssReceiverModel {
 
  private:
   void measure(std::int64_t t_ns, double x_m, double v_mps) {
-    constexpr double kDeg = 0.017453292519943295;
-    constexpr double kEarthM = 6371000.0;  // mean radius: a local tangent plane is enough
+    constexpr double kDeg = LocalPlane::kDeg;
     hal::GnssFix f;
     f.sequence = ++sequence_;
     f.valid_ns = t_ns;
@@ -62,8 +62,7 @@ class GnssReceiverModel {
     f.speed_err_mps = cfg_.speed_noise_mps;
     const double pn = x_m * std::cos(h) + cfg_.position_noise_m * normal_(rng_);
     const double pe = x_m * std::sin(h) + cfg_.position_noise_m * normal_(rng_);
-    f.lat_deg = cfg_.origin_lat_deg + pn / kEarthM / kDeg;
-    f.lon_deg = cfg_.origin_lon_deg + pe / (kEarthM * std::cos(cfg_.origin_lat_deg * kDeg)) / kDeg;
+    LocalPlane{cfg_.origin_lat_deg, cfg_.origin_lon_deg}.to_geo(pe, pn, f.lat_deg, f.lon_deg);
     pending_.push_back(f);
   }
 

@@ -123,10 +123,10 @@ std::string nmea_sentences(const hal::GnssFix& fix, double utc_s) {
   return sentence(rmc) + sentence(gga);
 }
 
-std::optional<NmeaRmc> parse_nmea_rmc(std::string_view line, std::string& why) {
-  const auto body = checked_body(line, why);
-  if (!body) return std::nullopt;
-  const auto f = fields(*body);
+namespace {
+// An RMC sentence's fields, from its checked body.
+std::optional<NmeaRmc> rmc_fields(std::string_view body, std::string& why) {
+  const auto f = fields(body);
   if (f[0].size() != 5 || f[0].substr(2) != "RMC") {
     why = "not an RMC sentence";
     return std::nullopt;
@@ -163,6 +163,13 @@ std::optional<NmeaRmc> parse_nmea_rmc(std::string_view line, std::string& why) {
   }
   return r;
 }
+}  // namespace
+
+std::optional<NmeaRmc> parse_nmea_rmc(std::string_view line, std::string& why) {
+  const auto body = checked_body(line, why);
+  if (!body) return std::nullopt;
+  return rmc_fields(*body, why);
+}
 
 NmeaLogCheck check_nmea_log(std::istream& in, double max_speed_mps) {
   NmeaLogCheck c;
@@ -176,13 +183,14 @@ NmeaLogCheck check_nmea_log(std::istream& in, double max_speed_mps) {
     ++c.lines;
     if (line.empty() || line == "\r") continue;
     std::string why;
-    if (!checked_body(line, why)) {
+    const auto body = checked_body(line, why);
+    if (!body) {
       problem(c.lines, why);
       continue;
     }
     ++c.sentences;
-    if (line.size() < 7 || line.compare(3, 3, "RMC") != 0) continue;
-    const auto rmc = parse_nmea_rmc(line, why);
+    if (body->size() < 5 || body->substr(2, 3) != "RMC") continue;
+    const auto rmc = rmc_fields(*body, why);
     if (!rmc) {
       problem(c.lines, why);
       continue;

@@ -319,8 +319,7 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
   }
   // Columns whose objects never appear in the log are left out (docs/recording-format.md: columns
   // may be absent); rows start once every present column has a value, so no cell is empty.
-  auto for_each_value = [&](const LogRecord& r, auto&& take) {
-    const DecodedFrame d = decoder.decode(r.frame);
+  auto for_each_value = [&](const DecodedFrame& d, auto&& take) {
     if ((d.service != Service::kTpdo && d.service != Service::kRpdo) || d.malformed) return;
     const NodeConfig* node = decoder.node_config(d.node);
     if (node == nullptr) return;
@@ -341,8 +340,8 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
   std::string first_bad;
   for (const auto& r : records) {
     if (!r.frame.is_standard_data()) continue;
-    for_each_value(r, [&](std::size_t i, double) { present[i] = true; });
     const DecodedFrame d = decoder.decode(r.frame);
+    for_each_value(d, [&](std::size_t i, double) { present[i] = true; });
     if ((d.service == Service::kTpdo || d.service == Service::kRpdo) && d.malformed) {
       if (bad_pdos++ == 0) first_bad = (d.node_name.empty() ? "" : d.node_name + " ") + d.text;
     }
@@ -371,7 +370,7 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
   for (const auto& r : records) {
     if (!r.frame.is_standard_data()) continue;
     if (r.frame.cob_id() != canopen::kSyncCobId) {
-      for_each_value(r, [&](std::size_t i, double v) {
+      for_each_value(decoder.decode(r.frame), [&](std::size_t i, double v) {
         values[i] = v;
         seen[i] = true;
       });

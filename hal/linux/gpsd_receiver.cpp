@@ -2,6 +2,7 @@
 
 #include <gps.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -12,6 +13,11 @@ namespace planter::hal::linux_backend {
 namespace {
 double or_zero(double v) { return std::isfinite(v) ? v : 0.0; }
 }  // namespace
+
+double fix_time_s(const gps_data_t& data) {
+  return static_cast<double>(data.fix.time.tv_sec) +
+         1e-9 * static_cast<double>(data.fix.time.tv_nsec);
+}
 
 GnssFix fix_from_gpsd(const gps_data_t& data, std::int64_t arrival_ns, const GnssFix& previous,
                       double previous_time_s, std::int64_t latency_ns) {
@@ -35,9 +41,7 @@ GnssFix fix_from_gpsd(const gps_data_t& data, std::int64_t arrival_ns, const Gns
   f.valid_ns = arrival_ns - latency_ns;
   // A receiver (or a log) whose time stands still or runs back: the fix keeps the last one's
   // date, and the fusion takes it as no new fix.
-  const double t_s =
-      static_cast<double>(g.time.tv_sec) + 1e-9 * static_cast<double>(g.time.tv_nsec);
-  if (previous.sequence != 0 && t_s <= previous_time_s) f.valid_ns = previous.valid_ns;
+  if (previous.sequence != 0 && fix_time_s(data) <= previous_time_s) f.valid_ns = previous.valid_ns;
   return f;
 }
 
@@ -66,9 +70,7 @@ void GpsdReceiver::watch(gps_data_t& data) {
     if ((data.set & MODE_SET) == 0 || (data.set & TIME_SET) == 0) continue;  // not a TPV
     ++reports_;
     const GnssFix f = fix_from_gpsd(data, now_ns_(), last, last_time_s, options_.latency_ns);
-    const double t_s = static_cast<double>(data.fix.time.tv_sec) +
-                       1e-9 * static_cast<double>(data.fix.time.tv_nsec);
-    if (t_s > last_time_s) last_time_s = t_s;
+    last_time_s = std::max(last_time_s, fix_time_s(data));
     last = f;
     box_.put(f);
   }

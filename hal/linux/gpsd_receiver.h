@@ -24,6 +24,9 @@ struct GpsdOptions {
   std::int64_t latency_ns = 50'000'000;
 };
 
+// When a gpsd report says its fix was measured, in seconds of the receiver's (UTC) clock.
+double fix_time_s(const gps_data_t& data);
+
 // One gpsd report as a fix: `arrival_ns` is when it came (the controller's clock), `previous`
 // the last fix made (its time stands still when the receiver's does). Pure, for the tests.
 GnssFix fix_from_gpsd(const gps_data_t& data, std::int64_t arrival_ns, const GnssFix& previous,

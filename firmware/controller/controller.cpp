@@ -60,11 +60,11 @@ const MachineCommand& Controller::update(const MachineState& in, std::int64_t no
   load_cell_zero_.update(in.clamp_force_N, lips_open);
   decide_outputs(in, state, static_cast<double>(dt_ns) * 1e-9);
   // The planting monitor measures spacings on the fused ground, as the sigma loop holds them.
-  on_ground_ = in;
-  on_ground_.distance_m = ground_.distance_m();
+  MachineState on_ground = in;
+  on_ground.distance_m = ground_.distance_m();
   for (std::uint32_t i = 0; i < MachineState::kMaxSeedlingsPerTick; ++i)
-    on_ground_.seedling_at_m[i] = ground_.ground_m(in.seedling_at_m[i]);
-  monitor_.update(on_ground_,
+    on_ground.seedling_at_m[i] = ground_.ground_m(in.seedling_at_m[i]);
+  monitor_.update(on_ground,
                   state == SupervisorState::kRunning || state == SupervisorState::kStopping);
   LoopAlarmInputs alarm_in;
   alarm_in.running = state == SupervisorState::kRunning;

@@ -61,7 +61,6 @@ class Controller {
 
   ControllerConfig cfg_;
   GroundFusion ground_;
-  MachineState on_ground_;  // this tick's state with the fused distances, for the monitor
   SigmaLoop sigma_loop_;
   ClampForceLoop clamp_loop_;
   FurrowDepthLoop depth_loop_;

@@ -19,6 +19,7 @@
 
 #include "firmware/io/process_image.h"
 #include "firmware/sensing/gnss_use.h"
+#include "firmware/supervisor/supervisor.h"
 
 namespace planter {
 
@@ -46,7 +47,8 @@ struct GroundFusionConfig {
   double apply_beyond_sd = 1.0;
   // A speed further than this many sigma from the wheel's times k is refused (a jump).
   double gate_sigma = 5.0;
-  double max_speed_mps = 1.0;  // above this a speed is implausible (the supervisor's)
+  // Above this a speed is implausible: the supervisor's limit, declared there.
+  double max_speed_mps = SupervisorConfig{}.ground_speed_plausible_max_mps;
 };
 
 class GroundFusion {

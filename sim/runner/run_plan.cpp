@@ -103,14 +103,9 @@ class PlanReader {
     return number(v, where, k->min, k->max, k->unit);
   }
   static const config::ConfigKey* scenario_key(std::string_view dotted) {
-    for (const auto* rows : {&kScenarioKeys}) {
-      for (const config::ConfigKey& k : *rows) {
-        if (dotted.size() == k.table.size() + 1 + k.name.size() && dotted.starts_with(k.table) &&
-            dotted[k.table.size()] == '.' && dotted.ends_with(k.name))
-          return &k;
-      }
-    }
-    return nullptr;
+    const std::size_t dot = dotted.rfind('.');
+    if (dot == std::string_view::npos) return nullptr;
+    return config::find_key(kScenarioKeys, dotted.substr(0, dot), dotted.substr(dot + 1));
   }
 
  private:

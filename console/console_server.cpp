@@ -67,7 +67,8 @@ ConsoleServer::ConsoleServer(const ConsoleOptions& options, const ConsoleInfo& i
       queue_(1024),
       sessions_(
           std::make_unique<OperatorSessions>(options.secrets, options.policy, console_now_ns)),
-      host_names_(options.host_names) {
+      host_names_(options.host_names),
+      limits_(ConnectionCaps{}, cut_socket) {
   if (options_.commands != nullptr &&
       OperatorSessions::normalise(options_.secrets.pairing).size() < kSecretLettersMin)
     throw std::runtime_error("console: commands need a pairing secret of at least 12 letters");

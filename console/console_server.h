@@ -139,8 +139,9 @@ class ConsoleServer {
   std::unique_ptr<AuditLog> audit_;
   std::mutex host_names_mutex_;
   HostNames host_names_;
-  RefusedLoginTally refused_logins_{60.0};     // one summary line a minute at most
-  ConnectionLimits limits_{ConnectionCaps{}};  // who may hold a connection (guarded_server.h)
+  RefusedLoginTally refused_logins_{60.0};  // one summary line a minute at most
+  // Who may hold a connection (guarded_server.h); a slot taken from an idle one is cut there.
+  ConnectionLimits limits_;
   std::unique_ptr<GuardedServer> server_;
   std::thread thread_;
   // Moves the loop's samples into the history five times a second whether or not anyone is

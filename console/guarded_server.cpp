@@ -202,6 +202,8 @@ class BoundedStream final : public httplib::Stream {
 
 }  // namespace
 
+void cut_socket(int sock) { ::shutdown(sock, SHUT_RDWR); }
+
 GuardedServer::GuardedServer(ConnectionLimits& limits, ConnectionTimes times)
     : limits_(limits), times_(times) {
   // More workers than connections can be admitted, so a refusal is never queued behind them.
@@ -218,7 +220,7 @@ void GuardedServer::widen_backlog() {
 bool GuardedServer::process_and_close_socket(socket_t sock) {
   Endpoint peer = endpoint_of(sock, true);
   const std::string address = peer.ip;
-  const Ticket ticket = limits_.admit(address);
+  const Ticket ticket = limits_.admit(address, sock);
   bool served = false;
   if (ticket.admission == Admission::kAddressFull) {
     refuse(sock, 429, "Too Many Requests",
@@ -227,7 +229,7 @@ bool GuardedServer::process_and_close_socket(socket_t sock) {
   } else if (ticket.admission == Admission::kServerFull) {
     refuse(sock, 503, "Service Unavailable", refusal({"the console is busy; try again"}));
   } else {
-    served = serve(sock, std::move(peer));
+    served = serve(sock, std::move(peer), ticket);
   }
   limits_.release(address, ticket);
   shutdown(sock, SHUT_RDWR);
@@ -235,11 +237,14 @@ bool GuardedServer::process_and_close_socket(socket_t sock) {
   return served;
 }
 
-bool GuardedServer::serve(socket_t sock, Endpoint peer) {
+bool GuardedServer::serve(socket_t sock, Endpoint peer, const Ticket& ticket) {
   BoundedStream stream(sock, std::move(peer), svr_sock_, times_);
   bool ok = false;
   for (std::size_t n = 0; n < times_.requests_per_connection; ++n) {
-    if (!stream.next_request_arrives()) break;
+    // While it waits, its slot may go to a newcomer (connection_limits.h): then it ends.
+    if (!limits_.set_idle(ticket, true)) break;
+    const bool arrived = stream.next_request_arrives();
+    if (!limits_.set_idle(ticket, false) || !arrived) break;
     stream.next_request();
     bool closed = false;
     ok = process_request(stream, n + 1 == times_.requests_per_connection, closed, nullptr);

@@ -3,7 +3,8 @@
 // network (issue 28, items 1-2). cpp-httplib parses the requests and routes them; what it lacks
 // is bounded here:
 // - admission before a byte is read: ConnectionLimits' caps per address and in all, a refused
-//   connection answered 503 at once and closed, on a worker kept free for it;
+//   connection answered 503 at once and closed, on a worker kept free for it; a full server
+//   makes room for an address with fewer connections by cutting another's idle one;
 // - every request read within a deadline from its first byte (a slow sender is cut), an idle
 //   keep-alive connection closed after a few seconds, every response written within a deadline;
 // - at most a fixed number of bytes read for one request, headers and body together, however
@@ -35,6 +36,9 @@ struct Endpoint {
   int port = 0;
 };
 
+// Ends a connection from another thread: its worker's wait wakes, and it closes the socket.
+void cut_socket(int sock);
+
 class GuardedServer : public httplib::Server {
  public:
   GuardedServer(ConnectionLimits& limits, ConnectionTimes times);
@@ -47,7 +51,7 @@ class GuardedServer : public httplib::Server {
 
  private:
   bool process_and_close_socket(socket_t sock) override;
-  bool serve(socket_t sock, Endpoint peer);
+  bool serve(socket_t sock, Endpoint peer, const Ticket& ticket);
 
   ConnectionLimits& limits_;
   ConnectionTimes times_;

@@ -61,5 +61,38 @@ TEST(ConnectionLimits, ATicketCountedOnceIsGivenBackOnceWhateverHappenedBetween)
   EXPECT_EQ(limits.admit("10.0.0.4").admission, Admission::kServerFull);
 }
 
+// Issue 53, item 2: 8 addresses each holding idle connections filled the total, and the
+// operator's first login (an address not yet remembered) got 503 every time.
+TEST(ConnectionLimits, AFullServerCutsAnIdleConnectionOfTheAddressHoldingMostForANewcomer) {
+  std::vector<int> cut;
+  ConnectionLimits limits(ConnectionCaps{8, 32, 8}, [&](int sock) { cut.push_back(sock); });
+  std::vector<Ticket> crowd;
+  for (int k = 0; k < 4; ++k)
+    for (int a = 0; a < 8; ++a) {
+      crowd.push_back(limits.admit("10.0.0." + std::to_string(a), 100 + 10 * a + k));
+      ASSERT_EQ(crowd.back().admission, Admission::kAdmitted);
+    }
+  // Busy (reading a request): no slot is taken from a connection at work.
+  EXPECT_EQ(limits.admit("192.168.1.20", 7).admission, Admission::kServerFull);
+  for (const Ticket& t : crowd) ASSERT_TRUE(limits.set_idle(t, true));
+  // The crowd's own addresses hold 4 each: none takes another's slot, so they do not churn.
+  EXPECT_EQ(limits.admit("10.0.0.3", 99).admission, Admission::kServerFull);
+  const Ticket first_login = limits.admit("192.168.1.20", 7);
+  EXPECT_EQ(first_login.admission, Admission::kAdmitted);
+  ASSERT_EQ(cut.size(), 1u);
+  EXPECT_EQ(cut[0], 100) << "the oldest idle connection of an address holding the most";
+  EXPECT_FALSE(limits.set_idle(crowd[0], false)) << "the cut connection is told to end";
+  EXPECT_EQ(limits.open(), 32u);
+  limits.release("10.0.0.0", crowd[0]);  // its worker ends it: nothing counted twice
+  EXPECT_EQ(limits.open(), 32u);
+  // A second viewer gets in too, from another address holding the most.
+  EXPECT_EQ(limits.admit("192.168.1.30", 8).admission, Admission::kAdmitted);
+  ASSERT_EQ(cut.size(), 2u);
+  EXPECT_NE(cut[1], 100);
+  EXPECT_TRUE(limits.set_idle(first_login, true));
+  limits.release("192.168.1.20", first_login);
+  EXPECT_EQ(limits.open(), 31u);
+}
+
 }  // namespace
 }  // namespace planter::console

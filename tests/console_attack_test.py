@@ -8,6 +8,9 @@ Stop every 5 s while, each from its own loopback address (Linux answers all of 1
 - 127.0.0.3 holds 100 idle connections, reopening each one the server closes;
 - 127.0.0.4 holds 8 slow connections, one header line every 2 s;
 - 127.0.0.5-12 send wrong secrets, 10 a second each;
+- before the operator's first login, 8 addresses (127.0.2.x) hold 8 idle connections each,
+  reopening each one the server closes (issue 53, item 2: the first login got 503 100 times of
+  100): the first login and a viewer's page must still be answered within 1 s;
 - after the operator's first login, a crowd of 40 addresses (127.0.1.x) holds 8 idle
   connections each, more than the server takes in all.
 It must hold: every login and Stop answered within 1 s, the server's memory under 100 MB, the
@@ -28,7 +31,8 @@ fails, oks = [], []
 stop_attack = threading.Event()
 lock = threading.Lock()
 tally = {"flood_bytes_max": 0, "flood_answers": {}, "idle_reopened": 0, "slow_cut": 0,
-         "wrong_secrets": 0, "wrong_codes": {}, "crowd_refused": 0, "crowd_held": 0}
+         "wrong_secrets": 0, "wrong_codes": {}, "crowd_refused": 0, "crowd_held": 0,
+         "early_crowd": 0}
 
 
 def check(ok, what, detail=""):
@@ -131,9 +135,9 @@ def framing_checks(port):
           "a foreign Host is answered 421 naming none of this machine's names", data[-200:])
 
 
-def idle_holder(source, port, n, key):
+def idle_holder(source, port, n, key, stop=stop_attack):
     held = []
-    while not stop_attack.is_set():
+    while not stop.is_set():
         alive = []
         for s in held:
             try:
@@ -149,7 +153,7 @@ def idle_holder(source, port, n, key):
             s.close()  # refused, or closed by the server
             count(key)
         held = alive
-        while len(held) < n and not stop_attack.is_set():
+        while len(held) < n and not stop.is_set():
             try:
                 held.append(connect(source, port))
             except OSError:
@@ -249,6 +253,32 @@ try:
         t_s = json.loads(state).get("t_s") if state.startswith(b"{") else None
         return code, login_s, code2, stop_s, t_s
 
+    # Before anyone logs in, a crowd holds more idle connections than the server takes in all.
+    crowd_stop = threading.Event()
+    early = [threading.Thread(target=idle_holder, args=("127.0.2.%d" % a, port, 8, "early_crowd", crowd_stop))
+             for a in range(1, 9)]
+    for t in early:
+        t.daemon = True
+        t.start()
+    time.sleep(3.0)
+    first_login = operator_round()
+    viewer = connect("127.0.3.1", port)
+    t0 = time.time()
+    viewer.sendall(b"GET /api/info HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n")
+    viewer_code, viewer_s = status_of(viewer.recv(4096)), time.time() - t0
+    viewer.close()
+    held_early = tally.get("early_crowd", 0)
+    crowd_stop.set()
+    for t in early:
+        t.join(timeout=5)
+    check(first_login[0] == 200 and first_login[1] < 1.0,
+          "the operator's first login under a crowd of 64 idle connections: 200 within 1 s",
+          "answer %s in %.3f s" % (first_login[0], first_login[1]))
+    check(viewer_code == 200 and viewer_s < 1.0, "a viewer's page under the same crowd: 200 within 1 s",
+          "answer %s in %.3f s" % (viewer_code, viewer_s))
+    print("first login under a crowd: %s in %.3f s; a viewer: %s in %.3f s; the crowd's "
+          "connections closed by the server: %d" % (first_login[0], first_login[1], viewer_code,
+                                                    viewer_s, held_early))
     # The simulation's first sample reaches the console within a moment of the start.
     for _ in range(100):
         first = operator_round()

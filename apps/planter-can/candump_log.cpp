@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "apps/planter-can/cia309_command.h"
+#include "config/input_file.h"
 
 namespace planter::cantool {
 namespace {
@@ -72,7 +73,7 @@ LogParse parse_log_line(std::string_view line) {
   const std::string& ts = tokens[0];
   const std::size_t dot = ts.find('.');
   if (ts.back() != ')' || dot == std::string::npos) {
-    p.error = "timestamp '" + ts + "' is not (seconds.microseconds)";
+    p.error = "timestamp '" + config::excerpt(ts) + "' is not (seconds.microseconds)";
     return p;
   }
   std::uint64_t sec = 0;
@@ -80,12 +81,12 @@ LogParse parse_log_line(std::string_view line) {
   const std::string_view frac_text(ts.data() + dot + 1, ts.size() - dot - 2);
   if (!parse_digits(std::string_view(ts).substr(1, dot - 1), sec) ||
       !parse_digits(frac_text, frac) || frac_text.size() > 9) {
-    p.error = "timestamp '" + ts + "' is not (seconds.microseconds)";
+    p.error = "timestamp '" + config::excerpt(ts) + "' is not (seconds.microseconds)";
     return p;
   }
   for (std::size_t k = frac_text.size(); k < 9; ++k) frac *= 10;
   if (sec > 9'000'000'000ull) {
-    p.error = "timestamp '" + ts + "' is out of range";
+    p.error = "timestamp '" + config::excerpt(ts) + "' is out of range";
     return p;
   }
   p.record.time_ns = static_cast<std::int64_t>(sec * 1'000'000'000ull + frac);
@@ -93,18 +94,18 @@ LogParse parse_log_line(std::string_view line) {
   const std::string& fr = tokens[2];
   const std::size_t hash = fr.find('#');
   if (hash == std::string::npos || hash == 0) {
-    p.error = "frame '" + fr + "' is not id#data";
+    p.error = "frame '" + config::excerpt(fr) + "' is not id#data";
     return p;
   }
   if (hash + 1 < fr.size() && fr[hash + 1] == '#') {
-    p.error = "frame '" + fr + "' is CAN FD; this bus is classic CAN";
+    p.error = "frame '" + config::excerpt(fr) + "' is CAN FD; this bus is classic CAN";
     return p;
   }
   std::uint64_t id = 0;
   const std::string_view id_text(fr.data(), hash);
   if (!parse_hex(id_text, id) || (id_text.size() != 3 && id_text.size() != 8) ||
       (id_text.size() == 3 && id > 0x7FF) || id > 0x3FFFFFFF) {
-    p.error = "frame ID '" + std::string(id_text) + "' is not 3 or 8 hex digits";
+    p.error = "frame ID '" + config::excerpt(id_text) + "' is not 3 or 8 hex digits";
     return p;
   }
   hal::CanFrame& f = p.record.frame;
@@ -133,14 +134,14 @@ LogParse parse_log_line(std::string_view line) {
     if (c != '.') hex.push_back(c);
   }
   if (hex.size() % 2 != 0 || hex.size() > 16) {
-    p.error = "frame data '" + std::string(data) + "' is not 0-8 hex bytes";
+    p.error = "frame data '" + config::excerpt(data) + "' is not 0-8 hex bytes";
     return p;
   }
   for (std::size_t i = 0; i < hex.size(); i += 2) {
     const int hi = hex_value(hex[i]);
     const int lo = hex_value(hex[i + 1]);
     if (hi < 0 || lo < 0) {
-      p.error = "frame data '" + std::string(data) + "' is not 0-8 hex bytes";
+      p.error = "frame data '" + config::excerpt(data) + "' is not 0-8 hex bytes";
       return p;
     }
     f.data[i / 2] = static_cast<std::uint8_t>(hi * 16 + lo);

@@ -46,6 +46,18 @@ printf '(9.000000) can0 702#05\n(8.999000) can0 702#05\n(2.500000) can0 702#05\n
 expect 2 "backwards.log:3: time goes back by more than 1 s" -- --board "$board" decode "$work/backwards.log"
 printf '(1.000000) can0 702#05\n(2.000000) can0 7020#05\n' >"$work/badid.log"
 expect 2 "badid.log:2: frame ID '7020' is not 3 or 8 hex digits" -- --iface sim --board "$board" replay "$work/badid.log"
+# A log's bytes never reach the terminal raw (issue 53, item 12): ESC and OSC shown as '?'.
+printf '(1.000000) can0 702#05\n(2.000000) can0 7\033]0;x\007#05\n' >"$work/escid.log"
+printf '(1.0\033[2J) can0 702#05\n' >"$work/escts.log"
+for cmd in replay decode; do
+  for log in escid escts; do
+    out=$(timeout 20 "$tool" --no-progress --iface sim --board "$board" $cmd "$work/$log.log" 2>&1 </dev/null)
+    if [ $? -ne 2 ] || printf '%s' "$out" | grep -q "$(printf '\033')" || ! grep -q "$log.log:[12]: .*'.*?.*'" <<<"$out"; then
+      echo "FAIL: planter-can $cmd $log.log echoed control bytes or no line: $(printf '%s' "$out" | od -c | head -3)"
+      fails=$((fails + 1))
+    fi
+  done
+done
 printf '[can]\nbitrate = 5\n' >"$work/bad.toml"
 expect 2 "bad.toml" -- --iface sim --board "$work/bad.toml" scan
 expect 2 "is not a calibration" -- --iface sim --board "$board" calibrate weight

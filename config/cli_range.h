@@ -25,4 +25,16 @@ inline CLI::Validator finite_range(double min, double max) {
   return v;
 }
 
+// A count or an index read into an unsigned number: checked as text first, where "-1" would
+// otherwise wrap around to the largest value (issue 53, item 14).
+inline CLI::Validator whole_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool digits = !text.empty() && text.size() <= 18 &&
+                            text.find_first_not_of("0123456789") == std::string::npos;
+        return digits ? "" : "'" + text + "' is not a whole number from 0";
+      },
+      "WHOLE NUMBER from 0");
+}
+
 }  // namespace planter::config

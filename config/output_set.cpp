@@ -102,15 +102,19 @@ std::string output_dir_refusal(const std::string& dir, const std::string& tool, 
   return "";
 }
 
+void make_directories(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) fail(dir, "cannot be created: " + ec.message());
+}
+
 OutputSet::OutputSet(std::string dir, std::string tool, bool force)
     : dir_(std::move(dir)), tool_(std::move(tool)) {
   while (dir_.size() > 1 && dir_.back() == '/') dir_.pop_back();
   std::error_code ec;
   if (const std::string refusal = output_dir_refusal(dir_, tool_, force); !refusal.empty())
     fail(dir_, refusal);
-  const std::string parent = parent_of(dir_);
-  fs::create_directories(parent, ec);
-  if (ec) fail(parent, "cannot be created: " + ec.message());
+  make_directories(parent_of(dir_));
   remove_abandoned_staging(dir_);
   staging_ = dir_ + ".partial-" + std::to_string(::getpid());
   fs::remove_all(staging_, ec);

@@ -53,6 +53,10 @@ class OutputSet {
 // and is run again (plan runs and the DEM's kept runs alike).
 [[nodiscard]] bool output_set_whole(const std::string& dir, const std::string& tool);
 
+// Makes `dir` and its parents as needed; throws std::runtime_error "<dir>: cannot be created:
+// <why>" (never the library's own text) when it cannot.
+void make_directories(const std::string& dir);
+
 // The manifest's file name.
 inline constexpr const char* kRunManifest = "run.json";
 

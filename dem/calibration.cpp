@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "config/output_set.h"
 #include "dem/calibration_runs.h"
 #include "dem/dem_keys.h"
 #include "plan/executor.h"
@@ -34,7 +35,7 @@ class RunPool {
   RunPool(const CalibrationOptions& o, CalibrationReport& r,
           const std::function<void(const std::string&)>& progress)
       : opt_(o), report_(r), progress_(progress), dir_(o.out_dir + "/runs") {
-    std::filesystem::create_directories(dir_);
+    config::make_directories(dir_);
   }
 
   // False when the new-run budget stopped it before every run was done.

@@ -9,6 +9,8 @@
 #include "config/config_error.h"
 #include "config/content_hash.h"
 #include "config/durable_file.h"
+#include "config/input_file.h"
+#include "config/output_set.h"
 #include "dem/dem_params.h"
 #include "dem/result_json.h"
 
@@ -67,7 +69,15 @@ bool result_from_json(const nlohmann::json& j, CompressionResult& r) {
   }
 }
 
+// A kept file that is not a regular file (a directory where KEY.json should be) reads as
+// missing: the run is run again, and writing its result says what is in the way.
+bool regular_file(const std::string& path) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(path, ec);
+}
+
 std::string read_text(const std::string& path) {
+  if (!regular_file(path)) return std::string();
   std::ifstream in(path);
   std::ostringstream text;
   text << in.rdbuf();
@@ -78,7 +88,9 @@ std::string read_text(const std::string& path) {
 // parameters (then the run is run again).
 std::optional<CompressionResult> kept_for_text(const std::string& runs_dir,
                                                const std::string& toml) {
-  std::ifstream in(runs_dir + "/" + key_of_text(toml) + ".json");
+  const std::string path = runs_dir + "/" + key_of_text(toml) + ".json";
+  if (!regular_file(path)) return std::nullopt;
+  std::ifstream in(path);
   if (!in) return std::nullopt;
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.contains("params") || j["params"] != toml) return std::nullopt;
@@ -141,14 +153,13 @@ void write_stage_plan(const std::string& path, const std::string& runs_dir,
   j["planter-dem calibration stage"] = 1;
   j["runs_dir"] = std::filesystem::absolute(runs_dir).lexically_normal().string();
   j["keys"] = keys;
-  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  config::make_directories(std::filesystem::path(path).parent_path().string());
   config::write_output_file(path, j.dump(2) + "\n");
 }
 
 void execute_stage_run(const std::string& plan_path, std::size_t index) {
-  std::ifstream in(plan_path);
-  if (!in) throw config::ConfigError(plan_path, 0, "", "cannot be read");
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  const nlohmann::json j =
+      nlohmann::json::parse(config::read_input_file(plan_path), nullptr, false);
   if (j.is_discarded() || !j.contains("planter-dem calibration stage") || !j.contains("runs_dir") ||
       !j["runs_dir"].is_string() || !j.contains("keys") || !j["keys"].is_array())
     throw config::ConfigError(plan_path, 0, "", "not a plan of planter-dem's calibration");

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "config/durable_file.h"
+#include "config/output_set.h"
 
 namespace planter::plan {
 namespace {
@@ -428,7 +429,7 @@ std::string shell_quoted(const std::string& s) {
 }
 
 void execute(const PlanRuns& runs, const ExecutorOptions& o, const std::string& label) {
-  fs::create_directories(runs.dir + "/logs");
+  config::make_directories(runs.dir + "/logs");
   const std::vector<std::size_t> todo = missing_runs(runs);
   const std::size_t done = runs.count - todo.size();
   Progress progress(label, runs.count);

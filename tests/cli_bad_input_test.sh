@@ -46,6 +46,16 @@ printf '{"kind": "planter-sim run plan",\n "version": 1,\n "runs": [ {"seed": 1,
 expect plan-malformed "p6.json:3: is not JSON" -- "$sim" plan-run "$tmp/p6.json" 0
 plan "$tmp/p7.json" '{"seed": -1, "distance_m": 10}'
 expect plan-seed-negative "p7.json: 'runs\[0\]\.seed': is not a whole number" -- "$sim" plan-run "$tmp/p7.json" 0
+# Issue 53, item 14: no library's own words. An index of -1 does not wrap around; a plan with
+# no runs says so; a folder that cannot be made names itself and why.
+plan "$tmp/p8.json" '{"seed": 1, "distance_m": 10}'
+expect plan-index-negative "index: .-1. is not a whole number from 0" -- "$sim" plan-run "$tmp/p8.json" -- -1
+printf '{"kind": "planter-sim run plan", "version": 1, "scenario": "%s", "inputs_hash": "x", "runs": []}\n' \
+  "$src/scenarios/zhangqiu-field.toml" >"$tmp/p9.json"
+want_rc=1 expect plan-empty "p9.json: run 0 is not in the plan \(it has no runs\)" -- "$sim" plan-run "$tmp/p9.json" 0
+: >"$tmp/a-file"
+want_rc=1 expect out-under-a-file "a-file/sub: cannot be created: Not a directory" -- \
+  "$sim" sweep "$src/scenarios/zhangqiu-field.toml" --out "$tmp/a-file/sub/o" --plan-only
 cp "$src/scenarios/zhangqiu-field.toml" "$tmp/s.toml"
 sed -i "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" "$tmp/s.toml"
 printf '\n[route2]\nx = 1\n' >>"$tmp/s.toml"

@@ -286,7 +286,9 @@ int main(int argc, char** argv) {
   auto* plan_run = app.add_subcommand(
       "plan-run", "run one run of a calibration stage's plan (what each Slurm task executes)");
   plan_run->add_option("plan", plan_path, "DIR/plans/STAGE/plan.json")->required();
-  plan_run->add_option("index", plan_index, "the run's index in the plan")->required();
+  plan_run->add_option("index", plan_index, "the run's index in the plan")
+      ->required()
+      ->check(planter::config::whole_number());
   auto* reduce_cmd = app.add_subcommand("reduce", "fit the reduced-order force model");
   add_common(reduce_cmd);
   std::vector<double> diameters_mm{8.3, 9.3, 10.35, 11.4};

@@ -20,6 +20,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "config/output_set.h"
 #include "config/recording_format.h"
 #include "console/operator_sessions.h"
 #include "plan/folder_lock.h"
@@ -143,7 +144,7 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
   std::string pairing;
   std::optional<plan::FolderLock> lock;
   if (!options.view_only) {
-    std::filesystem::create_directories(recordings);
+    config::make_directories(recordings);
     // One live instance per --dir: two would share the audit log and the recordings.
     lock.emplace(options.dir, "another planter-sim live uses this directory (--dir another)");
     pairing = options.pairing_secret_file.empty()

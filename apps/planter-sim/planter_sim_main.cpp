@@ -353,7 +353,9 @@ int main(int argc, char** argv) {
   auto* plan_run = app.add_subcommand(
       "plan-run", "run one run of a plan (what each local process or Slurm task executes)");
   plan_run->add_option("plan", plan_path, "plan.json")->required();
-  plan_run->add_option("index", plan_index, "the run's index in the plan")->required();
+  plan_run->add_option("index", plan_index, "the run's index in the plan")
+      ->required()
+      ->check(planter::config::whole_number());
   auto* values = app.add_subcommand(
       "values", "every model value the conclusions rest on: value, unit, range, origin, source");
   std::string values_scenario;

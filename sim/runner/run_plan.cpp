@@ -265,7 +265,7 @@ void run_planned(const std::string& plan_dir, const Scenario& base, const Planne
                  std::size_t index) {
   LockstepRunner runner(planned_scenario(base, run));
   const Summary summary = runner.run();
-  std::filesystem::create_directories(plan_dir + "/runs");
+  config::make_directories(plan_dir + "/runs");
   config::OutputSet out(run_dir(plan_dir, index), kPlanTool, false);
   out.write("summary.json", summary.to_json() + "\n");
   out.commit();
@@ -276,8 +276,11 @@ void execute_planned_run(const std::string& plan_path, std::size_t index,
   const RunPlan plan = read_plan(plan_path);
   if (index >= plan.runs.size())
     throw std::runtime_error(plan_path + ": run " + std::to_string(index) +
-                             " is not in the plan (" + std::to_string(plan.runs.size()) +
-                             " runs, 0-" + std::to_string(plan.runs.size() - 1) + ")");
+                             " is not in the plan (" +
+                             (plan.runs.empty() ? std::string("it has no runs")
+                                                : std::to_string(plan.runs.size()) + " runs, 0-" +
+                                                      std::to_string(plan.runs.size() - 1)) +
+                             ")");
   const std::string dir = std::filesystem::path(plan_path).parent_path().string();
   if (run_complete(dir, index)) return;
   run_planned(dir, plan_base(plan_path, plan, made_by), plan.runs[index], index);
@@ -294,7 +297,7 @@ Summary read_run_summary(const std::string& plan_dir, std::size_t index) {
 
 void place_plan(const std::string& plan_dir, const RunPlan& plan, bool replace) {
   namespace fs = std::filesystem;
-  fs::create_directories(plan_dir);
+  config::make_directories(plan_dir);
   const std::string path = plan_dir + "/plan.json";
   const std::string text = plan_json(plan);
   std::error_code ec;

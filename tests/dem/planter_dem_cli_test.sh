@@ -31,7 +31,7 @@ expect 2 "threads" -- compress --out "$work/o" --threads 0
 expect 2 "diameters" -- reduce --out "$work/o" --diameters-mm 8.3,abc
 # A calibration stage's plan (what a Slurm task runs): a missing plan, another file, an index
 # the plan has not.
-expect 2 "nothing.json: cannot be read" -- plan-run "$work/nothing.json" 0
+expect 2 "nothing.json: no such file" -- plan-run "$work/nothing.json" 0
 printf '{"keys": 3}\n' >"$work/other.json"
 expect 2 "other.json: not a plan of planter-dem's calibration" -- plan-run "$work/other.json" 0
 printf '{"planter-dem calibration stage": 1, "runs_dir": "%s", "keys": ["abc"]}\n' "$work" \

@@ -106,7 +106,7 @@ std::string nmea_sentences(const hal::GnssFix& fix, double utc_s) {
   std::snprintf(time, sizeof time, "%02d%02d%05.2f", tm.tm_hour, tm.tm_min,
                 tm.tm_sec + (utc_s - static_cast<double>(whole)));
   std::snprintf(date, sizeof date, "%02d%02d%02d", tm.tm_mday, tm.tm_mon + 1, tm.tm_year % 100);
-  const bool fixed = fix.mode == hal::GnssMode::k2D || fix.mode == hal::GnssMode::k3D;
+  const bool fixed = hal::has_position(fix);
   std::string out;
   if (!fixed) {
     out += sentence(std::string("GPRMC,") + time + ",V,,,,,,," + date + ",,,N");

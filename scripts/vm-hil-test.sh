@@ -7,7 +7,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:-$root/build}" && pwd)
 [ -x "$build/apps/planterd/planterd" ] && [ -x "$build/apps/planter-sim/planter-sim" ] ||
   { echo "vm-hil-test: build planterd and planter-sim first (scripts/setup.sh)" >&2; exit 1; }
-"$root/scripts/apt-install.sh" vm-hil-test python3 python3-can
+"$root/scripts/apt-install.sh" vm-hil-test python3 python3-can gpsd gpsd-clients
 # The package the VM installs: this build's, made again when planterd is newer than it.
 deb=$(ls -t "$build"/planter_*_"$(dpkg --print-architecture)".deb 2>/dev/null | head -1 || true)
 if [ -z "$deb" ] || [ "$build/apps/planterd/planterd" -nt "$deb" ]; then

@@ -1,6 +1,7 @@
 #include "apps/planter-can/cmd_gnss.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <thread>
@@ -13,6 +14,15 @@
 namespace planter::cantool {
 
 namespace {
+// The receiver's time of the fix as hh:mm:ss.ss UTC, or "--:--:--.--" when it gave none.
+[[maybe_unused]] std::string utc_of_day(double unix_s) {
+  if (!(unix_s > 0)) return "--:--:--.-- UTC";
+  const double day_s = std::fmod(unix_s, 86400.0);
+  const int h = static_cast<int>(day_s / 3600), m = static_cast<int>(std::fmod(day_s, 3600) / 60);
+  char text[32];
+  std::snprintf(text, sizeof text, "%02d:%02d:%05.2f UTC", h, m, std::fmod(day_s, 60.0));
+  return text;
+}
 
 int check_log(const std::string& path, double max_speed_mps, std::ostream& out, std::ostream& err) {
   std::ifstream in(path, std::ios::binary);
@@ -71,9 +81,10 @@ int run_gnss(const config::BoardConfig* board, const GnssOptions& o, std::ostrea
     used += use == GnssUse::kUsing ? 1 : 0;
     char line[200];
     std::snprintf(line, sizeof line,
-                  "%7.2f s  mode %d  %2d sats  HDOP %4.1f  %7.3f m/s  track %6.1f  %s\n",
-                  static_cast<double>(now - t0) * 1e-9, static_cast<int>(fix.mode), fix.satellites,
-                  fix.hdop, fix.speed_mps, fix.track_deg, gnss_use_name(use));
+                  "%7.2f s  %s  mode %d  %2d sats  HDOP %4.1f  %7.3f m/s  track %6.1f  %s\n",
+                  static_cast<double>(now - t0) * 1e-9, utc_of_day(fix.receiver_time_s).c_str(),
+                  static_cast<int>(fix.mode), fix.satellites, fix.hdop, fix.speed_mps,
+                  fix.track_deg, gnss_use_name(use));
     out << line << std::flush;
   }
   out << "gnss: gpsd at " << g.host << ":" << g.port << " "

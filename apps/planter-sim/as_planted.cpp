@@ -3,18 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "sim/plant/local_plane.h"
+#include "config/as_planted.h"
+#include "config/local_plane.h"
 
 namespace planter::sim {
 
 namespace {
-bool fixed(const hal::GnssFix& f) {
-  return f.mode == hal::GnssMode::k2D || f.mode == hal::GnssMode::k3D;
-}
-
 // The fix's place at t, between the two fixes around it (both fixed, at most 1 s apart).
 bool place_at(const std::vector<hal::GnssFix>& fixes, std::int64_t t_ns, double& lat, double& lon) {
   const auto after =
@@ -23,7 +19,8 @@ bool place_at(const std::vector<hal::GnssFix>& fixes, std::int64_t t_ns, double&
   if (after == fixes.end() || after == fixes.begin()) return false;
   const hal::GnssFix& b = *after;
   const hal::GnssFix& a = *(after - 1);
-  if (!fixed(a) || !fixed(b) || b.valid_ns - a.valid_ns > 1'000'000'000) return false;
+  if (!hal::has_position(a) || !hal::has_position(b) || b.valid_ns - a.valid_ns > 1'000'000'000)
+    return false;
   const double f =
       static_cast<double>(t_ns - a.valid_ns) / static_cast<double>(b.valid_ns - a.valid_ns);
   lat = a.lat_deg + f * (b.lat_deg - a.lat_deg);
@@ -45,30 +42,33 @@ std::vector<double> gaps_mm(const SeedlingProcess& seedlings) {
 }
 }  // namespace
 
+namespace {
+std::vector<config::GeoPoint> track_of(const std::vector<hal::GnssFix>& fixes) {
+  std::vector<config::GeoPoint> track;
+  for (const hal::GnssFix& f : fixes)
+    if (hal::has_position(f)) track.push_back({f.lat_deg, f.lon_deg});
+  return track;
+}
+}  // namespace
+
 std::vector<PlantedPlace> place_seedlings(const SeedlingProcess& seedlings,
                                           const std::vector<hal::GnssFix>& fixes,
                                           const config::GnssBoardConfig& antenna) {
   std::vector<PlantedPlace> places(seedlings.released());
-  const auto first = std::find_if(fixes.begin(), fixes.end(), fixed);
-  const auto last = std::find_if(fixes.rbegin(), fixes.rend(), fixed);
-  if (first == fixes.end()) return places;
-  const LocalPlane plane{first->lat_deg, first->lon_deg};
-  // The row's direction from its first fix to its last: the antenna's offset is along it.
-  double de = 0, dn = 0;
-  plane.to_local(last->lat_deg, last->lon_deg, de, dn);
-  const double len = std::hypot(de, dn);
-  const double ue = len > 0 ? de / len : 0, un = len > 0 ? dn / len : 0;
+  const std::vector<config::GeoPoint> track = track_of(fixes);
+  if (track.empty()) return places;
+  const config::LocalPlane plane{track.front().lat_deg, track.front().lon_deg};
+  const config::AntennaOffset offset(track, antenna.antenna_ahead_m, antenna.antenna_left_m);
   for (std::size_t i = 0; i < places.size(); ++i) {
     const Seedling& s = seedlings.seedlings()[i];
-    double lat = 0, lon = 0;
+    config::GeoPoint at;
     if (s.release.fell_in_carry ||
-        !place_at(fixes, static_cast<std::int64_t>(s.release_time_s * 1e9), lat, lon))
+        !place_at(fixes, static_cast<std::int64_t>(s.release_time_s * 1e9), at.lat_deg, at.lon_deg))
       continue;
     PlantedPlace& p = places[i];
-    plane.to_local(lat, lon, p.east_m, p.north_m);
-    p.east_m -= antenna.antenna_ahead_m * ue - antenna.antenna_left_m * un;
-    p.north_m -= antenna.antenna_ahead_m * un + antenna.antenna_left_m * ue;
-    plane.to_geo(p.east_m, p.north_m, p.lat_deg, p.lon_deg);
+    const config::GeoPoint release = offset.release_point(at);
+    p.lat_deg = release.lat_deg, p.lon_deg = release.lon_deg;
+    plane.to_local(p.lat_deg, p.lon_deg, p.east_m, p.north_m);
     p.known = true;
   }
   return places;
@@ -78,32 +78,19 @@ std::string as_planted_geojson(const SeedlingProcess& seedlings,
                                const std::vector<PlantedPlace>& places,
                                const std::vector<hal::GnssFix>& fixes,
                                const PlantingMonitorConfig& monitor) {
-  using nlohmann::ordered_json;
-  ordered_json track = ordered_json::array();
-  for (const hal::GnssFix& f : fixes)
-    if (fixed(f)) track.push_back({f.lon_deg, f.lat_deg});
-  ordered_json features = ordered_json::array();
-  features.push_back({{"type", "Feature"},
-                      {"geometry", {{"type", "LineString"}, {"coordinates", track}}},
-                      {"properties", {{"what", "the GNSS receiver's track"}}}});
   const std::vector<double> gaps = gaps_mm(seedlings);
+  std::vector<config::PlantedSeedling> planted;
   for (std::size_t i = 0; i < places.size(); ++i) {
     if (!places[i].known) continue;
     const Seedling& s = seedlings.seedlings()[i];
-    ordered_json props = {{"seedling", i + 1}, {"x_m", s.x_m}};
-    props["spacing_mm"] = std::isfinite(gaps[i]) ? ordered_json(gaps[i]) : ordered_json();
-    props["skip"] =
-        std::isfinite(gaps[i]) && gaps[i] > monitor.skip_ratio * monitor.target_spacing_mm;
-    props["multiple"] =
-        std::isfinite(gaps[i]) && gaps[i] <= monitor.multiple_ratio * monitor.target_spacing_mm;
-    props["damaged"] = s.damaged;
-    props["tilt_deg"] = s.tilt_deg;
-    features.push_back(
-        {{"type", "Feature"},
-         {"geometry", {{"type", "Point"}, {"coordinates", {places[i].lon_deg, places[i].lat_deg}}}},
-         {"properties", props}});
+    planted.push_back({static_cast<int>(i + 1),
+                       s.x_m,
+                       {places[i].lat_deg, places[i].lon_deg},
+                       gaps[i],
+                       s.damaged,
+                       s.tilt_deg});
   }
-  return ordered_json{{"type", "FeatureCollection"}, {"features", features}}.dump() + "\n";
+  return config::as_planted_geojson(track_of(fixes), planted, monitor);
 }
 
 std::string as_planted_svg(const SeedlingProcess& seedlings,
@@ -138,10 +125,8 @@ std::string as_planted_svg(const SeedlingProcess& seedlings,
   int skips = 0, multiples = 0;
   for (std::size_t i = 0; i < places.size(); ++i) {
     if (!places[i].known) continue;
-    const bool skip =
-        std::isfinite(gaps[i]) && gaps[i] > monitor.skip_ratio * monitor.target_spacing_mm;
-    const bool multiple =
-        std::isfinite(gaps[i]) && gaps[i] <= monitor.multiple_ratio * monitor.target_spacing_mm;
+    const bool skip = std::isfinite(gaps[i]) && monitor.is_skip(gaps[i]);
+    const bool multiple = std::isfinite(gaps[i]) && monitor.is_multiple(gaps[i]);
     skips += skip, multiples += multiple;
     const char* colour = skip ? "#c00" : multiple ? "#06c" : "#2a2";
     std::snprintf(buf, sizeof buf, "<circle cx='%.1f' cy='%.1f' r='%d' fill='%s'/>",

@@ -16,6 +16,7 @@
 #include <mutex>
 #include <thread>
 
+#include "apps/planterd/as_planted_log.h"
 #include "apps/planterd/board_hardware.h"
 #include "apps/planterd/console_recording.h"
 #include "apps/planterd/crash_safe_recording.h"
@@ -94,6 +95,20 @@ void log_status(const Telemetry& t, const hal::CanBusCounters& can) {
                supervisor_state_name(t.state), t.v_wheel_mps, t.sigma, t.clamp_force_N,
                t.clamp_force_cmd_N, t.depth_mm, t.depth_cmd_mm, t.faults, can.tx_frames,
                can.rx_frames, can.error_frames, can.tx_dropped, can.rx_overflow, t.unknown_frames);
+}
+
+// The row as planted, beside the recording; false when it could not be written.
+bool write_as_planted(const daemon::AsPlantedLog& log, const std::string& record) {
+  const std::string path = daemon::as_planted_path(record);
+  std::string why;
+  if (!log.write(path, why)) {
+    std::fprintf(stderr, "planterd: %s: %s\n", path.c_str(), why.c_str());
+    return false;
+  }
+  std::fprintf(stderr,
+               "planterd: as planted: %zu seedlings placed by GNSS, %zu seen with no fix, in %s\n",
+               log.placed(), log.unplaced(), path.c_str());
+  return true;
 }
 
 }  // namespace
@@ -199,13 +214,14 @@ class MainThread {
  public:
   MainThread(const Options& opt, Shared& shared, daemon::ServiceNotifier& service,
              daemon::CrashSafeRecording* recording, daemon::ConsoleRecording* console_recording,
-             console::SpscQueue<Row>& rows, hal::linux_backend::TickTrace& trace,
-             daemon::BoardHardware& hw)
+             daemon::AsPlantedLog* as_planted, console::SpscQueue<Row>& rows,
+             hal::linux_backend::TickTrace& trace, daemon::BoardHardware& hw)
       : opt_(opt),
         shared_(shared),
         service_(service),
         recording_(recording),
         console_recording_(console_recording),
+        as_planted_(as_planted),
         rows_(rows),
         trace_(trace),
         hw_(hw),
@@ -289,6 +305,7 @@ class MainThread {
                      "recorded (the count is in the last line)\n",
                      opt_.record.c_str(), row.t_s);
       if (console_recording_ != nullptr) console_recording_->add(row.t_s, row.telemetry);
+      if (as_planted_ != nullptr) as_planted_->add(row.telemetry);
     }
   }
 
@@ -313,6 +330,7 @@ class MainThread {
   daemon::ServiceNotifier& service_;
   daemon::CrashSafeRecording* recording_;
   daemon::ConsoleRecording* console_recording_;
+  daemon::AsPlantedLog* as_planted_;
   console::SpscQueue<Row>& rows_;
   hal::linux_backend::TickTrace& trace_;
   daemon::BoardHardware& hw_;
@@ -538,15 +556,20 @@ int main(int argc, char** argv) {
   daemon::ServiceNotifier service;
   service.notify("READY=1\nSTATUS=booting CANopen nodes");
 
+  // A board with a receiver maps the row beside the recording (apps/planterd/as_planted_log.h).
+  std::unique_ptr<daemon::AsPlantedLog> as_planted;
+  if (recording && board.gnss.receiver != "none")
+    as_planted = std::make_unique<daemon::AsPlantedLog>(board);
   MainThread main_thread(opt, shared, service, recording.get(),
-                         operator_console ? operator_console->recording() : nullptr, rows, trace,
-                         *hw);
+                         operator_console ? operator_console->recording() : nullptr,
+                         as_planted.get(), rows, trace, *hw);
   while (!shared.finished) {
     main_thread.wake(signals);
     if (operator_console) operator_console->publish(console_rows);
   }
   loop_thread.join();
   const bool recording_ok = main_thread.drain();
+  const bool map_ok = !as_planted || write_as_planted(*as_planted, opt.record);
   operator_console.reset();  // after the last rows: its recording takes them too
   const auto& lat = loop.latency();
   const auto& edge = hw->edge_latency().histogram();
@@ -570,5 +593,5 @@ int main(int argc, char** argv) {
       static_cast<unsigned long long>(shared.rows_dropped.load() +
                                       (recording ? recording->rows_unformatted() : 0)),
       shared.link_resets.load());
-  return recording_ok ? 0 : 1;
+  return recording_ok && map_ok ? 0 : 1;
 }

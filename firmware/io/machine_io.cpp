@@ -31,6 +31,10 @@ const MachineState& MachineIo::read(std::int64_t now_ns) {
     state_.gnss_fitted = true;
     state_.gnss_connected = hal_.gnss->connected();
     if (hal_.gnss->latest(state_.gnss)) state_.v_gnss_mps = state_.gnss.speed_mps;
+    const bool placed = state_.gnss_connected && hal::has_position(state_.gnss) &&
+                        now_ns - state_.gnss.valid_ns <= MachineState::kGnssPlaceMaxAgeNs;
+    state_.lat_deg = placed ? state_.gnss.lat_deg : 0.0;
+    state_.lon_deg = placed ? state_.gnss.lon_deg : 0.0;
   }
   const hal::CanBusCounters bus = hal_.can.counters();
   state_.link_up = bus.link_up;

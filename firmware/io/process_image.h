@@ -18,11 +18,14 @@ struct MachineState {
   std::uint32_t encoder_invalid = 0;  // quadrature transitions that skipped a state
 
   // The GNSS receiver, where the board has one (hal::GnssSource): its newest fix (sequence 0:
-  // none yet) and its speed over ground (0 before the first).
+  // none yet) and its speed over ground (0 before the first). The antenna's place: the newest
+  // fix's while it has one no older than kGnssPlaceMaxAgeNs, else 0, 0 (no place).
+  static constexpr std::int64_t kGnssPlaceMaxAgeNs = 1'000'000'000;
   bool gnss_fitted = false;
   bool gnss_connected = false;
   hal::GnssFix gnss;
   double v_gnss_mps = 0.0;
+  double lat_deg = 0.0, lon_deg = 0.0;
 
   // Process values from the nodes' TPDOs.
   double omega_radps = 0.0;

@@ -169,6 +169,11 @@ inline constexpr std::array kSignals = {
     signal_decl::commanded("slip_est", "1",
                            "the soil wheel's slip beyond its calibration, estimated", 4,
                            &MachineCommand::slip_est),
+    // The antenna's place (WGS 84), for the as-planted map; 0, 0 with no fix in the last second.
+    signal_decl::gnss("lat_deg", "deg", "latitude of the GNSS antenna's newest fix", 8,
+                      &MachineState::lat_deg),
+    signal_decl::gnss("lon_deg", "deg", "longitude of the GNSS antenna's newest fix", 8,
+                      &MachineState::lon_deg),
     // In the process image, not a recording column.
     signal_decl::commanded("clamp_pos_cmd_mm", "mm", "roller position command", 4,
                            &MachineCommand::clamp_pos_cmd_mm, NodeRole::kRollerActuator,

@@ -75,7 +75,7 @@ void GroundFusion::set_estimate(double k, double wheel_now_m) {
 
 GnssUse judge_fix(const GroundFusionConfig& cfg, const hal::GnssFix& fix,
                   std::int64_t last_fix_ns) {
-  if (fix.mode != hal::GnssMode::k2D && fix.mode != hal::GnssMode::k3D) return GnssUse::kNoFix;
+  if (!hal::has_position(fix)) return GnssUse::kNoFix;
   if (!std::isfinite(fix.speed_mps) || !std::isfinite(fix.track_deg) || fix.speed_mps < 0 ||
       fix.speed_mps > cfg.max_speed_mps) {
     return GnssUse::kRefused;

@@ -41,8 +41,8 @@ void PlantingMonitor::on_seedling(double at_m) {
   if (chained_) {
     const double gap_mm = (at_m - last_at_m_) * 1e3;
     figures_.spacings += 1.0;
-    if (gap_mm > cfg_.skip_ratio * cfg_.target_spacing_mm) figures_.skips += 1.0;
-    if (gap_mm <= cfg_.multiple_ratio * cfg_.target_spacing_mm) figures_.multiples += 1.0;
+    if (cfg_.is_skip(gap_mm)) figures_.skips += 1.0;
+    if (cfg_.is_multiple(gap_mm)) figures_.multiples += 1.0;
     sum_mm_ += gap_mm;
     sum2_mm2_ += gap_mm * gap_mm;
     const double n = figures_.spacings;

@@ -26,6 +26,14 @@ struct PlantingMonitorConfig {
   double row_spacing_mm = 900.0;        // the paper, Sec. 5: rows 90 cm apart at Zhangqiu
   double spacing_cv_alarm = 0.17;       // assumed (0.1-0.3): a CV above this is uneven spacing
   double singulation_alarm_pct = 95.0;  // assumed: singulation below this, skips or multiples
+
+  // The one rule for a spacing (mm): the monitor's counts, the truth's and the as-planted map.
+  [[nodiscard]] bool is_skip(double gap_mm) const {
+    return gap_mm > skip_ratio * target_spacing_mm;
+  }
+  [[nodiscard]] bool is_multiple(double gap_mm) const {
+    return gap_mm <= multiple_ratio * target_spacing_mm;
+  }
 };
 
 // What the monitor shows. Counts are whole numbers held in doubles, so every figure is one

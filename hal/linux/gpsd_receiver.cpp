@@ -39,6 +39,7 @@ GnssFix fix_from_gpsd(const gps_data_t& data, std::int64_t arrival_ns, const Gns
   f.lat_deg = or_zero(g.latitude);
   f.lon_deg = or_zero(g.longitude);
   f.valid_ns = arrival_ns - latency_ns;
+  f.receiver_time_s = or_zero(fix_time_s(data));
   // A receiver (or a log) whose time stands still or runs back: the fix keeps the last one's
   // date, and the fusion takes it as no new fix.
   if (previous.sequence != 0 && fix_time_s(data) <= previous_time_s) f.valid_ns = previous.valid_ns;
@@ -53,9 +54,7 @@ GpsdReceiver::~GpsdReceiver() {
   if (thread_.joinable()) thread_.join();
 }
 
-void GpsdReceiver::watch(gps_data_t& data) {
-  GnssFix last;
-  double last_time_s = -1.0;
+void GpsdReceiver::watch(gps_data_t& data, GnssFix& last, double& last_time_s) {
   while (!stop_) {
     // gps_waiting is false both on a timeout and on an error, and says which only through
     // errno: clear it first, or a value left by the connect (EINPROGRESS) reads as an error and
@@ -78,13 +77,17 @@ void GpsdReceiver::watch(gps_data_t& data) {
 
 void GpsdReceiver::run() {
   const std::string port = std::to_string(options_.port);
+  // Kept across connections: a fix's sequence is never reused, and a receiver whose time runs
+  // back after gpsd restarts is still a receiver whose time runs back.
+  GnssFix last;
+  double last_time_s = -1.0;
   while (!stop_) {
     gps_data_t data{};
     if (gps_open(options_.host.c_str(), port.c_str(), &data) == 0) {
       if (gps_stream(&data, WATCH_ENABLE | WATCH_JSON, nullptr) == 0) {
         connected_ = true;
         ++connections_;
-        watch(data);
+        watch(data, last, last_time_s);
         connected_ = false;
       }
       gps_stream(&data, WATCH_DISABLE, nullptr);

@@ -48,7 +48,7 @@ class GpsdReceiver final : public GnssSource {
 
  private:
   void run();
-  void watch(gps_data_t& data);
+  void watch(gps_data_t& data, GnssFix& last, double& last_time_s);
 
   GpsdOptions options_;
   std::function<std::int64_t()> now_ns_;

@@ -9,8 +9,8 @@
 #include <deque>
 #include <random>
 
+#include "config/local_plane.h"
 #include "hal/sim/sim_gnss.h"
-#include "sim/plant/local_plane.h"
 #include "sim/plant/plant_config.h"
 
 namespace planter::sim {
@@ -42,7 +42,7 @@ class GnssReceiverModel {
 
  private:
   void measure(std::int64_t t_ns, double x_m, double v_mps) {
-    constexpr double kDeg = LocalPlane::kDeg;
+    constexpr double kDeg = config::LocalPlane::kDeg;
     hal::GnssFix f;
     f.sequence = ++sequence_;
     f.valid_ns = t_ns;
@@ -62,7 +62,8 @@ class GnssReceiverModel {
     f.speed_err_mps = cfg_.speed_noise_mps;
     const double pn = x_m * std::cos(h) + cfg_.position_noise_m * normal_(rng_);
     const double pe = x_m * std::sin(h) + cfg_.position_noise_m * normal_(rng_);
-    LocalPlane{cfg_.origin_lat_deg, cfg_.origin_lon_deg}.to_geo(pe, pn, f.lat_deg, f.lon_deg);
+    config::LocalPlane{cfg_.origin_lat_deg, cfg_.origin_lon_deg}.to_geo(pe, pn, f.lat_deg,
+                                                                        f.lon_deg);
     pending_.push_back(f);
   }
 

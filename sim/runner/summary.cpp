@@ -91,8 +91,8 @@ Summary SummaryBuilder::finish(const SeedlingProcess& process, double plot_lengt
   s.monitor = monitor_;
   s.warnings_seen = warnings_seen_;
   for (double g : gaps) {
-    if (g > monitor_cfg_.skip_ratio * monitor_cfg_.target_spacing_mm) ++s.truth_skips;
-    if (g <= monitor_cfg_.multiple_ratio * monitor_cfg_.target_spacing_mm) ++s.truth_multiples;
+    if (monitor_cfg_.is_skip(g)) ++s.truth_skips;
+    if (monitor_cfg_.is_multiple(g)) ++s.truth_multiples;
   }
   s.plot_counts.assign(static_cast<std::size_t>(plots), 0);
   for (double x : xs) {

@@ -106,6 +106,9 @@ for c in "hil-too-fast:too fast for the disc" \
   fi
 done
 
+# 4c. GNSS through gpsd: gpsfake plays the simulator's NMEA log, and stops mid-row.
+sh "$R/tests/hil/guest_gnss_test.sh" "$R" "$B" || fail=1
+
 # 5. The package installed as on a machine, its service's command with the console, a phone's
 # requests, the commissioning gate, and a stop as systemctl stops it.
 sh "$R/tests/hil/guest_package_test.sh" "$R" "$B" "$DEB" || fail=1

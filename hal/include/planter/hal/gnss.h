@@ -20,7 +20,13 @@ struct GnssFix {
   double track_deg = 0;      // course over ground, degrees clockwise from true north
   double speed_err_mps = 0;  // the receiver's estimate of its speed error, 1 sigma (0: not said)
   double lat_deg = 0, lon_deg = 0;
+  double receiver_time_s = 0;  // the receiver's own time of the fix, UNIX seconds (0: not said)
 };
+
+// A fix that places the antenna: 2D or 3D (gpsd's mode).
+inline bool has_position(const GnssFix& f) {
+  return f.mode == GnssMode::k2D || f.mode == GnssMode::k3D;
+}
 
 // Where the controller reads the newest fix, never blocking (the real-time loop).
 class GnssSource {

@@ -5,7 +5,7 @@
 // simulated receiver places its fixes with it and the as-planted map reads them back.
 #include <cmath>
 
-namespace planter::sim {
+namespace planter::config {
 
 struct LocalPlane {
   static constexpr double kDeg = 0.017453292519943295;
@@ -22,4 +22,4 @@ struct LocalPlane {
   }
 };
 
-}  // namespace planter::sim
+}  // namespace planter::config

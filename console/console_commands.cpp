@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 
+#include "console/client_address.h"
 #include "console/console_request.h"
 #include "console/console_server.h"
 
@@ -95,10 +96,11 @@ void ConsoleServer::audit_refusals(const std::optional<RefusalSummary>& s) {
 void ConsoleServer::login(const httplib::Request& req, httplib::Response& res) {
   const auto secret = login_secret(req.body);
   if (!secret) return error(res, 400, "send {\"secret\": \"...\"}");
-  const LoginResult r = sessions_->login(req.remote_addr, *secret);
+  const std::string client = client_key(req.remote_addr);  // a /64 for IPv6 (client_address.h)
+  const LoginResult r = sessions_->login(client, *secret);
   if (r.status == LoginResult::Status::kOk) {
     // The operator's device keeps a way in however many others hold connections.
-    if (r.role == Role::kOperator) limits_.remember_operator(req.remote_addr);
+    if (r.role == Role::kOperator) limits_.remember_operator(client);
     res.set_header("Set-Cookie",
                    std::string(kCookie) + "=" + r.token + "; HttpOnly; SameSite=Strict; Path=/");
     nlohmann::json body = {{"role", role_name(r.role)}, {"csrf", r.csrf}};
@@ -123,7 +125,7 @@ void ConsoleServer::login(const httplib::Request& req, httplib::Response& res) {
     error(res, 429, said);
   }
   // Counted, and said once a minute: a flood of wrong secrets cannot fill the disk.
-  audit_refusals(refused_logins_.add(req.remote_addr, said, console_now_ns()));
+  audit_refusals(refused_logins_.add(client, said, console_now_ns()));
 }
 
 void ConsoleServer::command(const httplib::Request& req, httplib::Response& res) {

@@ -14,6 +14,8 @@
 #include <string>
 #include <string_view>
 
+#include "console/client_address.h"
+
 namespace planter::console {
 namespace {
 
@@ -68,6 +70,9 @@ class BoundedStream final : public httplib::Stream {
   void next_request() {
     consumed_ = 0;
     cut_ = Cut::kNone;
+    in_head_ = first_line_ = true;
+    colon_ = false;
+    line_length_ = 0;
     answer_started_ = replacing_ = false;
     status_ = 0;
     read_deadline_ = Clock::now() + times_.request_read;
@@ -112,6 +117,10 @@ class BoundedStream final : public httplib::Stream {
       used_ = 0;
     }
     const std::size_t n = std::min(size, have_ - used_);
+    if (!head_lines_well_formed(buffer_ + used_, n)) {
+      cut_ = Cut::kMalformed;
+      return -1;
+    }
     std::memcpy(ptr, buffer_ + used_, n);
     used_ += n;
     consumed_ += n;
@@ -125,9 +134,12 @@ class BoundedStream final : public httplib::Stream {
       // cpp-httplib answers a request it could not read with a bare 400; this one says why.
       // Its other answers (413 for a declared body too large, say) go out as they are.
       static constexpr std::string_view kBare400 = "HTTP/1.1 400 ";
-      replacing_ = (cut_ == Cut::kTooLarge || cut_ == Cut::kTooSlow) &&
+      replacing_ = (cut_ == Cut::kTooLarge || cut_ == Cut::kTooSlow || cut_ == Cut::kMalformed) &&
                    std::string_view(ptr, size).substr(0, kBare400.size()) == kBare400;
-      if (replacing_ && cut_ == Cut::kTooLarge)
+      if (replacing_ && cut_ == Cut::kMalformed)
+        refuse(sock_, 400, "Bad Request",
+               refusal({"a header line without a colon (RFC 9112, Sec. 5)"}));
+      else if (replacing_ && cut_ == Cut::kTooLarge)
         refuse(sock_, 431, "Request Header Fields Too Large",
                refusal({"a request of more than ", std::to_string(times_.request_bytes),
                         " bytes (request line, headers and body)"}));
@@ -161,6 +173,26 @@ class BoundedStream final : public httplib::Stream {
   [[nodiscard]] Clock::time_point write_deadline() const {
     return write_deadline_ ? *write_deadline_ : Clock::now() + times_.response_write;
   }
+  // The request's head, line by line as its bytes are handed out: every line after the request
+  // line must be a field with a colon (RFC 9112, Sec. 5). cpp-httplib skips one without, which a
+  // proxy in front may read otherwise; it is refused here. Empty lines before the request line
+  // are allowed (Sec. 2.2); the body after the empty line is not looked at.
+  bool head_lines_well_formed(const char* bytes, std::size_t n) {
+    for (std::size_t i = 0; i < n && in_head_; ++i) {
+      const char c = bytes[i];
+      if (c == '\n') {
+        if (line_length_ == 0 && !first_line_) in_head_ = false;
+        if (line_length_ > 0 && !first_line_ && !colon_) return false;
+        if (line_length_ > 0) first_line_ = false;
+        colon_ = false;
+        line_length_ = 0;
+      } else if (c != '\r') {
+        ++line_length_;
+        colon_ = colon_ || c == ':';
+      }
+    }
+    return true;
+  }
   // Until the socket is ready, the deadline passes or the server stops.
   bool wait(short events, Clock::time_point deadline) const {
     for (;;) {
@@ -182,7 +214,9 @@ class BoundedStream final : public httplib::Stream {
   char buffer_[4096];
   std::size_t have_ = 0, used_ = 0;
   std::size_t consumed_ = 0;
-  enum class Cut { kNone, kTooLarge, kTooSlow, kGone } cut_ = Cut::kNone;
+  enum class Cut { kNone, kTooLarge, kTooSlow, kGone, kMalformed } cut_ = Cut::kNone;
+  bool in_head_ = true, first_line_ = true, colon_ = false;  // head_lines_well_formed()
+  std::size_t line_length_ = 0;
   bool answer_started_ = false, replacing_ = false;
   int status_ = 0;  // of this request's answer, from its status line
 
@@ -219,7 +253,7 @@ void GuardedServer::widen_backlog() {
 
 bool GuardedServer::process_and_close_socket(socket_t sock) {
   Endpoint peer = endpoint_of(sock, true);
-  const std::string address = peer.ip;
+  const std::string address = client_key(peer.ip);  // a /64 for IPv6 (client_address.h)
   const Ticket ticket = limits_.admit(address, sock);
   bool served = false;
   if (ticket.admission == Admission::kAddressFull) {

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "console/client_address.h"
+
 namespace planter::console {
 namespace {
 
@@ -92,6 +94,28 @@ TEST(ConnectionLimits, AFullServerCutsAnIdleConnectionOfTheAddressHoldingMostFor
   EXPECT_TRUE(limits.set_idle(first_login, true));
   limits.release("192.168.1.20", first_login);
   EXPECT_EQ(limits.open(), 31u);
+}
+
+// Issue 53, item 10: what a per-address limit counts, and an address in a URL.
+TEST(ClientAddress, AnIpv6HostCountsAsItsSlash64AndLoopbackAsOne) {
+  EXPECT_EQ(client_key("192.168.1.20"), "192.168.1.20");
+  EXPECT_EQ(client_key("2001:db8:1:2:aaaa:bbbb:cccc:dddd"), "2001:db8:1:2::/64");
+  EXPECT_EQ(client_key("2001:db8:1:2::9"), "2001:db8:1:2::/64") << "a privacy address, same /64";
+  EXPECT_NE(client_key("2001:db8:1:3::9"), client_key("2001:db8:1:2::9"));
+  EXPECT_EQ(client_key("::ffff:10.0.0.7"), "10.0.0.7");
+  EXPECT_EQ(client_key("::1"), client_key("127.0.0.1"));
+  EXPECT_EQ(client_key("not an address"), "not an address");
+  EXPECT_EQ(url_host("::1"), "[::1]");
+  EXPECT_EQ(url_host("::"), "[::]");
+  EXPECT_EQ(url_host("0.0.0.0"), "0.0.0.0");
+}
+
+TEST(ClientAddress, ASlash64SharesOneCapWhateverAddressesItTakes) {
+  ConnectionLimits limits(ConnectionCaps{2, 32, 2});
+  EXPECT_EQ(limits.admit(client_key("2001:db8::1")).admission, Admission::kAdmitted);
+  EXPECT_EQ(limits.admit(client_key("2001:db8::2")).admission, Admission::kAdmitted);
+  EXPECT_EQ(limits.admit(client_key("2001:db8::3")).admission, Admission::kAddressFull);
+  EXPECT_EQ(limits.admit(client_key("2001:db8:0:1::3")).admission, Admission::kAdmitted);
 }
 
 }  // namespace

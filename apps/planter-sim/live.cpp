@@ -22,6 +22,7 @@
 
 #include "config/output_set.h"
 #include "config/recording_format.h"
+#include "console/client_address.h"
 #include "console/operator_sessions.h"
 #include "plan/folder_lock.h"
 #include "sim/runner/lockstep_runner.h"
@@ -161,8 +162,9 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
         console::OperatorSessions::read_secret_file(options.viewer_secret_file);
   console::ConsoleServer server(console_options, info);
   server.start();
-  std::printf("console: http://%s:%d/  (%s; Ctrl-C to stop)\n", options.console.bind.c_str(),
-              server.port(), scenario.name.c_str());
+  std::printf("console: http://%s:%d/  (%s; Ctrl-C to stop)\n",
+              console::url_host(options.console.bind).c_str(), server.port(),
+              scenario.name.c_str());
   if (!options.view_only) {
     // The terminal is this machine's screen: the secret is shown here, and nowhere else.
     if (options.pairing_secret_file.empty())

@@ -25,6 +25,7 @@
 #include "config/commissioning.h"
 #include "config/config_error.h"
 #include "config/recording_format.h"
+#include "console/client_address.h"
 #include "console/command_channel.h"
 #include "console/live_sample.h"
 #include "console/spsc_queue.h"
@@ -382,8 +383,8 @@ class OperatorConsole {
     server_ = std::make_unique<console::ConsoleServer>(
         o, console::console_info(board.name, board.controller, false));
     server_->start();
-    std::fprintf(stderr, "planterd: console on http://%s:%d/ (%s; audit log %s)\n", o.bind.c_str(),
-                 server_->port(),
+    std::fprintf(stderr, "planterd: console on http://%s:%d/ (%s; audit log %s)\n",
+                 console::url_host(o.bind).c_str(), server_->port(),
                  o.commands != nullptr ? "commands with the pairing secret" : "viewing only",
                  o.commands != nullptr ? o.audit_log.c_str() : "none");
   }

@@ -213,33 +213,6 @@ std::string task_log(const std::string& dir, std::size_t task) {
   return dir + name;
 }
 
-// The array's script: task T runs the runs on line T + 1 of DIR/tasks.txt, one after another.
-std::string sbatch_script(const PlanRuns& runs, std::size_t tasks, const ExecutorOptions& o,
-                          const std::string& label, const std::string& time_limit) {
-  const std::string& dir = runs.dir;
-  std::ostringstream s;
-  s << "#!/bin/bash\n"
-    << "# A " << runs.what << " plan as a Slurm job array: each task runs the runs on its line\n"
-    << "# of tasks.txt (the runs not yet complete when this was written). Submit with:\n"
-    << "# sbatch " << dir << "/plan.sbatch; run the command that wrote it again to follow it\n"
-    << "# and gather. Each run writes its output whole or not at all.\n"
-    << "#SBATCH --job-name=planter-" << job_name(label) << "\n"
-    << "#SBATCH --array=0-" << tasks - 1 << (o.throttle > 0 ? "%" : "")
-    << (o.throttle > 0 ? std::to_string(o.throttle) : "") << "\n"
-    << "#SBATCH --output=" << dir << "/logs/task-%5a.slurm.log\n"
-    << "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n";
-  if (!o.partition.empty()) s << "#SBATCH --partition=" << o.partition << "\n";
-  if (!o.account.empty()) s << "#SBATCH --account=" << o.account << "\n";
-  if (!time_limit.empty()) s << "#SBATCH --time=" << time_limit << "\n";
-  s << "status=0\n"
-    << "for index in $(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" "
-    << shell_quoted(dir + "/tasks.txt") << "); do\n"
-    << "  " << runs.task_command << " \"$index\" || status=1\n"
-    << "done\n"
-    << "exit $status\n";
-  return s.str();
-}
-
 // Each array task's state by its index, from "JOB_INDEX<separator>STATE" lines; a state such as
 // "CANCELLED by 0" is kept to its first word, and a line for a range of pending tasks
 // ("JOB_[5-14%1]") is skipped.
@@ -398,6 +371,32 @@ std::string control_character_refusal(const std::string& what, const std::string
     }
   }
   return "";
+}
+
+std::string sbatch_script(const PlanRuns& runs, std::size_t tasks, const ExecutorOptions& o,
+                          const std::string& label, const std::string& time_limit) {
+  const std::string& dir = runs.dir;
+  std::ostringstream s;
+  s << "#!/bin/bash\n"
+    << "# A " << runs.what << " plan as a Slurm job array: each task runs the runs on its line\n"
+    << "# of tasks.txt (the runs not yet complete when this was written). Submit with:\n"
+    << "# sbatch " << dir << "/plan.sbatch; run the command that wrote it again to follow it\n"
+    << "# and gather. Each run writes its output whole or not at all.\n"
+    << "#SBATCH --job-name=planter-" << job_name(label) << "\n"
+    << "#SBATCH --array=0-" << tasks - 1 << (o.throttle > 0 ? "%" : "")
+    << (o.throttle > 0 ? std::to_string(o.throttle) : "") << "\n"
+    << "#SBATCH --output=" << dir << "/logs/task-%5a.slurm.log\n"
+    << "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n";
+  if (!o.partition.empty()) s << "#SBATCH --partition=" << o.partition << "\n";
+  if (!o.account.empty()) s << "#SBATCH --account=" << o.account << "\n";
+  if (!time_limit.empty()) s << "#SBATCH --time=" << time_limit << "\n";
+  s << "status=0\n"
+    << "for index in $(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" "
+    << shell_quoted(dir + "/tasks.txt") << "); do\n"
+    << "  " << runs.task_command << " \"$index\" || status=1\n"
+    << "done\n"
+    << "exit $status\n";
+  return s.str();
 }
 
 std::string executor_refusal(const ExecutorOptions& o) {

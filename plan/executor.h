@@ -67,6 +67,12 @@ struct PlanRuns {
   std::string what = "plan";  // names the work in messages ("sweep", "dem screening")
 };
 
+// The Slurm job array's script for `tasks` tasks: task T runs the runs on line T + 1 of
+// DIR/tasks.txt, one after another. The values it writes must have passed executor_refusal()
+// and the folder control_character_refusal() (its fuzz target holds it to that).
+std::string sbatch_script(const PlanRuns& runs, std::size_t tasks, const ExecutorOptions& o,
+                          const std::string& label, const std::string& time_limit);
+
 // Runs every run of `runs` not yet complete with the executor `o` and returns when all are
 // complete. `label` names the work in progress lines on a terminal. Throws std::runtime_error
 // listing failed runs (index, reason, log), or PlanWritten.

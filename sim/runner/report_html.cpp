@@ -36,12 +36,14 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
     if (last_x >= 0) spacing.push_back((x - last_x) * 1000);
     last_x = x;
   }
-  const double spacing_target_mm = sc.board.controller.monitor.target_spacing_mm;
+  // The planting monitor's own rule and ratios, as its figures and the summary count them.
+  const PlantingMonitorConfig& monitor = sc.board.controller.monitor;
+  const double spacing_target_mm = monitor.target_spacing_mm;
   report::ChartPage charts;
   int skips = 0, multiples = 0;
   for (const double g : spacing) {
-    if (g > 1.5 * spacing_target_mm) ++skips;
-    if (g < 0.5 * spacing_target_mm) ++multiples;
+    if (monitor.is_skip(g)) ++skips;
+    if (monitor.is_multiple(g)) ++multiples;
   }
   const SeedlingConfig& seeds = sc.plant.seedlings;
   // The strength is the measured peaks' (or the scenario's), never the DEM's (issue 27).
@@ -137,9 +139,11 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
               "spacing [mm]",
               0,
               0,
-              {{0.5 * spacing_target_mm, "#c00", "multiple (< 0.5 x target)"},
+              {{monitor.multiple_ratio * spacing_target_mm, "#c00",
+                "multiple (<= " + report::fixed(monitor.multiple_ratio, 1) + " x target)"},
                {spacing_target_mm, "#999", "target"},
-               {1.5 * spacing_target_mm, "#c00", "skip (> 1.5 x target)"}},
+               {monitor.skip_ratio * spacing_target_mm, "#c00",
+                "skip (> " + report::fixed(monitor.skip_ratio, 1) + " x target)"}},
               {},
               std::to_string(skips) + " skips and " + std::to_string(multiples) +
                   " multiples against a target of " + report::fixed(spacing_target_mm, 1) + " mm."},

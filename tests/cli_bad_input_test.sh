@@ -56,6 +56,11 @@ want_rc=1 expect plan-empty "p9.json: run 0 is not in the plan \(it has no runs\
 : >"$tmp/a-file"
 want_rc=1 expect out-under-a-file "a-file/sub: cannot be created: Not a directory" -- \
   "$sim" sweep "$src/scenarios/zhangqiu-field.toml" --out "$tmp/a-file/sub/o" --plan-only
+# Issue 54, item 6: a scenario on a machine's board says so and names the board.
+sed "s|\.\./boards/host-sim|$src/boards/rpi4-canhat|; s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" \
+  "$src/scenarios/zhangqiu-field.toml" >"$tmp/hw.toml"
+want_rc=0 expect hardware-board "^board +rpi4-canhat: a machine's board; its settings run here" -- \
+  "$sim" run "$tmp/hw.toml" --out "$tmp/hw"
 cp "$src/scenarios/zhangqiu-field.toml" "$tmp/s.toml"
 sed -i "s|\.\./boards|$src/boards|; s|\.\./models|$src/models|" "$tmp/s.toml"
 printf '\n[route2]\nx = 1\n' >>"$tmp/s.toml"

@@ -73,6 +73,13 @@ CLI::App* add_study(CLI::App& app, const std::string& name, const std::string& d
 
 void print_summary(const Summary& s) {
   std::printf("scenario            %s\n", s.scenario.c_str());
+  if (s.board_is_hardware)
+    std::printf(
+        "board               %s: a machine's board; its settings run here, its bus and "
+        "lines are not used\n",
+        s.board.c_str());
+  else
+    std::printf("board               %s\n", s.board.c_str());
   std::printf("distance            %.2f m in %.1f s simulated (%.2f s wall, %.0fx real time)\n",
               s.distance_m, s.sim_seconds, s.wall_seconds, s.realtime_factor);
   std::printf("seedlings planted   %d  (per 3 m plot:", s.seedlings_planted);

@@ -83,6 +83,8 @@ Summary LockstepRunner::run() {
   Summary s = summary_.finish(machine_->plant().seedlings(), plot_m,
                               static_cast<int>(scenario_.plant.route.distance_m / plot_m + 1e-9));
   s.scenario = scenario_.name;
+  s.board = scenario_.board.name;
+  s.board_is_hardware = scenario_.board.can_interface != "sim";
   s.loops = scores_.finish();
   s.distance_m = machine_->plant().ground().x_m();
   s.sim_seconds = time_s();

@@ -105,6 +105,8 @@ Summary SummaryBuilder::finish(const SeedlingProcess& process, double plot_lengt
 std::string Summary::to_json() const {
   nlohmann::ordered_json j;
   j["scenario"] = scenario;
+  j["board"] = board;
+  j["board_is_hardware"] = board_is_hardware;
   j["sigma_target"] = sigma_target;
   j["sigma_true_mean"] = sigma_true_mean;
   j["sigma_true_rms_error_pct"] = sigma_true_rms_error_pct;
@@ -163,6 +165,8 @@ Summary Summary::from_json(const std::string& text) {
   const nlohmann::json j = nlohmann::json::parse(text);
   Summary s;
   s.scenario = j.at("scenario").get<std::string>();
+  s.board = j.value("board", std::string());  // summaries written before it was kept
+  s.board_is_hardware = j.value("board_is_hardware", false);
   s.sigma_target = j.at("sigma_target").get<double>();
   s.sigma_true_mean = j.at("sigma_true_mean").get<double>();
   s.sigma_true_rms_error_pct = j.at("sigma_true_rms_error_pct").get<double>();

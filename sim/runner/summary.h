@@ -12,6 +12,10 @@ namespace planter::sim {
 
 struct Summary {
   std::string scenario;
+  // The board whose settings ran, and whether it is a machine's (its CAN interface a real one:
+  // its bus and lines are not used here, only its settings; issue 54).
+  std::string board;
+  bool board_is_hardware = false;
   double sigma_target = 1.5;
   double sigma_true_mean = 0, sigma_true_rms_error_pct = 0, sigma_ctrl_rms_error_pct = 0;
   double uprightness_pct = 0, damage_pct = 0;

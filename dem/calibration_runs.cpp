@@ -69,15 +69,12 @@ bool result_from_json(const nlohmann::json& j, CompressionResult& r) {
   }
 }
 
-// A kept file that is not a regular file (a directory where KEY.json should be) reads as
-// missing: the run is run again, and writing its result says what is in the way.
-bool regular_file(const std::string& path) {
-  std::error_code ec;
-  return std::filesystem::is_regular_file(path, ec);
-}
-
+// A kept file's text, "" when it cannot be read. One that is not a regular file (a directory
+// where KEY.json should be) reads as missing: the run is run again, and writing its result
+// says what is in the way.
 std::string read_text(const std::string& path) {
-  if (!regular_file(path)) return std::string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return std::string();
   std::ifstream in(path);
   std::ostringstream text;
   text << in.rdbuf();
@@ -88,11 +85,8 @@ std::string read_text(const std::string& path) {
 // parameters (then the run is run again).
 std::optional<CompressionResult> kept_for_text(const std::string& runs_dir,
                                                const std::string& toml) {
-  const std::string path = runs_dir + "/" + key_of_text(toml) + ".json";
-  if (!regular_file(path)) return std::nullopt;
-  std::ifstream in(path);
-  if (!in) return std::nullopt;
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  const nlohmann::json j = nlohmann::json::parse(
+      read_text(runs_dir + "/" + key_of_text(toml) + ".json"), nullptr, false);
   if (j.is_discarded() || !j.contains("params") || j["params"] != toml) return std::nullopt;
   CompressionResult r;
   if (!result_from_json(j, r)) return std::nullopt;

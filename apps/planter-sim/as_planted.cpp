@@ -40,9 +40,8 @@ std::vector<double> gaps_mm(const SeedlingProcess& seedlings) {
   }
   return gaps;
 }
-}  // namespace
 
-namespace {
+// The fixes that place the antenna, as the row's track.
 std::vector<config::GeoPoint> track_of(const std::vector<hal::GnssFix>& fixes) {
   std::vector<config::GeoPoint> track;
   for (const hal::GnssFix& f : fixes)

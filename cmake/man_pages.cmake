@@ -31,14 +31,18 @@ function(planter_man_page target what)
     set(run ${wrapper})
   endif()
   set(page ${CMAKE_CURRENT_BINARY_DIR}/${target}.1)
+  set(include ${CMAKE_CURRENT_BINARY_DIR}/${target}.h2m)
   add_custom_command(
     OUTPUT ${page}.gz
+    # Each subcommand's options, from its own --help (cmake/man_subcommands.sh).
+    COMMAND sh ${PROJECT_SOURCE_DIR}/cmake/man_subcommands.sh ${run} ${include} ${target}
     # stdout only: a program that cannot start prints its error on stderr, and help2man then
-    # fails the build instead of making a page of the error.
-    COMMAND ${PLANTER_HELP2MAN} --no-info --section=1
-            "--name=${what}" --output=${page} ${run}
+    # fails the build instead of making a page of the error. The footer's version is the
+    # release's alone: the build's git id ran into the date at 80 columns.
+    COMMAND ${PLANTER_HELP2MAN} --no-info --section=1 --include=${include}
+            "--version-string=${PROJECT_VERSION}" "--name=${what}" --output=${page} ${run}
     COMMAND gzip -n -9 -f ${page}
-    DEPENDS ${target} ${run}
+    DEPENDS ${target} ${run} ${PROJECT_SOURCE_DIR}/cmake/man_subcommands.sh
     COMMENT "man page for ${target} (help2man)"
     VERBATIM)
   add_custom_target(${target}-man ALL DEPENDS ${page}.gz)

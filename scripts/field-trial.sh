@@ -6,7 +6,8 @@ log="$root/build/field-trial-setup.log"
 mkdir -p "$root/build"
 echo "field-trial: installing what is missing and building planter-sim in build/ (the first" \
   "time takes a few minutes; log: build/field-trial-setup.log)" >&2
-# Only the program this job runs is built; its steps are counted on the terminal as they go.
+# Only the program this job runs is built, and its man page; its steps are counted on the
+# terminal as they go.
 # Read line by line in bash: Debian's awk (mawk) reads a pipe in blocks, which froze the count
 # for most of a minute at a time.
 progress() {
@@ -22,7 +23,7 @@ progress() {
   done
   if [ -t 2 ]; then printf '\n' >&2; fi
 }
-if ! PLANTER_BUILD_TARGETS=planter-sim "$root/scripts/setup.sh" "$root/build" 2>&1 | tee "$log" |
+if ! PLANTER_BUILD_TARGETS="planter-sim planter-sim-man" "$root/scripts/setup.sh" "$root/build" 2>&1 | tee "$log" |
   progress; then
   echo "field-trial: the setup or the build failed; the end of $log:" >&2
   tail -n 30 "$log" >&2

@@ -16,5 +16,13 @@ packages=(g++ cmake ninja-build clang-format libtomlplusplus-dev libcli11-dev nl
 "$root/scripts/apt-install.sh" setup "${packages[@]}"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
 targets=()
-for t in ${PLANTER_BUILD_TARGETS:-}; do targets+=(--target "$t"); done
+# A man page's target exists only where help2man could make it (cmake/man_pages.cmake).
+known=$(cmake --build "$build" --target help)
+for t in ${PLANTER_BUILD_TARGETS:-}; do
+  if [[ $t == *-man ]] && ! grep -q "^$t:" <<<"$known"; then
+    echo "setup: no $t (no help2man here): the program is built without its man page" >&2
+    continue
+  fi
+  targets+=(--target "$t")
+done
 cmake --build "$build" -j "$(nproc)" "${targets[@]}"

@@ -151,6 +151,27 @@ void parse_node(TomlSection& nodes, NodeRole role, NodeConfig& out, std::set<int
 }
 
 // [gnss]: which receiver, where gpsd is, and the fix limits the ground fusion takes.
+// [clamp_ceiling]: the ceiling derived at the reference stem (config/clamp_ceiling.h), and the
+// set-point below it; `control` holds the set-point.
+void read_clamp_ceiling(std::optional<TomlSection> t, std::optional<TomlSection> control,
+                        BoardConfig& b) {
+  ClampCeilingRule& r = b.clamp_ceiling;
+  if (t) {
+    r.specimen_length_mm = t->number(mk("clamp_ceiling.specimen_length_mm"));
+    r.stems_past_peak_pct = t->number(mk("clamp_ceiling.stems_past_peak_pct"));
+    r.contact_area_mm2 = t->number(mk("clamp_ceiling.contact_area_mm2"));
+    r.band_mm = t->number(mk("clamp_ceiling.band_mm"));
+    t->reject_unknown_keys();
+  }
+  ClampLoopConfig& clamp = b.controller.clamp;
+  clamp.ceiling_N = clamp_ceiling_N(r, clamp.stem.reference_diameter_mm);
+  if (clamp.setpoint_N < clamp.ceiling_N) return;
+  const std::string why =
+      "must be below the " + clamp_ceiling_derivation(r, clamp.stem.reference_diameter_mm);
+  if (control) control->fail(mk("control.clamp_force_N"), why);
+  throw ConfigError(b.machine_file, 1, std::string(dotted_name(mk("control.clamp_force_N"))), why);
+}
+
 void read_gnss(TomlSection& g, BoardConfig& b) {
   GnssBoardConfig& r = b.gnss;
   r.receiver = g.string(bk("gnss.receiver"));
@@ -303,14 +324,6 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     c.sigma.sigma = ctl->number(mk("control.sigma"));
     c.sigma.angle_gain_per_s = ctl->number(mk("control.sigma_angle_gain_per_s"));
     c.clamp.setpoint_N = ctl->number(mk("control.clamp_force_N"));
-    c.clamp.ceiling_N = ctl->number(mk("control.clamp_ceiling_N"));
-    if (c.clamp.ceiling_N >= kSeedlingDamageThresholdN) {
-      ctl->fail(mk("control.clamp_ceiling_N"),
-                std::to_string(c.clamp.ceiling_N) +
-                    " N is not below the seedling damage threshold; allowed [10, 127.2) N");
-    }
-    if (c.clamp.setpoint_N >= c.clamp.ceiling_N)
-      ctl->fail(mk("control.clamp_force_N"), "must be below clamp_ceiling_N");
     c.clamp.kp_mm_per_N = ctl->number(mk("control.clamp_kp_mm_per_N"));
     c.clamp.ki_mm_per_Ns = ctl->number(mk("control.clamp_ki_mm_per_Ns"));
     c.clamp.model_k_N = ctl->number(mk("control.clamp_model_k_N"));
@@ -337,6 +350,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
                 "must not be beyond depth_max_mm (the actuator's travel)" + from_cal);
     ctl->reject_unknown_keys();
   }
+  read_clamp_ceiling(mroot->table("clamp_ceiling"), mroot->table("control"), b);
   // [planting_monitor]: the clamp pitch is the machine's; the skip and multiple limits follow
   // Kachman and Smith (1995) unless the machine file says otherwise.
   if (auto mon = mroot->table("planting_monitor")) {

@@ -4,13 +4,10 @@
 #include <string>
 #include <vector>
 
+#include "config/clamp_ceiling.h"
 #include "firmware/controller/controller_config.h"
 
 namespace planter::config {
-
-// The lowest peak radial compressive force measured on a seedling (the paper's six tests:
-// 127.2-191.6 N). A clamp ceiling must stay below it.
-constexpr double kSeedlingDamageThresholdN = 127.2;
 
 struct GpioLines {
   std::string chip = "sim";
@@ -64,6 +61,8 @@ struct BoardConfig {
   GnssBoardConfig gnss;
   ConsoleConfig console;
   ControllerConfig controller;
+  // The rule the clamp's ceiling (controller.clamp.ceiling_N) is derived by, at the reference stem.
+  ClampCeilingRule clamp_ceiling;
   double planned_bus_load_pct = 0;    // config/board_checks.h
   std::vector<std::string> warnings;  // in range but doubtful; tools print them at start
 };

@@ -5,6 +5,7 @@
 // loop it configures, the row takes it from there.
 #include <cstdint>
 
+#include "config/clamp_ceiling.h"
 #include "config/config_key.h"
 #include "firmware/controller/controller_config.h"
 #include "firmware/controller/setpoint_rules.h"
@@ -16,6 +17,7 @@ inline constexpr ClampLoopConfig kClamp{};
 inline constexpr DepthLoopConfig kDepth{};
 inline constexpr PlantingMonitorConfig kMonitor{};
 inline constexpr GroundFusionConfig kGround{};
+inline constexpr ClampCeilingRule kCeiling{};
 }  // namespace board_defaults
 
 namespace key_rows {
@@ -75,8 +77,8 @@ inline constexpr ConfigKey kMachineKeys[] = {
   number_key(kMachine, "disc", "omega_max_radps", 1.2, 0.1, 20.0, "rad/s", "the disc's top speed"),
   number_key(kMachine, "control", "sigma", 1.5, 0.5, 3.0, "", "the ratio of the disc's rim speed to the ground speed"),
   number_key(kMachine, "control", "sigma_angle_gain_per_s", 3.0, 0.0, 50.0, "1/s", "how fast the disc angle catches up with the ground"),
-  number_key(kMachine, "control", "clamp_force_N", 90.0, kClampForceFileRangeN.min, kClampForceFileRangeN.max, "N", "the clamp force set-point (below clamp_ceiling_N)"),
-  number_key(kMachine, "control", "clamp_ceiling_N", 120.0, 10.0, 1000.0, "N", "the clamp force never commanded above; must stay below 127.2 N, the weakest measured seedling"),
+  number_key(kMachine, "control", "clamp_force_N", 90.0, kClampForceFileRangeN.min, kClampForceFileRangeN.max, "N", "the clamp force set-point (below the ceiling [clamp_ceiling] derives)"),
+  retired_key(kMachine, "control", "clamp_ceiling_N", "the clamp's ceiling is derived now, not typed in: from the stems' measured strength and the [clamp_ceiling] table (docs/control.md)"),
   number_key(kMachine, "control", "clamp_kp_mm_per_N", board_defaults::kClamp.kp_mm_per_N, 0.0, 1.0, "mm/N", "the clamp loop's proportional gain"),
   number_key(kMachine, "control", "clamp_ki_mm_per_Ns", board_defaults::kClamp.ki_mm_per_Ns, 0.0, 10.0, "mm/(N s)", "the clamp loop's integral gain"),
   number_key(kMachine, "control", "clamp_model_k_N", board_defaults::kClamp.model_k_N, 0.01, 1e4, "N", "the clamp law's stiffness, for the loop's feed-forward"),
@@ -93,6 +95,10 @@ inline constexpr ConfigKey kMachineKeys[] = {
   number_key(kMachine, "control", "depth_ki_per_s", board_defaults::kDepth.ki_per_s, 0.0, 20.0, "1/s", "the depth loop's integral gain on the measured depth"),
   number_key(kMachine, "control", "depth_min_mm", board_defaults::kDepth.min_mm, -50.0, 500.0, "mm", "the depth actuator's upper end stop (the unit's calibration replaces it)"),
   number_key(kMachine, "control", "depth_max_mm", board_defaults::kDepth.max_mm, 10.0, 500.0, "mm", "the depth actuator's lower end stop (the unit's calibration replaces it)"),
+  number_key(kMachine, "clamp_ceiling", "specimen_length_mm", board_defaults::kCeiling.specimen_length_mm, 5.0, 200.0, "mm", "the strength test's loaded specimen length (assumed 15-50 mm; the paper gives none): the ceiling scales with its inverse"),
+  number_key(kMachine, "clamp_ceiling", "stems_past_peak_pct", board_defaults::kCeiling.stems_past_peak_pct, 0.01, 50.0, "%", "the share of reference stems the ceiling lets pass their first peak"),
+  number_key(kMachine, "clamp_ceiling", "contact_area_mm2", board_defaults::kCeiling.contact_area_mm2, 10.0, 5000.0, "mm^2", "the lips' contact with a stem: they hold contact area / diameter of it"),
+  number_key(kMachine, "clamp_ceiling", "band_mm", board_defaults::kCeiling.band_mm, 1.0, 200.0, "mm", "the band of flexible protrusions: the most of a stem the lips hold"),
   number_key(kMachine, "planting_monitor", "clamp_pitch_mm", board_defaults::kMonitor.clamp_pitch_mm, 5.0, 500.0, "mm", "the clamps' pitch along the disc rim; the target spacing is this over sigma"),
   number_key(kMachine, "planting_monitor", "skip_ratio", board_defaults::kMonitor.skip_ratio, 1.1, 3.0, "", "a spacing over this times the target is a skip (Kachman and Smith 1995)"),
   number_key(kMachine, "planting_monitor", "multiple_ratio", board_defaults::kMonitor.multiple_ratio, 0.1, 0.9, "", "a spacing of at most this times the target is a multiple"),

@@ -12,7 +12,7 @@
 #include <array>
 #include <cmath>
 
-namespace planter::sim {
+namespace planter::config {
 
 inline constexpr std::array<double, 6> kMeasuredPeaks_N{181.2, 191.6, 162.9, 137.5, 127.2, 171.1};
 inline constexpr double kPaperStatedStrength_N = 140.6;  // the paper's text, for comparison
@@ -56,4 +56,4 @@ inline double lognormal_strength_N(double mean_N, double sd_N, double z) {
   return std::exp(std::log(mean_N) - 0.5 * s2 + std::sqrt(s2) * z);
 }
 
-}  // namespace planter::sim
+}  // namespace planter::config

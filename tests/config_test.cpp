@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "config/board_config.h"
+#include "config/clamp_ceiling.h"
 #include "config/config_error.h"
 #include "config/durable_file.h"
 #include "config/output_set.h"
@@ -75,7 +76,26 @@ TEST(BoardConfig, LoadsTheHostSimBoard) {
   EXPECT_EQ(b.controller.node(NodeRole::kDiscDrive).node_id, 2);
   EXPECT_EQ(b.controller.node(NodeRole::kForceSensor).profile, 404);
   EXPECT_EQ(b.controller.node(NodeRole::kDepthActuator).tpdo[0].count, 3);
-  EXPECT_DOUBLE_EQ(b.controller.clamp.ceiling_N, 120.0);
+  // Derived (config/clamp_ceiling.h): the six peaks' lognormal at 1 %, over a 25 mm specimen,
+  // held over 245 mm^2 / 10 mm = 24.5 mm. By hand: mean 161.92 N, SD 25.08 N, s^2 =
+  // ln(1 + 0.1549^2) = 0.02370, the 1 % quantile exp(ln 161.92 - s^2 / 2 - 2.3263 s) = 111.7 N,
+  // times 24.5 / 25 = 109.5 N.
+  EXPECT_NEAR(b.controller.clamp.ceiling_N, 109.5, 0.2);
+}
+
+TEST(BoardConfig, ClampCeilingFollowsItsRule) {
+  planter::config::ClampCeilingRule r;
+  const double at_25 = planter::config::clamp_ceiling_N(r, 10.0);
+  r.specimen_length_mm = 50.0;
+  EXPECT_NEAR(planter::config::clamp_ceiling_N(r, 10.0), 0.5 * at_25, 1e-9);
+  r.specimen_length_mm = 25.0;
+  // A thicker stem is held over less of its length; a thin one over the band at most.
+  EXPECT_NEAR(planter::config::clamp_ceiling_N(r, 12.25), at_25 * 10.0 / 12.25, 1e-9);
+  EXPECT_NEAR(planter::config::clamp_ceiling_N(r, 4.0), at_25 * 40.0 / 24.5, 1e-9);
+  r.stems_past_peak_pct = 50.0;  // the median stem: its median peak
+  EXPECT_GT(planter::config::clamp_ceiling_N(r, 10.0), at_25 * 1.3);
+  EXPECT_NEAR(planter::config::normal_quantile(0.01), -2.326348, 1e-5);
+  EXPECT_NEAR(planter::config::normal_quantile(0.5), 0.0, 1e-9);
 }
 
 TEST(BoardConfig, UnknownKeyNamesFileLineAndKey) {
@@ -162,10 +182,20 @@ TEST(BoardConfig, WrongTypeAndRange) {
   EXPECT_NE(e.find("300 is out of range; allowed [40, 160] mm"), std::string::npos) << e;
 }
 
-TEST(BoardConfig, CeilingAboveDamageThresholdIsRefused) {
-  const std::string e = error_of(board_with("clamp_ceiling_N = 120.0", "clamp_ceiling_N = 150.0"));
+TEST(BoardConfig, ATypedCeilingIsRefusedForItsRule) {
+  const std::string e =
+      error_of(board_with("clamp_force_N = 90.0", "clamp_force_N = 90.0\nclamp_ceiling_N = 120.0"));
   EXPECT_NE(e.find("'control.clamp_ceiling_N'"), std::string::npos) << e;
-  EXPECT_NE(e.find("damage threshold"), std::string::npos) << e;
+  EXPECT_NE(e.find("derived now"), std::string::npos) << e;
+}
+
+TEST(BoardConfig, SetPointAboveTheDerivedCeilingIsRefused) {
+  // A 50 mm specimen halves the ceiling to 54.8 N: the 90 N set-point is above it.
+  const std::string e =
+      error_of(board_with("specimen_length_mm = 25.0", "specimen_length_mm = 50.0"));
+  EXPECT_NE(e.find("'control.clamp_force_N'"), std::string::npos) << e;
+  EXPECT_NE(e.find("must be below the clamp ceiling 54.8 N"), std::string::npos) << e;
+  EXPECT_NE(e.find("50 mm specimen (assumed)"), std::string::npos) << e;
 }
 
 TEST(BoardConfig, DuplicateNodeIdAndBadPdoEntry) {
@@ -262,10 +292,12 @@ TEST(ScenarioConfig, AssumptionsAreWrittenFromWhatRan) {
                           "/models/seedling_force.toml) gives each stem's compression"),
             std::string::npos)
       << with_dem;
-  EXPECT_NE(with_dem.find("The ceiling by the same rule: 1 % of the weakest stems"),
+  EXPECT_NE(with_dem.find("By the same rule 1 % of this scenario's weakest stems"),
             std::string::npos)
       << with_dem;
-  EXPECT_NE(with_dem.find("the machine's ceiling is typed in as 120 N"), std::string::npos)
+  EXPECT_NE(with_dem.find("The machine's clamp ceiling 109.6 N: 1 % of 10 mm stems pass their "
+                          "first peak there"),
+            std::string::npos)
       << with_dem;
   EXPECT_NE(with_dem.find("lognormal with mean 161.9 N and SD 25.1 N"), std::string::npos)
       << with_dem;

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "sim/seedling/measured_strength.h"
+#include "config/stem_strength.h"
 
 namespace planter::sim {
 namespace {
@@ -177,7 +177,7 @@ namespace planter::sim {
 namespace {
 
 TEST(SeedlingStrength, IsLognormalWithTheSixMeasuredPeaksMeanAndSd) {
-  const StrengthFit m = measured_strength();
+  const config::StrengthFit m = config::measured_strength();
   EXPECT_NEAR(m.mean_N, 161.92, 0.01);  // (181.2 + 191.6 + 162.9 + 137.5 + 127.2 + 171.1) / 6
   EXPECT_NEAR(m.sd_N, 25.1, 0.05);
   EXPECT_DOUBLE_EQ(m.min_N, 127.2);
@@ -186,7 +186,7 @@ TEST(SeedlingStrength, IsLognormalWithTheSixMeasuredPeaksMeanAndSd) {
   double sum = 0, sq = 0;
   const int n = 200000;
   for (int i = 0; i < n; ++i) {
-    const double x = lognormal_strength_N(m.mean_N, m.sd_N, z(rng));
+    const double x = config::lognormal_strength_N(m.mean_N, m.sd_N, z(rng));
     ASSERT_GT(x, 0.0);
     sum += x;
     sq += x * x;

@@ -34,6 +34,7 @@
 #include "apps/version/executor_options.h"
 #include "apps/version/list_keys.h"
 #include "apps/version/version.h"
+#include "config/stem_strength.h"
 #include "sim/plant/effect_keys.h"
 #include "sim/plant/model_values.h"
 #include "sim/runner/lockstep_runner.h"
@@ -42,7 +43,6 @@
 #include "sim/runner/recording_writer.h"
 #include "sim/runner/run_plan.h"
 #include "sim/runner/scenario_keys.h"
-#include "sim/seedling/measured_strength.h"
 
 namespace fs = std::filesystem;
 using namespace planter;
@@ -93,7 +93,7 @@ void print_summary(const Summary& s) {
   if (s.seedlings_damaged > 0)
     std::printf(
         "damaged seedlings   mean strength %.1f N, %d below the weakest measured (%.1f N)\n",
-        s.damaged_strength_mean_N, s.damaged_below_measured, measured_strength().min_N);
+        s.damaged_strength_mean_N, s.damaged_below_measured, config::measured_strength().min_N);
   std::printf(
       "in the clamp        %d fell in the carry (skips), %d slid > 5 mm, %d turned > 5 deg\n",
       s.seedlings_fell_in_carry, s.seedlings_slid_in_clamp, s.seedlings_turned_in_clamp);

@@ -484,6 +484,10 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     return fail(2, e.what());
   }
+  std::fprintf(stderr, "planterd: %s\n",
+               config::clamp_ceiling_derivation(board.clamp_ceiling,
+                                                board.controller.clamp.stem.reference_diameter_mm)
+                   .c_str());
 
   // Signals are taken by the main thread only (sigtimedwait), never by the loop thread.
   sigset_t signals;

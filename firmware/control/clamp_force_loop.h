@@ -12,6 +12,8 @@ namespace planter {
 
 struct ClampLoopConfig {
   double setpoint_N = 90.0;
+  // The board derives the ceiling from the stems' strength (config/clamp_ceiling.h); this value
+  // serves a loop built without a board (the unit tests).
   double ceiling_N = 120.0;
   double ramp_N_per_s = 60.0;  // set-point ramp at start
   // PI gains, set for a crossover near 8 rad/s on the nominal law's stiffness at 90 N

@@ -4,8 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "config/clamp_ceiling.h"
+#include "config/stem_strength.h"
 #include "firmware/control/stem_reader.h"
-#include "sim/seedling/measured_strength.h"
 #include "sim/seedling/seedling_force_model.h"
 #include "sim/soil/opener_draft.h"
 #include "sim/soil/root_anchorage.h"
@@ -65,21 +66,21 @@ struct SeedlingSpread {
   double feed_miss_pct = 1.0;    // clamps the feed leaves empty
   double feed_double_pct = 0.0;  // clamps the feed fills with two seedlings
   // Strength: lognormal with the mean and SD of the paper's six measured peaks (Sec. 3.5;
-  // sim/seedling/measured_strength.h); a scenario may set others. Below 0 = from the peaks.
+  // config/stem_strength.h); a scenario may set others. Below 0 = from the peaks.
   double strength_mean_N = -1.0;
   double strength_sd_N = -1.0;
   // The strength in use: the scenario's, or the measured peaks'.
   [[nodiscard]] double strength_mean() const {
-    return strength_mean_N > 0.0 ? strength_mean_N : measured_strength().mean_N;
+    return strength_mean_N > 0.0 ? strength_mean_N : config::measured_strength().mean_N;
   }
   [[nodiscard]] double strength_sd() const {
-    return strength_sd_N >= 0.0 ? strength_sd_N : measured_strength().sd_N;
+    return strength_sd_N >= 0.0 ? strength_sd_N : config::measured_strength().sd_N;
   }
   // Strength ~ (diameter / reference)^k: assumed, no measurement ties strength to diameter.
   double strength_diameter_exponent = 0.0;
   // The length of seedling the strength test's plates loaded (the paper gives none): the nip
   // loads the held length, so the line load, not the force, is compared (model_values.cpp).
-  double strength_test_length_mm = 25.0;
+  double strength_test_length_mm = config::ClampCeilingRule{}.specimen_length_mm;
   double density_kg_per_m3 = 870.5;  // the paper's Table 2
   // Tilt scatter the release mechanics leave out (crooked seedlings, settling soil, the covering
   // wheel): calibrated to the paper's centre point (seedling_release.h).
@@ -94,10 +95,11 @@ struct SeedlingConfig : SeedlingSpread {
 };
 
 struct MechanismConfig {
-  double contact_area_mm2 = 245.0;
+  // The machine's as designed (its [clamp_ceiling] table derives the ceiling from the same two).
+  double contact_area_mm2 = config::ClampCeilingRule{}.contact_area_mm2;
   // The lips hold the seedling over contact area / diameter along its stem, at most the band of
   // flexible protrusions (the paper, Sec. 3.1 and 5: 40 mm wide).
-  double protrusion_band_mm = 40.0;
+  double protrusion_band_mm = config::ClampCeilingRule{}.band_mm;
   double carry_angle_deg = 150.0;  // pickup to release
   double nip_time_s = 0.3;         // how long a seedling stays in the roller nip
   // The rim's travel over which the lips close on a stem as it comes under the roller, and open

@@ -69,9 +69,9 @@ Seedling SeedlingProcess::sample(double t_s) {
   Seedling s;
   s.diameter_mm = sc.diameter_min_mm + (sc.diameter_max_mm - sc.diameter_min_mm) * u01(rng_);
   s.length_mm = sc.length_min_mm + (sc.length_max_mm - sc.length_min_mm) * u01(rng_);
-  // Lognormal strength (sim/seedling/measured_strength.h), one standard normal draw.
+  // Lognormal strength (config/stem_strength.h), one standard normal draw.
   std::normal_distribution<double> z(0.0, 1.0);
-  s.strength_N = lognormal_strength_N(sc.strength_mean(), sc.strength_sd(), z(rng_)) *
+  s.strength_N = config::lognormal_strength_N(sc.strength_mean(), sc.strength_sd(), z(rng_)) *
                  strength_size_factor(sc, s.diameter_mm);
   if (nip_) {
     s.nip.diameter_mm = s.diameter_mm;

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "config/clamp_ceiling.h"
+
 namespace planter::sim {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
@@ -22,7 +24,7 @@ double seedling_mass_kg(const PlantConfig& config, double length_m, double diame
 }  // namespace
 
 double held_length_m(const MechanismConfig& mc, double diameter_mm) {
-  return std::min(mc.contact_area_mm2 / std::max(0.1, diameter_mm), mc.protrusion_band_mm) * 1e-3;
+  return config::held_length_mm(mc.contact_area_mm2, mc.protrusion_band_mm, diameter_mm) * 1e-3;
 }
 
 double lip_turning_stiffness_Nm_per_rad(const MechanismConfig& mc, double diameter_mm) {

@@ -2,11 +2,11 @@
 
 #include <cstdio>
 
+#include "config/stem_strength.h"
 #include "sim/plant/effect_keys.h"
 #include "sim/plant/seedling_process.h"
 #include "sim/plant/seedling_release.h"
 #include "sim/runner/summary.h"
-#include "sim/seedling/measured_strength.h"
 
 namespace planter::sim {
 namespace {
@@ -22,14 +22,14 @@ std::string format(const char* fmt, Args... args) {
 
 // The nip with the DEM's reduced law (sim/plant/clamp_nip.h), the specimen length's effect and
 // the ceiling the same rule gives.
-std::string nip_law(const PlantConfig& p, double ceiling_N) {
+std::string nip_law(const PlantConfig& p, const config::BoardConfig& board) {
   const SeedlingConfig& c = p.seedlings;
   const double d_lo = c.diameter_min_mm, d_hi = c.diameter_max_mm, d_ref = c.reference_diameter_mm;
   // The nip's force at which a stem passes its first peak: its strength at the nip's scale.
   auto peak_at_nip = [&](double d, double z, double test_length_mm) {
     PlantConfig q = p;
     q.seedlings.strength_test_length_mm = test_length_mm;
-    return lognormal_strength_N(c.strength_mean(), c.strength_sd(), z) *
+    return config::lognormal_strength_N(c.strength_mean(), c.strength_sd(), z) *
            strength_size_factor(c, d) / nip_load_factor(q, d);
   };
   // The weakest diameter's first percentile: a thicker stem is held over less of its length.
@@ -53,23 +53,26 @@ std::string nip_law(const PlantConfig& p, double ceiling_N) {
       "(the strength test's specimen length, "
       "assumed: at the DEM's own %.0f mm stem the reference stem's median peak in the nip would be "
       "%.0f N, far below the paper's 90 N field grip that damaged 2.76 %%, so the test's loaded "
-      "length was short). The ceiling by the same rule: 1 %% of the weakest stems (%.1f mm) pass "
-      "their peak at %.0f N through the nip; the machine's ceiling is typed in as %.0f N.",
+      "length was short). By the same rule 1 %% of this scenario's weakest stems (%.1f mm) pass "
+      "their peak at %.0f N through the nip. The machine's %s; a thicker stem's own ceiling is "
+      "lower by its held length (the clamp applies it per stem).",
       c.force_model_file.c_str(), d_ref, c.strength_diameter_exponent, c.strength_test_length_mm,
       dem_specimen_mm, peak_at_nip(d_ref, 0.0, dem_specimen_mm), weakest_d, ceiling_rule_N,
-      ceiling_N);
+      config::clamp_ceiling_derivation(board.clamp_ceiling,
+                                       board.controller.clamp.stem.reference_diameter_mm)
+          .c_str());
 }
 
-std::string strength(const PlantConfig& p, double ceiling_N) {
+std::string strength(const PlantConfig& p, const config::BoardConfig& board) {
   const SeedlingConfig& c = p.seedlings;
-  const StrengthFit& m = measured_strength();
+  const config::StrengthFit& m = config::measured_strength();
   const std::string measured = format(
       "Seedling strength: lognormal with mean %.1f N and SD %.1f N (the paper's six measured "
       "peaks, Sec. 3.5, are %.1f-%.1f N with mean %.1f N, SD %.1f N, the mean's 95 %% interval "
       "%.1f-%.1f N; its text's %.1f N is shown for comparison only); the lognormal form is "
       "assumed, as six values cannot choose it. ",
       c.strength_mean(), c.strength_sd(), m.min_N, m.max_N, m.mean_N, m.sd_N, m.mean_lo_N,
-      m.mean_hi_N, kPaperStatedStrength_N);
+      m.mean_hi_N, config::kPaperStatedStrength_N);
   if (!c.force_model.loaded)
     return measured +
            format(
@@ -78,7 +81,7 @@ std::string strength(const PlantConfig& p, double ceiling_N) {
                "most the %.0f mm band) exceeds the test's (its strength over %.0f mm, assumed).",
                c.reference_diameter_mm, c.strength_diameter_exponent,
                p.mechanism.protrusion_band_mm, c.strength_test_length_mm);
-  return measured + nip_law(p, ceiling_N);
+  return measured + nip_law(p, board);
 }
 
 std::string effects(const Effects& e) {
@@ -101,7 +104,7 @@ std::vector<std::string> model_assumptions(const Scenario& sc) {
   const MechanismConfig& m = p.mechanism;
   const DriveModelConfig& dr = p.drive;
   return {
-      strength(p, sc.board.controller.clamp.ceiling_N),
+      strength(p, sc.board),
       format("Contact area acts through mechanics: the lips hold the stem over contact area / "
              "diameter (%.0f mm^2 here: %.1f mm of a 10 mm stem, at most the %.0f mm band), which "
              "spreads the nip's load (damage) and sets the friction moment that keeps the "

@@ -95,8 +95,8 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
   row("clamp force, mean", s.clamp_force_mean_N, 1, "N", "paper: 90-92 N", Goal::none);
   row("clamp force, max", s.clamp_force_max_N, 1, "N", "must stay below the ceiling",
       goal(s.clamp_force_max_N < ceiling));
-  row("clamp ceiling", ceiling, 1, "N", "below 127.2 N, the weakest measured seedling",
-      goal(ceiling < 127.2));
+  row("clamp ceiling", ceiling, 1, "N",
+      "derived from the stems' measured strength (Model assumptions)", Goal::none);
   row("depth, mean", s.depth_mean_mm, 1, "mm", "target 102 mm", Goal::none);
   row("depth, RMS error", s.depth_rms_error_mm, 2, "mm", "goal within 5 mm",
       goal(s.depth_rms_error_mm <= 5.0));

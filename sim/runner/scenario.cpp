@@ -148,7 +148,7 @@ Scenario load_scenario(const std::string& path) {
     c.feed_double_pct = t->number(sk("seedlings.feed_double_pct"));
     if (c.feed_double_pct > 100.0 - c.feed_miss_pct)
       t->fail(sk("seedlings.feed_double_pct"), "must be at most 100 - feed_miss_pct");
-    // Unset: the measured peaks' (sim/seedling/measured_strength.h).
+    // Unset: the measured peaks' (config/stem_strength.h).
     if (t->has(sk("seedlings.strength_mean_N")))
       c.strength_mean_N = t->number(sk("seedlings.strength_mean_N"));
     if (t->has(sk("seedlings.strength_sd_N")))
@@ -231,7 +231,10 @@ Scenario load_scenario(const std::string& path) {
     c.clamp.per_stem_grip = t->boolean(sk("controller.clamp_per_stem_grip"), c.clamp.per_stem_grip);
     c.ground.gnss_fitted = t->boolean(sk("controller.gnss"), c.ground.gnss_fitted);
     if (c.clamp.setpoint_N >= c.clamp.ceiling_N)
-      t->fail(sk("controller.clamp_force_N"), "must be below the board's clamp_ceiling_N");
+      t->fail(sk("controller.clamp_force_N"),
+              "must be below the machine's " +
+                  config::clamp_ceiling_derivation(s.board.clamp_ceiling,
+                                                   c.clamp.stem.reference_diameter_mm));
     c.depth.target_mm = t->number(sk("controller.depth_mm"), c.depth.target_mm);
     t->reject_unknown_keys();
   }

@@ -115,7 +115,7 @@ inline constexpr config::ConfigKey kScenarioKeys[] = {
   number_key(kScenario, "controller", "sigma", kNoDefault, 0.5, 3.0, "", "overrides the machine's sigma", "the machine's"),
   bool_key(kScenario, "controller", "clamp_per_stem_grip", false, "overrides the machine's clamp_per_stem_grip (false: one set-point for every stem)", "the machine's"),
   bool_key(kScenario, "controller", "gnss", false, "overrides the board's GNSS receiver: true fits the simulated one ([gnss] below), false takes it off", "the board's"),
-  number_key(kScenario, "controller", "clamp_force_N", kNoDefault, 0.0, 200.0, "N", "overrides the machine's clamp force (below its clamp_ceiling_N)", "the machine's"),
+  number_key(kScenario, "controller", "clamp_force_N", kNoDefault, 0.0, 200.0, "N", "overrides the machine's clamp force (below its derived ceiling)", "the machine's"),
   number_key(kScenario, "controller", "depth_mm", kNoDefault, 40.0, 160.0, "mm", "overrides the machine's furrow depth", "the machine's"),
   number_key(kScenario, "faults", "estop_at_s", -1.0, -1.0, 1e6, "s", "the e-stop is pressed at this time (-1: never)"),
   number_key(kScenario, "faults", "estop_release_at_s", -1.0, -1.0, 1e6, "s", "and released at this time (-1: never)"),

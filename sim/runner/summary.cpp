@@ -4,7 +4,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "sim/seedling/measured_strength.h"
+#include "config/stem_strength.h"
 
 namespace planter::sim {
 
@@ -51,7 +51,7 @@ Summary SummaryBuilder::finish(const SeedlingProcess& process, double plot_lengt
 
   std::vector<double> xs;
   double upright_sum = 0, peak_sum = 0, damaged_strength_sum = 0;
-  const double weakest_measured_N = measured_strength().min_N;
+  const double weakest_measured_N = config::measured_strength().min_N;
   for (std::size_t i = 0; i < process.released(); ++i) {
     const Seedling& sd = process.seedlings()[i];
     if (sd.release.fell_in_carry) ++s.seedlings_fell_in_carry;

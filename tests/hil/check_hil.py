@@ -30,7 +30,6 @@ hb_s = board["can"]["heartbeat_producer_ms"] / 1000.0
 consumer_s = hb_s * board["can"]["heartbeat_consumer_factor"]
 bitrate = board["can"]["bitrate"]
 sigma_target = board["control"]["sigma"]
-ceiling = board["control"]["clamp_ceiling_N"]
 depth_target = board["control"]["depth_mm"]
 nodes = {name: n["id"] for name, n in board["nodes"].items()}
 drives = [nodes[k] for k in ("disc_drive", "roller_actuator", "depth_actuator")]
@@ -100,6 +99,10 @@ check(len(sig) > 0 and rms < 10.0,
       f"true sigma RMS error {rms:.2f} % (goal < 2 %{', met' if rms < 2.0 else ', NOT met'}; "
       "VM gate < 10 %)")
 fmax = max(float(r["true_clamp_force"]) for r in truth)
+# The ceiling is derived from the machine's [clamp_ceiling] rule; planterd prints it at start.
+said = re.search(r"planterd: clamp ceiling (\d+\.\d+) N", read_text("a-planterd.log"))
+check(said is not None, "planterd says the clamp's derived ceiling at start")
+ceiling = float(said.group(1)) if said else 0.0
 check(fmax <= ceiling, f"clamp force max {fmax:.1f} N (ceiling {ceiling} N)")
 t_move = float(moving[0]["t"]) if moving else 0.0
 settled = [float(r["true_depth_mm"]) for r in moving if float(r["t"]) >= t_move + 8.0]

@@ -16,7 +16,8 @@
 namespace planter::sim {
 
 // The plan's first `draws` runs are the draws; sets them per stem and appends each constant
-// force for each draw (draw-major).
+// force for each draw (draw-major), then each draw with the clamp told each stem's true peak (a
+// bound: Scenario::clamp_told_each_stem).
 void add_grip_benchmark_runs(RunPlan& plan, std::size_t draws);
 
 struct GripVerdict {
@@ -31,6 +32,7 @@ GripVerdict judge_grip(const Summary& per_stem, const std::vector<Summary>& cons
 struct GripBenchmark {
   std::string csv;
   nlohmann::json json;
+  std::string bound_line;  // the same verdict for the clamp told each stem's true peak
   std::string line;
 };
 GripBenchmark grip_benchmark(const std::vector<Summary>& all, std::size_t draws);

@@ -161,7 +161,7 @@ int run_monte_carlo(const std::string& scenario_path, const std::string& out_dir
       "paper: %.1f %% and %.0f %%, a comparison and not a target\n",
       dist[0].p5, dist[0].p95, dist[1].p5, dist[1].p95, kPaperCentreUprightness_pct,
       kPaperCentreDamage_pct);
-  if (o.grip) std::printf("%s\n", grip.line.c_str());
+  if (o.grip) std::printf("%s\n%s\n", grip.bound_line.c_str(), grip.line.c_str());
   return 0;
 }
 

@@ -1,8 +1,11 @@
 #include "sim/runner/lockstep_runner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+
+#include "firmware/controller/setpoint_rules.h"
 
 namespace planter::sim {
 LockstepRunner::LockstepRunner(const Scenario& scenario)
@@ -53,8 +56,24 @@ void LockstepRunner::apply_events() {
   if (a.start_moving) machine_->plant().start_moving();
 }
 
+// The bound's oracle: each stem's peak at the nip's scale, as it comes in, 5 % below (the
+// per-stem rule's margin), never above the machine's set-point. Through the operator's command,
+// so the loop ramps to it as to any set-point.
+void LockstepRunner::tell_the_clamp_each_stem() {
+  const SeedlingProcess& stems = machine_->plant().seedlings();
+  const std::size_t in_nip = stems.seedling_in_nip(time_s());
+  if (in_nip == 0 || in_nip == told_stem_) return;
+  told_stem_ = in_nip;
+  const ClampLoopConfig& clamp = scenario_.board.controller.clamp;
+  const double peak_N = stems.seedlings()[in_nip - 1].nip.peak_N;
+  const double aim_N = std::min(clamp.setpoint_N, 0.95 * peak_N);
+  const SetpointRange range = clamp_force_range_N(scenario_.board.controller);
+  controller_->command({CommandKind::kSetClampForce, std::clamp(aim_N, range.min, range.max)});
+}
+
 void LockstepRunner::step() {
   apply_events();
+  if (scenario_.clamp_told_each_stem) tell_the_clamp_each_stem();
   const std::int64_t now = clock_.now_ns();
   controller_->tick(now, period_ns_);
   machine_->process_devices(now);

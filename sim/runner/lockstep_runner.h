@@ -59,6 +59,7 @@ class LockstepRunner {
 
  private:
   void apply_events();
+  void tell_the_clamp_each_stem();  // Scenario::clamp_told_each_stem
 
   Scenario scenario_;
   ScenarioScript script_;
@@ -76,6 +77,7 @@ class LockstepRunner {
   SummaryBuilder summary_;
   LoopScorer scores_;
   std::int64_t period_ns_;
+  std::size_t told_stem_ = 0;  // the last stem the clamp was told of (1-based), 0: none
   std::int64_t substep_ns_ = 1'000'000;
   double finished_at_s_ = -1.0;
 };

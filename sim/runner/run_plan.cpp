@@ -52,6 +52,7 @@ std::string plan_json(const RunPlan& plan) {
                                 {"contact_area_mm2", r.operating_point->contact_area_mm2}};
     if (r.clamp_setpoint_N) one["clamp_setpoint_N"] = *r.clamp_setpoint_N;
     if (r.per_stem_grip) one["per_stem_grip"] = *r.per_stem_grip;
+    if (r.clamp_told_each_stem) one["clamp_told_each_stem"] = true;
     if (!r.values.empty()) {
       nlohmann::ordered_json values;
       for (const auto& [key, value] : r.values) values[key] = value;
@@ -134,6 +135,11 @@ PlannedRun read_run(const PlanReader& p, const nlohmann::json& one, std::size_t 
   if (one.contains("per_stem_grip")) {
     if (!one.at("per_stem_grip").is_boolean()) p.fail(at + "per_stem_grip", "is not true or false");
     r.per_stem_grip = one.at("per_stem_grip").get<bool>();
+  }
+  if (one.contains("clamp_told_each_stem")) {
+    if (!one.at("clamp_told_each_stem").is_boolean())
+      p.fail(at + "clamp_told_each_stem", "is not true or false");
+    r.clamp_told_each_stem = one.at("clamp_told_each_stem").get<bool>();
   }
   if (one.contains("values")) {
     if (!one.at("values").is_object()) p.fail(at + "values", "is not an object of numbers");
@@ -228,6 +234,7 @@ Scenario planned_scenario(const Scenario& base, const PlannedRun& run) {
     set_operating_point(s, run.operating_point->sigma, run.operating_point->depth_mm,
                         run.operating_point->contact_area_mm2);
   if (run.per_stem_grip) s.board.controller.clamp.per_stem_grip = *run.per_stem_grip;
+  s.clamp_told_each_stem = run.clamp_told_each_stem;
   if (run.clamp_setpoint_N) {
     s.board.controller.clamp.setpoint_N = *run.clamp_setpoint_N;
     s.board.controller.clamp.ceiling_N =

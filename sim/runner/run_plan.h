@@ -25,6 +25,7 @@ struct PlannedRun {
   std::optional<OperatingPoint> operating_point;
   std::optional<double> clamp_setpoint_N;  // the ceiling raised to 20 N above it if needed
   std::optional<bool> per_stem_grip;       // the clamp's grip: each stem's own, or one set-point
+  bool clamp_told_each_stem = false;       // Scenario::clamp_told_each_stem: a bound, no machine
   // Model values set by their keys (sim/plant/model_values.h), before the operating point.
   std::vector<std::pair<std::string, double>> values;
   // Disturbances set by their keys (disturbance_keys.h), after everything else.

@@ -18,6 +18,10 @@ struct Scenario {
   config::BoardConfig board;
   PlantConfig plant;
   FaultEvents faults;
+  // A bound, not a machine (the grip benchmark's third arm, issue 50): the clamp is told each
+  // stem's true first peak as it comes in and aims 5 % below it (at most the set-point), which
+  // no sensor on the machine can tell it. How much damage knowing the strength would save.
+  bool clamp_told_each_stem = false;
 };
 
 // Throws config::ConfigError.

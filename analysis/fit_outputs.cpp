@@ -271,7 +271,7 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
     << "<title>planter-fit</title><style>"
        "body{font-family:sans-serif;max-width:900px;margin:20px auto}td,th{padding:2px 8px}"
        "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style>"
-    << report::ChartPage::head() << "</head><body><h1>planter-fit: " << report::html_escape(r.file)
+    << report::ChartPage::head() << "</head><body><h1>planter-fit: " << report::html_path(r.file)
     << "</h1><p>" << r.rows << " rows, " << r.duration_s
     << " s; the last 30 % is held out for the verdict.</p>";
   if (!r.unobservable.empty()) {

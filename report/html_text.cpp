@@ -4,6 +4,18 @@
 
 namespace planter::report {
 
+std::string html_path(std::string_view path) {
+  std::string out;
+  for (std::size_t start = 0; start < path.size();) {
+    const std::size_t slash = path.find('/', start);
+    const std::size_t end = slash == std::string_view::npos ? path.size() : slash + 1;
+    out += html_escape(path.substr(start, end - start));
+    if (slash != std::string_view::npos) out += "<wbr>";
+    start = end;
+  }
+  return out;
+}
+
 std::string html_escape(std::string_view text) {
   std::string out;
   out.reserve(text.size());

@@ -7,13 +7,18 @@ namespace planter::report {
 
 // Escapes & < > " ' so a name such as "</script>" is shown as text, never parsed as markup.
 std::string html_escape(std::string_view text);
+// A file's path, escaped, that a narrow screen may break after each '/' (<wbr>) and nowhere
+// inside a folder's name.
+std::string html_path(std::string_view path);
 
 // Every report's head: UTF-8, and laid out for the screen it is read on (a 390 px phone too,
-// instead of a 980 px page shown at 40 %).
+// instead of a 980 px page shown at 40 %). A table keeps its words whole and scrolls sideways in
+// its own box; running text breaks a word only when it is longer than the line (a path).
 inline constexpr const char* kReportHead =
     "<meta charset='utf-8'><meta name='viewport' content='width=device-width, initial-scale=1'>"
     "<style>table{display:block;overflow-x:auto;max-width:100%}svg,img{max-width:100%;"
-    "height:auto}body{padding:0 8px;overflow-wrap:anywhere}</style>";
+    "height:auto}body{padding:0 8px;overflow-wrap:break-word}td,th{overflow-wrap:normal}"
+    "pre{overflow-x:auto}</style>";
 
 // The pages that are mostly tables of figures (the sweep's, the sensitivity analysis'):
 // numbers right-aligned in ruled cells.

@@ -187,7 +187,9 @@ try:
     # monitor shows the population and its alarms' limits.
     check(el("recording").is_displayed() and el("recording").text.startswith("recording live-"),
           "the header shows the recording in progress", el("recording").text)
-    driver.set_window_size(390, 844)
+    # A phone's viewport through the browser's own emulation: a headless window is 500 px at least.
+    driver.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
+                           {"width": 390, "height": 844, "deviceScaleFactor": 3, "mobile": True})
     time.sleep(0.6)
     sizes = driver.execute_script(
         "return Array.from(document.querySelectorAll('#controls button, #controls input'))"
@@ -200,13 +202,31 @@ try:
     check(max(areas, key=areas.get) == "cmd_stop", "Stop is the largest control",
           "%s %.0f px^2" % (max(areas, key=areas.get), max(areas.values())))
     wide = driver.execute_script("return document.documentElement.scrollWidth")
-    check(wide <= 390, "the console fits 390 px without scrolling sideways", "%d px" % wide)
+    inner = driver.execute_script("return window.innerWidth")
+    check(inner == 390 and wide <= 390, "the console fits 390 px without scrolling sideways",
+          "window %s px, page %d px" % (inner, wide))
+    # Issue 54: what a reader meets on the phone (tests/phone_checks.js), and the state and the
+    # recording still in view with the page scrolled to its end, past Stop.
+    found = driver.execute_script(open(os.path.join(src, "tests", "phone_checks.js")).read())
+    check(not found, "the console at 390 x 844: no split word, no text under 12 px, nothing cut "
+          "off or overlapping", found[:6])
+    driver.execute_script("window.scrollTo(0, document.documentElement.scrollHeight)")
+    time.sleep(0.3)
+    seen = driver.execute_script(
+        "const a = document.getElementById('state').getBoundingClientRect();"
+        "const b = document.getElementById('recording').getBoundingClientRect();"
+        "return [window.scrollY, a.top, a.bottom, b.top, b.bottom];")
+    check(seen[0] > 200 and min(seen[1:]) >= 0 and max(seen[1:]) <= 844,
+          "scrolled to the end, the state and the recording stay in view", seen)
+    driver.save_screenshot(os.path.join(shots, "console-390-end.png"))
+    driver.execute_script("window.scrollTo(0, 0)")
     wait(lambda: el("population").text not in ("-", "unknown"), 10, "the population is shown")
     check(re.fullmatch(r"[\d,]+", el("population").text) is not None and
           "rows 900 mm apart" in el("population_note").text and "0.17" in el("cv_note").text,
           "the population per hectare and the alarms' limits are shown",
           el("population").text + "; " + el("cv_note").text)
     driver.save_screenshot(os.path.join(shots, "console-390.png"))
+    driver.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
     driver.set_window_size(1000, 2200)
 
     # 4. The e-stop at 25 s wins over every command.

@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
-"""Every report on a phone (issue 29): Debian's chromium through chromedriver, 390 x 844 CSS
-pixels. A page laid out wider than the screen (the reports were 980 px wide, shown at 40 %)
+"""Every report on a phone (issues 29 and 54): Debian's chromium through chromedriver, 390 x 844
+CSS pixels. A page laid out wider than the screen (the reports were 980 px wide, shown at 40 %)
 fails: the document's width must not exceed the window's, tables scroll in their own box and
-maps scale down. A screenshot of each is kept as SHOTS/NAME-390.png.
+maps scale down. Then what a reader meets, checked mechanically (tests/phone_checks.js): a word
+or number split across two lines, text under 12 px as drawn, text cut off at its box's edge or
+the screen's, and chart labels over one another. A screenshot of each is kept as
+SHOTS/NAME-390.png.
 
 Usage: report_phone_test.py SHOTS NAME=REPORT.html...   (exit 1 on any failure)
 """
@@ -15,6 +18,7 @@ from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
 
 shots = sys.argv[1]
+checks = open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "phone_checks.js")).read()
 pages = [a.split("=", 1) for a in sys.argv[2:]]
 work = tempfile.mkdtemp()
 options = webdriver.ChromeOptions()
@@ -38,8 +42,16 @@ try:
         if inner != 390 or doc > inner:
             fails += 1
             print("FAIL %s at 390 px: the window is %s px and the page %s px wide" % (name, inner, doc))
+            continue
+        found = driver.execute_script(checks)
+        if found:
+            fails += 1
+            print("FAIL %s at 390 px: %d problem(s) a reader meets; %s" % (name, len(found), shot))
+            for f in found[:12]:
+                print("     " + f)
         else:
-            print("ok   %s at 390 px: the page fits (%s px); %s" % (name, doc, shot))
+            print("ok   %s at 390 px: the page fits (%s px), no split word, no text under 12 px, "
+                  "nothing cut off or overlapping; %s" % (name, doc, shot))
 finally:
     driver.quit()
     shutil.rmtree(work, ignore_errors=True)

@@ -142,7 +142,8 @@ std::string surface_map(const std::string& title, const std::string& unit, const
                         int fx, int fy, const Eigen::Vector3d& fixed, const Eigen::Vector3d& paper,
                         const Eigen::Vector3d& found, double physical_min, double physical_max) {
   constexpr int kCells = 40;
-  constexpr double kSize = 320, kLeft = 70, kTop = 30;
+  // Drawn for a phone's 376 px of width, where its text is 13 px as drawn; the notes go below.
+  constexpr double kSize = 220, kLeft = 58, kTop = 50;
   std::vector<double> z;
   for (int j = 0; j < kCells; ++j) {
     for (int i = 0; i < kCells; ++i) {
@@ -157,12 +158,12 @@ std::string surface_map(const std::string& title, const std::string& unit, const
   const double lo = *std::min_element(z.begin(), z.end());
   const double hi = *std::max_element(z.begin(), z.end());
   std::ostringstream s;
-  const double width = kLeft + kSize + 300, height = kTop + kSize + 64;
-  // viewBox: the map scales down whole on a phone instead of being cut.
+  const double width = 376, height = kTop + kSize + 104;
+  // viewBox: the map scales whole to the screen instead of being cut.
   s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
-    << "' viewBox='0 0 " << width << ' ' << height << "' font-family='sans-serif' font-size='11'>"
-    << "<text x='" << kLeft << "' y='16' font-size='12'>" << report::html_escape(title) << " ["
-    << unit << "], " << kFactors[3 - fx - fy].name << " at "
+    << "' viewBox='0 0 " << width << ' ' << height << "' font-family='sans-serif' font-size='13'>"
+    << "<text x='4' y='16'>" << report::html_escape(title) << " [" << unit << "]</text>"
+    << "<text x='4' y='34'>" << kFactors[3 - fx - fy].name << " at "
     << fmt("%.4g", kFactors[3 - fx - fy].value(fixed(3 - fx - fy))) << " "
     << kFactors[3 - fx - fy].unit << "</text>";
   const double cell = kSize / kCells;
@@ -175,36 +176,39 @@ std::string surface_map(const std::string& title, const std::string& unit, const
   }
   auto px = [&](double c) { return kLeft + (c + 1.0) / 2.0 * kSize; };
   auto py = [&](double c) { return kTop + (1.0 - c) / 2.0 * kSize; };
+  const double below = kTop + kSize;
   for (double c : {-1.0, 0.0, 1.0}) {
-    s << "<text x='" << px(c) - 12 << "' y='" << kTop + kSize + 14 << "'>"
-      << fmt("%.4g", kFactors[fx].value(c)) << "</text><text x='" << kLeft - 40 << "' y='"
-      << py(c) + 4 << "'>" << fmt("%.4g", kFactors[fy].value(c)) << "</text>";
+    // The ends' labels stay inside the map's width; the middle one is centred.
+    const char* anchor = c < 0 ? "start" : c > 0 ? "end" : "middle";
+    s << "<text x='" << px(c) << "' y='" << below + 16 << "' text-anchor='" << anchor << "'>"
+      << fmt("%.4g", kFactors[fx].value(c)) << "</text><text x='" << kLeft - 4 << "' y='"
+      << std::clamp(py(c) + 5, kTop + 10, below) << "' text-anchor='end'>"
+      << fmt("%.4g", kFactors[fy].value(c)) << "</text>";
   }
-  s << "<text x='" << kLeft + kSize / 2 - 40 << "' y='" << kTop + kSize + 32 << "'>"
+  s << "<text x='" << px(0.0) << "' y='" << below + 34 << "' text-anchor='middle'>"
     << kFactors[fx].name << " [" << kFactors[fx].unit << "]</text>"
-    << "<text x='12' y='" << kTop + kSize / 2 << "' transform='rotate(-90 12 " << kTop + kSize / 2
-    << ")'>" << kFactors[fy].name << " [" << kFactors[fy].unit << "]</text>";
+    << "<text x='14' y='" << kTop + kSize / 2 << "' text-anchor='middle' transform='rotate(-90 14 "
+    << kTop + kSize / 2 << ")'>" << kFactors[fy].name << " [" << kFactors[fy].unit << "]</text>";
   s << "<path d='M" << px(paper(fx)) - 7 << ',' << py(paper(fy)) - 7 << " l14,14 m0,-14 l-14,14' "
     << "stroke='white' stroke-width='2.5'/><circle cx='" << px(found(fx)) << "' cy='"
     << py(found(fy)) << "' r='6' fill='none' stroke='red' stroke-width='2.5'/>";
   // The colour scale: a bar from low to high with five labelled steps.
-  const double lx = kLeft + kSize + 16;
+  const double lx = kLeft + kSize + 8;
   for (int k = 0; k < 20; ++k) {
-    s << "<rect x='" << lx << "' y='" << kTop + kSize - (k + 1) * kSize / 20 << "' width='14' "
+    s << "<rect x='" << lx << "' y='" << kTop + kSize - (k + 1) * kSize / 20 << "' width='12' "
       << "height='" << kSize / 20 + 0.5 << "' fill='" << colour((k + 0.5) / 20.0) << "'/>";
   }
   for (int k = 0; k <= 4; ++k) {
-    s << "<text x='" << lx + 18 << "' y='" << kTop + kSize - k * kSize / 4 + 4 << "'>"
+    s << "<text x='" << lx + 15 << "' y='" << kTop + kSize - k * kSize / 4 + 5 << "'>"
       << fmt("%.4g", lo + (hi - lo) * k / 4.0) << " " << unit << "</text>";
   }
-  const double nx = lx + 70;
-  s << "<text x='" << nx << "' y='" << kTop + kSize / 2 - 8
-    << "'>x paper's optimum (projected)</text>"
-    << "<text x='" << nx << "' y='" << kTop + kSize / 2 + 8 << "' fill='red'>o this sweep's</text>"
-    << "<text x='" << kLeft << "' y='" << kTop + kSize + 50 << "'>the quadratic, clipped to "
+  s << "<text x='4' y='" << below + 56 << "'>x paper's optimum (projected)</text>"
+    << "<text x='230' y='" << below + 56 << "' fill='red'>o this sweep's</text>"
+    << "<text x='4' y='" << below + 76 << "'>the quadratic, clipped to "
     << (std::isfinite(physical_max) ? fmt("%.4g", physical_min) + "-" + fmt("%.4g", physical_max)
                                     : "at least " + fmt("%.4g", physical_min))
-    << " " << unit << " where it extrapolates past what can be</text></svg>";
+    << " " << unit << "</text><text x='4' y='" << below + 94
+    << "'>where it extrapolates past what can be</text></svg>";
   return s.str();
 }
 

@@ -54,7 +54,7 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
       << "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style>"
       << report::ChartPage::head() << "</head><body>"
       << "<h1>Simulated run: " << html_escape(s.scenario) << "</h1><p>Scenario <code>"
-      << html_escape(sc.file) << "</code>, board <code>" << html_escape(sc.board.name)
+      << report::html_path(sc.file) << "</code>, board <code>" << html_escape(sc.board.name)
       << "</code>, seed " << sc.seed << ".</p><h2>Figures</h2><table>";
   // Each figure rounded for a reader; green or red where it has a goal.
   enum class Goal { none, met, missed };
@@ -64,10 +64,11 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
     const char* colour = g == Goal::met      ? " style='color:#080'"
                          : g == Goal::missed ? " style='color:#c00'"
                                              : "";
+    // The number, its unit and its mark on one line (no-break spaces).
     out << "<tr><td>" << name << "</td><td" << colour << "><b>" << report::fixed(v, decimals)
-        << "</b> " << unit
-        << (g == Goal::met      ? " &#10003;"
-            : g == Goal::missed ? " &#10007;"
+        << "</b>" << (*unit != '\0' ? "&nbsp;" : "") << unit
+        << (g == Goal::met      ? "&nbsp;&#10003;"
+            : g == Goal::missed ? "&nbsp;&#10007;"
                                 : "")
         << "</td><td>" << against << "</td></tr>";
   };

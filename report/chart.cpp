@@ -70,26 +70,44 @@ std::string markers(const std::vector<Marker>& ms) {
 
 constexpr const char* kPageScript = R"js(
 function planterChart(id, o) {
+  // A mark's label stays inside the plot (left of its line where the right edge would cut it)
+  // and below any label it would cover; where each went is kept on the chart's element
+  // (data-marks: x, y, width, height from its top left) for the phone test to check.
   var marks = function(ctx, area, g) {
+    var placed = [], h = 12;
+    var put = function(text, x, y) {
+      var w = ctx.measureText(text).width;
+      if (x + w > area.x + area.w) x = Math.max(area.x, x - w - 8);
+      for (var k = 0; k < 8; ++k) {
+        var hit = placed.some(function(r) {
+          return x < r[0] + r[2] && r[0] < x + w && y - h < r[1] + r[3] && r[1] < y;
+        });
+        if (!hit) break;
+        y += h + 2;
+      }
+      ctx.fillText(text, x, y);
+      placed.push([x, y - h, w, h]);
+    };
     ctx.save();
     ctx.setLineDash([6, 4]);
     ctx.lineWidth = 1.5;
-    ctx.font = '11px sans-serif';
+    ctx.font = h + 'px sans-serif';
     o.xm.forEach(function(m) {
       var x = g.toDomXCoord(m[0]);
       if (x < area.x || x > area.x + area.w) return;
       ctx.strokeStyle = m[1]; ctx.fillStyle = m[1];
       ctx.beginPath(); ctx.moveTo(x, area.y); ctx.lineTo(x, area.y + area.h); ctx.stroke();
-      ctx.fillText(m[2], x + 4, area.y + 12);
+      put(m[2], x + 4, area.y + h + 1);
     });
     o.ym.forEach(function(m) {
       var y = g.toDomYCoord(m[0]);
       if (y < area.y || y > area.y + area.h) return;
       ctx.strokeStyle = m[1]; ctx.fillStyle = m[1];
       ctx.beginPath(); ctx.moveTo(area.x, y); ctx.lineTo(area.x + area.w, y); ctx.stroke();
-      ctx.fillText(m[2], area.x + 6, y - 4);
+      put(m[2], area.x + 6, y - 4);
     });
     ctx.restore();
+    document.getElementById(id).dataset.marks = JSON.stringify(placed);
   };
   new Dygraph(document.getElementById(id), o.data, {
     title: o.title, xlabel: o.xlabel, ylabel: o.ylabel, labels: o.labels, colors: o.colors,

@@ -75,4 +75,20 @@ for (const svg of document.querySelectorAll("svg")) {
     }
   }
 }
+// Labels a chart draws on its canvas (report/chart.cpp keeps where: data-marks).
+for (const el of document.querySelectorAll("[data-marks]")) {
+  if (!shown(el)) continue;
+  const box = el.getBoundingClientRect();
+  const marks = JSON.parse(el.dataset.marks);
+  marks.forEach(([x, y, w, h], i) => {
+    if (x < -1 || y < -1 || x + w > box.width + 1 || y + h > box.height + 1 ||
+        box.left + x + w > viewport + 1)
+      problems.push("chart label " + (i + 1) + " cut off in #" + el.id);
+    for (let j = i + 1; j < marks.length; ++j) {
+      const [u, v, p, q] = marks[j];
+      if (Math.min(x + w, u + p) - Math.max(x, u) > 1 && Math.min(y + h, v + q) - Math.max(y, v) > 1)
+        problems.push("chart labels " + (i + 1) + " and " + (j + 1) + " over one another in #" + el.id);
+    }
+  });
+}
 return [...new Set(problems)];

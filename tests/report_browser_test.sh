@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Every report, opened in a real browser (Debian's chromium, headless): planter-sim's run,
-# sweep and robustness, planter-fit's and planter-dem's. For each: the page loads with no script error, every
+# sweep, robustness and sensitivity, planter-fit's and planter-dem's compression. For each: the page loads with no script error, every
 # chart is drawn (a dygraphs canvas with its title and legend under each chart element), nothing
 # is fetched from the network, and a screenshot is kept in SHOTS (the build directory). Then each
 # on a phone (390 x 844, tests/report_phone_test.py): the page fits the screen's width.
@@ -23,8 +23,10 @@ run "$sim" sweep "$src/scenarios/zhangqiu-field.toml" --out "$work/sweep" --dist
   --replicates 2 --max-replicates 2 --jobs 2
 run "$sim" robustness "$src/scenarios/zhangqiu-field.toml" --out "$work/robustness" --distance 3 \
   --combinations 1 --jobs 2
+run "$sim" sensitivity "$src/scenarios/zhangqiu-field.toml" --out "$work/sensitivity" \
+  --trajectories 2 --distance 0.5 --jobs 2
 
-for report in run fit dem sweep robustness; do
+for report in run fit dem sweep robustness sensitivity; do
   page="$work/$report/report.html"
   flags=(--headless=new --no-sandbox --disable-gpu --hide-scrollbars --no-first-run
     --user-data-dir="$work/profile" --enable-logging=stderr --v=0)
@@ -55,7 +57,7 @@ if len(charts) != want:
     fail.append("%d chart elements in the page, %d in the browser's document" % (want, len(charts)))
 if not os.path.exists(shot) or os.path.getsize(shot) < 10000:
     fail.append("no screenshot")
-if name != "sweep" and want == 0:
+if name not in ("sweep", "sensitivity") and want == 0:
     fail.append("no charts")
 print("\n".join("FAIL %s: %s" % (name, f) for f in fail) or
       "ok   %s: %d charts drawn, no script error, nothing fetched; %s" % (name, want, shot))
@@ -64,6 +66,6 @@ PY
 done
 timeout 120 /usr/bin/python3 "$src/tests/report_phone_test.py" "$shots" run="$work/run/report.html" \
   fit="$work/fit/report.html" dem="$work/dem/report.html" sweep="$work/sweep/report.html" \
-  robustness="$work/robustness/report.html" ||
+  robustness="$work/robustness/report.html" sensitivity="$work/sensitivity/report.html" ||
   fails=$((fails + 1))
 [ "$fails" -eq 0 ] && echo "reports in a browser: all drawn, and each fits a phone" || exit 1

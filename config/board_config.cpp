@@ -196,6 +196,207 @@ void read_gnss(TomlSection& g, BoardConfig& b) {
 
 }  // namespace
 
+// [can]; the lines of the bit rate and the SYNC period, for the bus-load and PDO checks' message.
+void read_can(TomlSection& can, BoardConfig& b, int& bitrate_line, int& sync_line) {
+  ControllerConfig& c = b.controller;
+  bitrate_line = can.line_of(std::string(bk("can.bitrate").name));
+  sync_line = can.line_of(std::string(bk("can.sync_period_ms").name));
+  b.can_interface = can.string(bk("can.interface"));
+  c.can.bitrate_bps = static_cast<std::uint32_t>(can.integer(bk("can.bitrate")));
+  c.can.sync_period_ns = can.integer(bk("can.sync_period_ms")) * 1'000'000;
+  c.can.heartbeat_producer_ms =
+      static_cast<std::uint16_t>(can.integer(bk("can.heartbeat_producer_ms")));
+  c.can.heartbeat_consumer_factor = can.number(bk("can.heartbeat_consumer_factor"));
+  c.can.sdo_timeout_ns = can.integer(bk("can.sdo_timeout_ms")) * 1'000'000;
+  can.reject_unknown_keys();
+}
+
+// [gpio]: the board's lines, each doing one job.
+void read_gpio(TomlSection& gpio, BoardConfig& b) {
+  ControllerConfig& c = b.controller;
+  b.gpio.chip = gpio.string(bk("gpio.chip"));
+  b.gpio.encoder_a = static_cast<int>(gpio.integer(bk("gpio.encoder_a_line")));
+  b.gpio.encoder_b = static_cast<int>(gpio.integer(bk("gpio.encoder_b_line")));
+  b.gpio.estop = static_cast<int>(gpio.integer(bk("gpio.estop_line")));
+  b.gpio.status = static_cast<int>(gpio.integer(bk("gpio.status_line")));
+  c.estop_active_low = gpio.boolean(bk("gpio.estop_active_low"));
+  // The seedling photo-eye is optional: without it the planting monitor has nothing to count.
+  if (gpio.has(bk("gpio.seedling_sensor_line"))) {
+    b.gpio.seedling_sensor = static_cast<int>(gpio.integer(bk("gpio.seedling_sensor_line")));
+    b.gpio.seedling_sensor_active_low = gpio.boolean(bk("gpio.seedling_sensor_active_low"));
+    c.monitor.sensor_fitted = true;
+    c.monitor.sensor_filter_ns = gpio.integer(bk("gpio.seedling_sensor_filter_ms")) * 1'000'000;
+  }
+  // Each line does one job: name the key that reuses an earlier one.
+  const std::pair<const ConfigKey*, int> lines[] = {
+      {&bk("gpio.encoder_a_line"), b.gpio.encoder_a},
+      {&bk("gpio.encoder_b_line"), b.gpio.encoder_b},
+      {&bk("gpio.estop_line"), b.gpio.estop},
+      {&bk("gpio.status_line"), b.gpio.status},
+      {&bk("gpio.seedling_sensor_line"), b.gpio.seedling_sensor}};
+  for (std::size_t i = 1; i < std::size(lines); ++i) {
+    for (std::size_t k = 0; k < i; ++k) {
+      if (lines[i].second >= 0 && lines[i].second == lines[k].second)
+        gpio.fail(*lines[i].first,
+                  "line " + std::to_string(lines[i].second) + " is already " +
+                      std::string(lines[k].first->name) +
+                      " (encoder A, encoder B, e-stop, status and the seedling photo-eye need "
+                      "a line each)");
+    }
+  }
+  gpio.reject_unknown_keys();
+}
+
+// [control]: the loops' set-points, gains and laws; the depth's end stops may be the unit's.
+void read_control(TomlSection& ctl, const Calibration& cal, BoardConfig& b) {
+  ControllerConfig& c = b.controller;
+  c.sigma.sigma = ctl.number(mk("control.sigma"));
+  c.sigma.angle_gain_per_s = ctl.number(mk("control.sigma_angle_gain_per_s"));
+  c.clamp.setpoint_N = ctl.number(mk("control.clamp_force_N"));
+  c.clamp.kp_mm_per_N = ctl.number(mk("control.clamp_kp_mm_per_N"));
+  c.clamp.ki_mm_per_Ns = ctl.number(mk("control.clamp_ki_mm_per_Ns"));
+  c.clamp.model_k_N = ctl.number(mk("control.clamp_model_k_N"));
+  c.clamp.model_x0_mm = ctl.number(mk("control.clamp_model_x0_mm"));
+  c.clamp.model_n = ctl.number(mk("control.clamp_model_n"));
+  c.clamp.position_max_mm = ctl.number(mk("control.clamp_position_max_mm"));
+  c.clamp.per_stem_grip = ctl.boolean(mk("control.clamp_per_stem_grip"));
+  c.clamp.stem.thickness_gain = ctl.number(mk("control.clamp_stem_gain"));
+  c.clamp.stem.reference_diameter_mm = ctl.number(mk("control.clamp_stem_reference_mm"));
+  c.clamp.stem.collapse_mm = ctl.number(mk("control.clamp_collapse_mm"));
+  c.depth.target_mm = ctl.number(mk("control.depth_mm"));
+  c.depth.rate_mm_per_s = ctl.number(mk("control.depth_rate_mm_per_s"));
+  c.depth.ki_per_s = ctl.number(mk("control.depth_ki_per_s"));
+  c.depth.min_mm = ctl.number(mk("control.depth_min_mm"));
+  c.depth.max_mm = ctl.number(mk("control.depth_max_mm"));
+  if (cal.depth_min_mm) c.depth.min_mm = *cal.depth_min_mm;
+  if (cal.depth_max_mm) c.depth.max_mm = *cal.depth_max_mm;
+  const std::string from_cal =
+      cal.depth_min_mm || cal.depth_max_mm ? " (end stops from " + b.calibration_file + ")" : "";
+  if (c.depth.max_mm <= c.depth.min_mm)
+    ctl.fail(mk("control.depth_max_mm"), "must be above depth_min_mm" + from_cal);
+  if (c.depth.target_mm > c.depth.max_mm)
+    ctl.fail(mk("control.depth_mm"),
+             "must not be beyond depth_max_mm (the actuator's travel)" + from_cal);
+  ctl.reject_unknown_keys();
+}
+
+// [planting_monitor]: the clamp pitch is the machine's; the skip and multiple limits follow
+// Kachman and Smith (1995) unless the machine file says otherwise.
+void read_monitor(TomlSection& mon, ControllerConfig& c) {
+  c.monitor.clamp_pitch_mm = mon.number(mk("planting_monitor.clamp_pitch_mm"));
+  c.monitor.skip_ratio = mon.number(mk("planting_monitor.skip_ratio"));
+  c.monitor.multiple_ratio = mon.number(mk("planting_monitor.multiple_ratio"));
+  c.monitor.empty_clamps_to_warn =
+      static_cast<std::uint32_t>(mon.integer(mk("planting_monitor.empty_clamps_to_warn")));
+  c.monitor.row_spacing_mm = mon.number(mk("planting_monitor.row_spacing_mm"));
+  c.monitor.spacing_cv_alarm = mon.number(mk("planting_monitor.spacing_cv_alarm"));
+  c.monitor.singulation_alarm_pct = mon.number(mk("planting_monitor.singulation_alarm_pct"));
+  mon.reject_unknown_keys();
+}
+
+// [console]: where the operator's console listens, and the viewers' secret.
+void read_console(TomlSection& con, BoardConfig& b) {
+  b.console.port = static_cast<int>(con.integer(bk("console.port")));
+  b.console.bind = con.string(bk("console.bind"));
+  con.reject_control_characters("bind", b.console.bind);
+  b.console.viewer_secret = con.string(bk("console.viewer_secret"));
+  std::size_t letters = 0;
+  for (char ch : b.console.viewer_secret)
+    letters += std::isalnum(static_cast<unsigned char>(ch)) ? 1 : 0;
+  if (!b.console.viewer_secret.empty() && letters < 12)
+    con.fail(bk("console.viewer_secret"),
+             "needs at least 12 letters or digits (leave it out: viewing is open)");
+  con.reject_unknown_keys();
+}
+
+// The unit's calibration the board names (a .toml file beside it), or `override` instead.
+Calibration read_named_calibration(TomlSection& board, const std::string& path,
+                                   const std::string& override, BoardConfig& b) {
+  const std::string calibration = board.string(bk("board.calibration"));
+  if (calibration.empty()) return {};
+  const bool toml_name =
+      calibration.size() > 5 && calibration.compare(calibration.size() - 5, 5, ".toml") == 0;
+  if (calibration.find('/') != std::string::npos || !toml_name)
+    board.fail(bk("board.calibration"), "must be the name of a .toml file beside the board file");
+  b.calibration_file = (std::filesystem::path(path).parent_path() / calibration).string();
+  std::error_code ec;
+  if (override.empty() && !std::filesystem::exists(b.calibration_file, ec)) {
+    board.fail(bk("board.calibration"),
+               b.calibration_file +
+                   ": no such file (the unit's calibration; planter-can "
+                   "calibrate writes its values, the package installs one)");
+  }
+  return read_calibration(override.empty() ? b.calibration_file : override);
+}
+
+// [encoder]: the counts and the glitch filter are the board's (its encoder and lines); the
+// wheel radius and the speed window are the machine's, the radius calibrated per unit.
+void read_encoder(std::optional<TomlSection> board_enc, std::optional<TomlSection> machine_enc,
+                  const Calibration& cal, ControllerConfig& c) {
+  if (board_enc) {
+    c.encoder.counts_per_rev =
+        static_cast<std::uint32_t>(board_enc->integer(bk("encoder.counts_per_rev")));
+    c.encoder.glitch_filter_ns = board_enc->integer(bk("encoder.glitch_filter_us")) * 1000;
+  }
+  if (machine_enc) {
+    c.encoder.wheel_radius_m = machine_enc->number(mk("encoder.wheel_radius_m"));
+    c.encoder.speed_window_ns = machine_enc->integer(mk("encoder.speed_window_ms")) * 1'000'000;
+  }
+  if (cal.wheel_radius_m) c.encoder.wheel_radius_m = *cal.wheel_radius_m;
+  if (board_enc) board_enc->reject_unknown_keys();
+  if (machine_enc) machine_enc->reject_unknown_keys();
+}
+
+// [supervisor]: the loop's timing is the board's; the plausibility limits are the machine's.
+void read_supervisor(std::optional<TomlSection> board_sup, std::optional<TomlSection> machine_sup,
+                     ControllerConfig& c) {
+  if (board_sup) {
+    c.supervisor.overrun_threshold_ns =
+        board_sup->integer(bk("supervisor.overrun_threshold_us")) * 1000;
+    c.supervisor.overruns_to_fault =
+        static_cast<std::uint32_t>(board_sup->integer(bk("supervisor.overruns_to_fault")));
+    c.supervisor.pdo_stale_ns = board_sup->integer(bk("supervisor.pdo_stale_ms")) * 1'000'000;
+    c.supervisor.boot_timeout_ns = board_sup->integer(bk("supervisor.boot_timeout_ms")) * 1'000'000;
+  }
+  if (machine_sup) {
+    c.supervisor.force_plausible_max_N =
+        machine_sup->number(mk("supervisor.force_plausible_max_N"));
+  }
+  if (board_sup) board_sup->reject_unknown_keys();
+  if (machine_sup) machine_sup->reject_unknown_keys();
+}
+
+// [machine]: the machine file names the machine the board asked for.
+void check_machine_name(TomlSection& mroot, const std::string& machine, BoardConfig& b) {
+  auto m = mroot.table("machine");
+  if (!m) throw ConfigError(b.machine_file, 1, "machine", "table is missing (name)");
+  b.machine_name = m->string(mk("machine.name"));
+  if (b.machine_name != machine)
+    m->fail(mk("machine.name"),
+            "is \"" + b.machine_name + "\" but the file is named for \"" + machine + "\"");
+  m->reject_unknown_keys();
+}
+
+// CiA 301 leaves the bus's budget to the integrator; above 100 % frames queue without bound,
+// and above half the bus a retransmission or a spare node's traffic already delays the PDOs.
+void check_bus_load(const std::string& path, int bitrate_line, BoardConfig& b) {
+  const ControllerConfig& c = b.controller;
+  b.planned_bus_load_pct = planned_bus_load_pct(c);
+  char load[200];
+  std::snprintf(load, sizeof load,
+                "the board's SYNC, PDOs and heartbeats need %.0f %% of %u bit/s every %.1f ms",
+                b.planned_bus_load_pct, c.can.bitrate_bps,
+                static_cast<double>(c.can.sync_period_ns) * 1e-6);
+  if (b.planned_bus_load_pct > 100.0) {
+    throw ConfigError(
+        path, bitrate_line, dotted_name(bk("can.bitrate")),
+        std::string(load) + "; at most 100 % (raise the bit rate or the SYNC period)");
+  }
+  if (b.planned_bus_load_pct > 50.0) {
+    b.warnings.push_back(path + ": " + load + " (over the 50 % guideline)");
+  }
+}
+
 BoardConfig load_board(const std::string& path, const std::string& calibration_override) {
   TomlDocument doc(path, board_key_tables(FileKind::kBoard));
   TomlSection root = doc.root();
@@ -217,177 +418,31 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
                 "machine's keys of [encoder] and [supervisor] into machines/<name>.toml "
                 "(docs/boards.md)");
   const std::string machine = board->string(bk("board.machine"));
-  const std::string calibration = board->string(bk("board.calibration"));
-  Calibration cal;
-  if (!calibration.empty()) {
-    const bool toml_name =
-        calibration.size() > 5 && calibration.compare(calibration.size() - 5, 5, ".toml") == 0;
-    if (calibration.find('/') != std::string::npos || !toml_name)
-      board->fail(bk("board.calibration"),
-                  "must be the name of a .toml file beside the board file");
-    b.calibration_file = (std::filesystem::path(path).parent_path() / calibration).string();
-    std::error_code ec;
-    if (calibration_override.empty() && !std::filesystem::exists(b.calibration_file, ec)) {
-      board->fail(bk("board.calibration"),
-                  b.calibration_file +
-                      ": no such file (the unit's calibration; planter-can "
-                      "calibrate writes its values, the package installs one)");
-    }
-    cal =
-        read_calibration(calibration_override.empty() ? b.calibration_file : calibration_override);
-  }
+  const Calibration cal = read_named_calibration(*board, path, calibration_override, b);
   // The machine's sections come from machines/<machine>.toml.
   b.machine_file = find_machine(path, *board, machine);
   TomlDocument machine_doc(b.machine_file, board_key_tables(FileKind::kMachine));
   TomlSection machine_root = machine_doc.root();
   TomlSection* mroot = &machine_root;
-  {
-    auto m = mroot->table("machine");
-    if (!m) throw ConfigError(b.machine_file, 1, "machine", "table is missing (name)");
-    b.machine_name = m->string(mk("machine.name"));
-    if (b.machine_name != machine)
-      m->fail(mk("machine.name"),
-              "is \"" + b.machine_name + "\" but the file is named for \"" + machine + "\"");
-    m->reject_unknown_keys();
-  }
+  check_machine_name(*mroot, machine, b);
   board->reject_unknown_keys();
   int bitrate_line = 1, sync_line = 1;
-  if (auto can = root.table("can")) {
-    bitrate_line = can->line_of(std::string(bk("can.bitrate").name));
-    sync_line = can->line_of(std::string(bk("can.sync_period_ms").name));
-    b.can_interface = can->string(bk("can.interface"));
-    c.can.bitrate_bps = static_cast<std::uint32_t>(can->integer(bk("can.bitrate")));
-    c.can.sync_period_ns = can->integer(bk("can.sync_period_ms")) * 1'000'000;
-    c.can.heartbeat_producer_ms =
-        static_cast<std::uint16_t>(can->integer(bk("can.heartbeat_producer_ms")));
-    c.can.heartbeat_consumer_factor = can->number(bk("can.heartbeat_consumer_factor"));
-    c.can.sdo_timeout_ns = can->integer(bk("can.sdo_timeout_ms")) * 1'000'000;
-    can->reject_unknown_keys();
-  }
-  if (auto gpio = root.table("gpio")) {
-    b.gpio.chip = gpio->string(bk("gpio.chip"));
-    b.gpio.encoder_a = static_cast<int>(gpio->integer(bk("gpio.encoder_a_line")));
-    b.gpio.encoder_b = static_cast<int>(gpio->integer(bk("gpio.encoder_b_line")));
-    b.gpio.estop = static_cast<int>(gpio->integer(bk("gpio.estop_line")));
-    b.gpio.status = static_cast<int>(gpio->integer(bk("gpio.status_line")));
-    c.estop_active_low = gpio->boolean(bk("gpio.estop_active_low"));
-    // The seedling photo-eye is optional: without it the planting monitor has nothing to count.
-    if (gpio->has(bk("gpio.seedling_sensor_line"))) {
-      b.gpio.seedling_sensor = static_cast<int>(gpio->integer(bk("gpio.seedling_sensor_line")));
-      b.gpio.seedling_sensor_active_low = gpio->boolean(bk("gpio.seedling_sensor_active_low"));
-      c.monitor.sensor_fitted = true;
-      c.monitor.sensor_filter_ns = gpio->integer(bk("gpio.seedling_sensor_filter_ms")) * 1'000'000;
-    }
-    // Each line does one job: name the key that reuses an earlier one.
-    const std::pair<const ConfigKey*, int> lines[] = {
-        {&bk("gpio.encoder_a_line"), b.gpio.encoder_a},
-        {&bk("gpio.encoder_b_line"), b.gpio.encoder_b},
-        {&bk("gpio.estop_line"), b.gpio.estop},
-        {&bk("gpio.status_line"), b.gpio.status},
-        {&bk("gpio.seedling_sensor_line"), b.gpio.seedling_sensor}};
-    for (std::size_t i = 1; i < std::size(lines); ++i) {
-      for (std::size_t k = 0; k < i; ++k) {
-        if (lines[i].second >= 0 && lines[i].second == lines[k].second)
-          gpio->fail(*lines[i].first,
-                     "line " + std::to_string(lines[i].second) + " is already " +
-                         std::string(lines[k].first->name) +
-                         " (encoder A, encoder B, e-stop, status and the seedling photo-eye need "
-                         "a line each)");
-      }
-    }
-    gpio->reject_unknown_keys();
-  }
-  // [encoder]: the counts and the glitch filter are the board's (its encoder and lines); the
-  // wheel radius and the speed window are the machine's, the radius calibrated per unit.
-  {
-    auto board_enc = root.table("encoder");
-    auto machine_enc = mroot->table("encoder");
-    if (board_enc) {
-      c.encoder.counts_per_rev =
-          static_cast<std::uint32_t>(board_enc->integer(bk("encoder.counts_per_rev")));
-      c.encoder.glitch_filter_ns = board_enc->integer(bk("encoder.glitch_filter_us")) * 1000;
-    }
-    if (machine_enc) {
-      c.encoder.wheel_radius_m = machine_enc->number(mk("encoder.wheel_radius_m"));
-      c.encoder.speed_window_ns = machine_enc->integer(mk("encoder.speed_window_ms")) * 1'000'000;
-    }
-    if (cal.wheel_radius_m) c.encoder.wheel_radius_m = *cal.wheel_radius_m;
-    if (board_enc) board_enc->reject_unknown_keys();
-    if (machine_enc) machine_enc->reject_unknown_keys();
-  }
+  if (auto can = root.table("can")) read_can(*can, b, bitrate_line, sync_line);
+  if (auto gpio = root.table("gpio")) read_gpio(*gpio, b);
+  read_encoder(root.table("encoder"), mroot->table("encoder"), cal, c);
   if (auto disc = mroot->table("disc")) {
     c.sigma.disc_radius_m = disc->number(mk("disc.radius_m"));
     c.sigma.omega_max_radps = disc->number(mk("disc.omega_max_radps"));
     disc->reject_unknown_keys();
   }
-  if (auto ctl = mroot->table("control")) {
-    c.sigma.sigma = ctl->number(mk("control.sigma"));
-    c.sigma.angle_gain_per_s = ctl->number(mk("control.sigma_angle_gain_per_s"));
-    c.clamp.setpoint_N = ctl->number(mk("control.clamp_force_N"));
-    c.clamp.kp_mm_per_N = ctl->number(mk("control.clamp_kp_mm_per_N"));
-    c.clamp.ki_mm_per_Ns = ctl->number(mk("control.clamp_ki_mm_per_Ns"));
-    c.clamp.model_k_N = ctl->number(mk("control.clamp_model_k_N"));
-    c.clamp.model_x0_mm = ctl->number(mk("control.clamp_model_x0_mm"));
-    c.clamp.model_n = ctl->number(mk("control.clamp_model_n"));
-    c.clamp.position_max_mm = ctl->number(mk("control.clamp_position_max_mm"));
-    c.clamp.per_stem_grip = ctl->boolean(mk("control.clamp_per_stem_grip"));
-    c.clamp.stem.thickness_gain = ctl->number(mk("control.clamp_stem_gain"));
-    c.clamp.stem.reference_diameter_mm = ctl->number(mk("control.clamp_stem_reference_mm"));
-    c.clamp.stem.collapse_mm = ctl->number(mk("control.clamp_collapse_mm"));
-    c.depth.target_mm = ctl->number(mk("control.depth_mm"));
-    c.depth.rate_mm_per_s = ctl->number(mk("control.depth_rate_mm_per_s"));
-    c.depth.ki_per_s = ctl->number(mk("control.depth_ki_per_s"));
-    c.depth.min_mm = ctl->number(mk("control.depth_min_mm"));
-    c.depth.max_mm = ctl->number(mk("control.depth_max_mm"));
-    if (cal.depth_min_mm) c.depth.min_mm = *cal.depth_min_mm;
-    if (cal.depth_max_mm) c.depth.max_mm = *cal.depth_max_mm;
-    const std::string from_cal =
-        cal.depth_min_mm || cal.depth_max_mm ? " (end stops from " + b.calibration_file + ")" : "";
-    if (c.depth.max_mm <= c.depth.min_mm)
-      ctl->fail(mk("control.depth_max_mm"), "must be above depth_min_mm" + from_cal);
-    if (c.depth.target_mm > c.depth.max_mm)
-      ctl->fail(mk("control.depth_mm"),
-                "must not be beyond depth_max_mm (the actuator's travel)" + from_cal);
-    ctl->reject_unknown_keys();
-  }
+  if (auto ctl = mroot->table("control")) read_control(*ctl, cal, b);
   read_clamp_ceiling(mroot->table("clamp_ceiling"), mroot->table("control"), b);
-  // [planting_monitor]: the clamp pitch is the machine's; the skip and multiple limits follow
-  // Kachman and Smith (1995) unless the machine file says otherwise.
-  if (auto mon = mroot->table("planting_monitor")) {
-    c.monitor.clamp_pitch_mm = mon->number(mk("planting_monitor.clamp_pitch_mm"));
-    c.monitor.skip_ratio = mon->number(mk("planting_monitor.skip_ratio"));
-    c.monitor.multiple_ratio = mon->number(mk("planting_monitor.multiple_ratio"));
-    c.monitor.empty_clamps_to_warn =
-        static_cast<std::uint32_t>(mon->integer(mk("planting_monitor.empty_clamps_to_warn")));
-    c.monitor.row_spacing_mm = mon->number(mk("planting_monitor.row_spacing_mm"));
-    c.monitor.spacing_cv_alarm = mon->number(mk("planting_monitor.spacing_cv_alarm"));
-    c.monitor.singulation_alarm_pct = mon->number(mk("planting_monitor.singulation_alarm_pct"));
-    mon->reject_unknown_keys();
-  }
+  if (auto mon = mroot->table("planting_monitor")) read_monitor(*mon, c);
   c.monitor.target_spacing_mm = c.monitor.clamp_pitch_mm / c.sigma.sigma;
   // One clamp pitch at the rim: the unit of the disc's most lag and of the alarms' carry.
   c.sigma.clamp_pitch_rad = c.monitor.clamp_pitch_mm / 1000.0 / c.sigma.disc_radius_m;
   c.alarms.clamp_pitch_rad = c.sigma.clamp_pitch_rad;
-  // [supervisor]: the loop's timing is the board's; the plausibility limits are the machine's.
-  {
-    auto board_sup = root.table("supervisor");
-    auto machine_sup = mroot->table("supervisor");
-    if (board_sup) {
-      c.supervisor.overrun_threshold_ns =
-          board_sup->integer(bk("supervisor.overrun_threshold_us")) * 1000;
-      c.supervisor.overruns_to_fault =
-          static_cast<std::uint32_t>(board_sup->integer(bk("supervisor.overruns_to_fault")));
-      c.supervisor.pdo_stale_ns = board_sup->integer(bk("supervisor.pdo_stale_ms")) * 1'000'000;
-      c.supervisor.boot_timeout_ns =
-          board_sup->integer(bk("supervisor.boot_timeout_ms")) * 1'000'000;
-    }
-    if (machine_sup) {
-      c.supervisor.force_plausible_max_N =
-          machine_sup->number(mk("supervisor.force_plausible_max_N"));
-    }
-    if (board_sup) board_sup->reject_unknown_keys();
-    if (machine_sup) machine_sup->reject_unknown_keys();
-  }
+  read_supervisor(root.table("supervisor"), mroot->table("supervisor"), c);
   // A PDO arrives once a SYNC period: one staler than that is every PDO (issue 28, item 12: a
   // 1000 ms SYNC against the 100 ms default passed and faulted the boot's first check).
   if (c.supervisor.pdo_stale_ns < 2 * c.can.sync_period_ns)
@@ -404,19 +459,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
     rt->reject_unknown_keys();
   }
   if (auto g = root.table("gnss")) read_gnss(*g, b);
-  if (auto con = root.table("console")) {
-    b.console.port = static_cast<int>(con->integer(bk("console.port")));
-    b.console.bind = con->string(bk("console.bind"));
-    con->reject_control_characters("bind", b.console.bind);
-    b.console.viewer_secret = con->string(bk("console.viewer_secret"));
-    std::size_t letters = 0;
-    for (char ch : b.console.viewer_secret)
-      letters += std::isalnum(static_cast<unsigned char>(ch)) ? 1 : 0;
-    if (!b.console.viewer_secret.empty() && letters < 12)
-      con->fail(bk("console.viewer_secret"),
-                "needs at least 12 letters or digits (leave it out: viewing is open)");
-    con->reject_unknown_keys();
-  }
+  if (auto con = root.table("console")) read_console(*con, b);
   auto nodes = mroot->table("nodes");
   if (!nodes)
     throw ConfigError(
@@ -428,22 +471,7 @@ BoardConfig load_board(const std::string& path, const std::string& calibration_o
   nodes->reject_unknown_keys();
   root.reject_unknown_keys();
   mroot->reject_unknown_keys();
-  // CiA 301 leaves the budget to the integrator; above 100 % frames queue without bound, and
-  // above half the bus a retransmission or a spare node's traffic already delays the PDOs.
-  b.planned_bus_load_pct = planned_bus_load_pct(c);
-  char load[200];
-  std::snprintf(load, sizeof load,
-                "the board's SYNC, PDOs and heartbeats need %.0f %% of %u bit/s every %.1f ms",
-                b.planned_bus_load_pct, c.can.bitrate_bps,
-                static_cast<double>(c.can.sync_period_ns) * 1e-6);
-  if (b.planned_bus_load_pct > 100.0) {
-    throw ConfigError(
-        path, bitrate_line, dotted_name(bk("can.bitrate")),
-        std::string(load) + "; at most 100 % (raise the bit rate or the SYNC period)");
-  }
-  if (b.planned_bus_load_pct > 50.0) {
-    b.warnings.push_back(path + ": " + load + " (over the 50 % guideline)");
-  }
+  check_bus_load(path, bitrate_line, b);
   return b;
 }
 

@@ -92,6 +92,10 @@ struct EffectSpec {
   std::optional<EffectKind> needs{};
   // What a user would record to tell this effect from another that fits as well.
   std::string separating_experiment{};
+  // The parameter that is the effect's size, zero where the effect is absent (a delay, a gap, a
+  // fraction, an amplitude): an effect is kept only where it is resolved from zero (issue 52).
+  // -1: none such (a rate limit is absent at an infinite rate).
+  int size_param = 0;
 };
 
 struct Effect {

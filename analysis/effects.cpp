@@ -367,7 +367,8 @@ const std::vector<EffectSpec>& library() {
                     {"stribeck_speed", "input units", 0.1, 4.0 * kFrictionSmoothing_radps, 5.0}},
          .on_output = stribeck,
          .extends = EffectKind::kCoulomb,
-         .separating_experiment = friction_sweep});
+         .separating_experiment = friction_sweep,
+         .size_param = 1});  // what it adds to Coulomb's: the extra at rest
     add({.kind = EffectKind::kWheelRadius,
          .name = "wrong effective wheel radius",
          .signature = "speed error proportional to speed",
@@ -426,7 +427,8 @@ const std::vector<EffectSpec>& library() {
          .signature = "residual at large steps, linear ramps",
          .params = {{"rate_per_s", "output units/s", 1.0, 1e-3, 1e4}},
          .separating_experiment = "a large step of the command: a rate limit ramps at one slope "
-                                  "whatever the step's size"});
+                                  "whatever the step's size",
+         .size_param = -1});
     // A dry friction F under a proportional speed loop of stiffness K holds the speed F / K short
     // of its command while it moves (the loop's steady-state error for a constant load; Ogata,
     // "Modern Control Engineering", ch. 5, type-0 systems) and holds it at rest while the
@@ -448,7 +450,8 @@ const std::vector<EffectSpec>& library() {
          .params = {{"effort_gain", "N m s/rad", 10.0, 0.0, 1e3},
                     {"breakaway", "N m", 1.0, 0.0, 100.0}},
          .separating_experiment = "starts from rest with a slowly rising command: stiction holds "
-                                  "the disc until breakaway"});
+                                  "the disc until breakaway",
+         .size_param = 1});
     return l;
   }();
   return lib;

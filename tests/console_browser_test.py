@@ -142,6 +142,13 @@ try:
     log_in(secret)
     wait(lambda: el("role").text == "logged in as operator", 5, "the operator logs in with the pairing secret")
     wait(lambda: el("operator").is_displayed(), 5, "the operator sees the controls")
+    # Issue 54: the simulated machine waits for Start, as one just powered does.
+    wait(lambda: el("state").text == "ready", 30, "the machine is ready")
+    time.sleep(1.0)
+    check(el("state").text == "ready", "the machine waits for Start, not running by itself",
+          el("state").text)
+    text, cls, status = click_and_answer("cmd_run")
+    check(status == "200", "Start planting is accepted", text)
     wait(lambda: el("state").text == "running", 30, "the machine runs")
     text, cls, status = click_and_answer("rec_start")
     check(status == "200" and "recording to" in text, "recording starts", text)

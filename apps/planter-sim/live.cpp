@@ -133,7 +133,10 @@ class LiveRecorder : public console::RecordingControl {
 }  // namespace
 
 int run_live(const std::string& scenario_path, const LiveOptions& options) {
-  const Scenario scenario = load_scenario(scenario_path);
+  Scenario scenario = load_scenario(scenario_path);
+  // A person at the console starts the machine, as on one just powered; with no operator's
+  // controls (--view-only) the scenario's own operator does.
+  scenario.operator_presses_run = options.view_only;
   const ControllerConfig& cfg = scenario.board.controller;
   const console::ConsoleInfo info =
       console::console_info(scenario.name + " (simulated)", cfg, true);
@@ -171,6 +174,7 @@ int run_live(const std::string& scenario_path, const LiveOptions& options) {
       std::printf("console: operator pairing secret %s (new for this run)\n", pairing.c_str());
     std::printf("console: recordings in %s, audit log %s\n", recordings.c_str(),
                 console_options.audit_log.c_str());
+    std::printf("console: the machine waits for Start (log in as the operator and press it)\n");
   }
   std::fflush(stdout);
   std::signal(SIGINT, on_signal);

@@ -31,7 +31,7 @@ ScriptActions ScenarioScript::step(double t_s, const ControllerView& c, const Gr
 
   // The operator presses "run" once the controller is ready; after a link-loss reset the
   // machine is meant to run again, as planterd --run does.
-  if (c.state_known) {
+  if (c.state_known && scenario_.operator_presses_run) {
     if (c.link_resets != link_resets_seen_) {
       link_resets_seen_ = c.link_resets;
       run_requested_ = false;
@@ -51,7 +51,7 @@ ScriptActions ScenarioScript::step(double t_s, const ControllerView& c, const Gr
     restart_at_s_ = ground.dwell_until_s() - scenario_.plant.start_delay_s;
   }
   if (restart_at_s_ >= 0.0 && t_s >= restart_at_s_ && c.state_known &&
-      c.state == SupervisorState::kReady) {
+      c.state == SupervisorState::kReady && scenario_.operator_presses_run) {
     a.request_run = true;
     restart_at_s_ = -1.0;
   }

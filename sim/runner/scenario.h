@@ -22,6 +22,10 @@ struct Scenario {
   // stem's true first peak as it comes in and aims 5 % below it (at most the set-point), which
   // no sensor on the machine can tell it. How much damage knowing the strength would save.
   bool clamp_told_each_stem = false;
+  // The script's operator presses run once the controller is ready (and again after a link
+  // reset or a planting-off stop). Off where a person is at the console (`planter-sim live`):
+  // the machine then waits for Start, as one just powered does.
+  bool operator_presses_run = true;
 };
 
 // Throws config::ConfigError.

@@ -86,7 +86,16 @@ void write_calibration_outputs(const CalibrationOptions& o, const CalibrationRep
     << o.target_N << " N</h1>";
   if (!r.complete) h << "<p><b>Incomplete</b>: run again with the same --out to resume.</p>";
   h << "<h2>Plackett-Burman screening (12 runs, main effects)</h2>"
-    << doe::anova_table_html(r.screening_anova) << "<p>" << r.chosen_reason << ".</p>";
+    << doe::anova_table_html(r.screening_anova);
+  // The table's terms are the factors' codes: what each one is, and the range it spanned.
+  h << "<p>The factors:</p><ul>";
+  for (const Factor& f : screening_factors()) {
+    const std::size_t space = f.name.find(' ');
+    h << "<li><b>" << report::html_escape(f.name.substr(0, space)) << "</b> "
+      << report::html_escape(space == std::string::npos ? "" : f.name.substr(space + 1)) << ", "
+      << f.low << " to " << f.high << " " << report::html_escape(f.unit) << "</li>";
+  }
+  h << "</ul><p>" << r.chosen_reason << ".</p>";
   h << "<h2>Steepest ascent</h2><table><tr><th>step</th><th>peak [N]</th><th>at [mm]</th></tr>";
   for (std::size_t s = 0; s < r.ascent.size(); ++s) {
     h << "<tr><td>" << s << (static_cast<int>(s) == r.best_step ? " (best)" : "") << "</td><td>"

@@ -24,6 +24,8 @@ for r in 1.0 1.25 2.0; do
 done
 echo "-- calibration workflow to 140.6 N (all cores; resumes from $out/calibrate/runs)"
 "$dem" calibrate --target 140.6 --target-displacement-mm 4 --out "$out/calibrate" 2>/dev/null
+echo "-- the calibration's report on a phone (390 x 844: tests/phone_checks.js)"
+/usr/bin/python3 "$root/tests/report_phone_test.py" "$out" calibrate="$out/calibrate/report.html"
 echo "-- reduced-order model over the paper's diameters"
 "$dem" reduce --params "$root/models/seedling_dem.toml" --out "$out/reduce" | tail -2
 echo "-- speed against Yade on the same compression test"

@@ -270,21 +270,37 @@ std::string runs_folder(const std::string& out_dir) {
   return d + ".runs";
 }
 
-int run_sweep(const std::string& scenario_path, const std::string& out_dir, const SweepOptions& o) {
-  Scenario base = load_scenario(scenario_path);
-  for (const auto& w : base.board.warnings)
-    std::fprintf(stderr, "planter-sim: warning: %s\n", w.c_str());
-  if (const std::string why = executor_refusal(o.executor); !why.empty())
-    throw std::runtime_error(why);
-  config::OutputSet out(out_dir, "planter-sim sweep", o.force);
-  const Eigen::MatrixXd design = doe::box_behnken_3(kCentrePoints);
-  const int points = static_cast<int>(design.rows());
-  const int jobs =
-      o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  const std::string runs_dir = runs_folder(out_dir);
-  int stage = 0;
+namespace {
 
-  // Every point with the first replicates; then one more where damage is not yet resolved.
+// What the sweep found: its runs and the surfaces, optimum and centre point fitted to them.
+struct SweepFindings {
+  Eigen::MatrixXd design;
+  int points = 0;
+  std::vector<Run> runs;
+  doe::Anova a_up, a_dmg, a_force;
+  doe::LackOfFit l_up, l_dmg, l_force;
+  doe::Optimum best;
+  Eigen::Vector3d paper;
+  double opt[3] = {0, 0, 0};
+  double centre_up = 0, centre_dmg = 0, worst_se = 0;
+  std::vector<std::string> differ;  // uprightness terms whose significance differs from the paper's
+  std::string differ_text;
+  std::vector<Summary> force_curve;
+  double machine_setpoint_N = 0;
+};
+
+constexpr std::size_t kConstantRows = std::size(kClampForceCurve_N);
+double force_row_N(const SweepFindings& f, std::size_t i) {
+  return i < kConstantRows ? kClampForceCurve_N[i] : f.machine_setpoint_N;
+}
+const char* grip_name(std::size_t i) { return i < kConstantRows ? "constant" : "per stem"; }
+
+// Every point with the first replicates; then one more where damage is not yet resolved.
+std::vector<Run> run_replicates(const Scenario& base, const std::string& scenario_path,
+                                const Eigen::MatrixXd& design, const SweepOptions& o,
+                                const std::string& runs_dir) {
+  const int points = static_cast<int>(design.rows());
+  int stage = 0;
   std::vector<Run> runs;
   std::vector<int> replicates(static_cast<std::size_t>(points), 0);
   std::vector<std::pair<int, int>> todo;
@@ -304,52 +320,64 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
   std::sort(runs.begin(), runs.end(), [](const Run& a, const Run& b) {
     return a.point != b.point ? a.point < b.point : a.replicate < b.replicate;
   });
+  return runs;
+}
 
-  // The surfaces: one observation per run.
-  const auto n = static_cast<Eigen::Index>(runs.size());
+// The surfaces (one observation per run), the optimum, the centre point's means and the worst
+// damage precision reached.
+void fit_surfaces(SweepFindings& f) {
+  const auto n = static_cast<Eigen::Index>(f.runs.size());
   Eigen::MatrixXd coded(n, 3);
   Eigen::VectorXd upright(n), damage(n), force(n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    const Run& r = runs[static_cast<std::size_t>(i)];
-    coded.row(i) = design.row(r.point);
+    const Run& r = f.runs[static_cast<std::size_t>(i)];
+    coded.row(i) = f.design.row(r.point);
     upright(i) = r.uprightness_pct;
     damage(i) = r.damage_pct;
     force(i) = r.peak_force_N;
   }
-  const doe::Anova a_up = doe::fit_quadratic_3(coded, upright, kTermNames);
-  const doe::Anova a_dmg = doe::fit_quadratic_3(coded, damage, kTermNames);
-  const doe::Anova a_force = doe::fit_quadratic_3(coded, force, kTermNames);
-  const doe::LackOfFit l_up = doe::lack_of_fit(coded, upright, a_up);
-  const doe::LackOfFit l_dmg = doe::lack_of_fit(coded, damage, a_dmg);
-  const doe::LackOfFit l_force = doe::lack_of_fit(coded, force, a_force);
-
-  const doe::Optimum best = optimum_of(a_up, upright, a_force, force);
-  const Eigen::Vector3d paper(kFactors[0].coded(kPaperOptimum[0]),
-                              kFactors[1].coded(kPaperOptimum[1]),
-                              kFactors[2].coded(kPaperOptimum[2]));
-  double opt[3];
-  for (int f = 0; f < 3; ++f) opt[f] = kFactors[f].value(best.coded(f));
-
-  // The centre point's means and the worst damage precision reached.
-  double centre_up = 0, centre_dmg = 0, worst_se = 0;
+  f.a_up = doe::fit_quadratic_3(coded, upright, kTermNames);
+  f.a_dmg = doe::fit_quadratic_3(coded, damage, kTermNames);
+  f.a_force = doe::fit_quadratic_3(coded, force, kTermNames);
+  f.l_up = doe::lack_of_fit(coded, upright, f.a_up);
+  f.l_dmg = doe::lack_of_fit(coded, damage, f.a_dmg);
+  f.l_force = doe::lack_of_fit(coded, force, f.a_force);
+  f.best = optimum_of(f.a_up, upright, f.a_force, force);
+  f.paper =
+      Eigen::Vector3d(kFactors[0].coded(kPaperOptimum[0]), kFactors[1].coded(kPaperOptimum[1]),
+                      kFactors[2].coded(kPaperOptimum[2]));
+  for (int k = 0; k < 3; ++k) f.opt[k] = kFactors[k].value(f.best.coded(k));
   int centre_n = 0;
-  for (const Run& r : runs) {
-    if (design.row(r.point).norm() == 0.0) {
-      centre_up += r.uprightness_pct;
-      centre_dmg += r.damage_pct;
+  for (const Run& r : f.runs) {
+    if (f.design.row(r.point).norm() == 0.0) {
+      f.centre_up += r.uprightness_pct;
+      f.centre_dmg += r.damage_pct;
       ++centre_n;
     }
   }
-  centre_up /= std::max(1, centre_n);
-  centre_dmg /= std::max(1, centre_n);
-  for (int p = 0; p < points; ++p)
-    worst_se = std::max(worst_se, damage_standard_error_pts(runs, p));
+  f.centre_up /= std::max(1, centre_n);
+  f.centre_dmg /= std::max(1, centre_n);
+  for (int p = 0; p < f.points; ++p)
+    f.worst_se = std::max(f.worst_se, damage_standard_error_pts(f.runs, p));
+  for (const auto& t : f.a_up.terms) {
+    const bool ours = t.p_value < 0.05;
+    const bool theirs = std::find(kPaperSignificant.begin(), kPaperSignificant.end(), t.name) !=
+                        kPaperSignificant.end();
+    if (ours != theirs)
+      f.differ.push_back(t.name + (ours ? " (significant here, not in the paper)"
+                                        : " (significant in the paper, not here)"));
+  }
+  for (const auto& d : f.differ) f.differ_text += (f.differ_text.empty() ? "" : ", ") + d;
+  if (f.differ_text.empty()) f.differ_text = "none";
+}
 
-  // The grip's trade-off at the design's centre: the clamp force set-point from 40 to 120 N
-  // (issue 27: both sides, slipping and crushing, before anyone optimises the force).
+// The grip's trade-off at the design's centre: the clamp force set-point from 40 to 120 N
+// (issue 27: both sides, slipping and crushing, before anyone optimises the force). Each a
+// constant force, then the clamp that grips each stem under its own ceiling (issue 50) at the
+// machine's set-point: the last row.
+std::vector<Summary> run_force_curve(const Scenario& base, const std::string& scenario_path,
+                                     const SweepOptions& o, const std::string& runs_dir) {
   RunPlan force_plan = new_plan(scenario_path, apps::version());
-  // Each a constant force, then the clamp that grips each stem under its own ceiling (issue 50)
-  // at the machine's set-point: the last row.
   for (double f : kClampForceCurve_N) {
     PlannedRun r;
     r.seed = base.seed;
@@ -363,129 +391,122 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
   per_stem.clamp_setpoint_N.reset();
   per_stem.per_stem_grip = true;
   force_plan.runs.push_back(per_stem);
-  const double machine_setpoint_N = base.board.controller.clamp.setpoint_N;
-  constexpr std::size_t kConstantRows = std::size(kClampForceCurve_N);
-  auto force_row_N = [&](std::size_t i) {
-    return i < kConstantRows ? kClampForceCurve_N[i] : machine_setpoint_N;
-  };
-  auto grip_name = [&](std::size_t i) { return i < kConstantRows ? "constant" : "per stem"; };
-  const std::vector<Summary> force_curve =
-      execute_plan(runs_dir + "/force-curve", force_plan, executor_for(o.executor, o.jobs, o.force),
-                   "sweep: clamp force");
+  return execute_plan(runs_dir + "/force-curve", force_plan,
+                      executor_for(o.executor, o.jobs, o.force), "sweep: clamp force");
+}
 
-  // Interior maxima of uprightness along disc speed and depth, through the optimum: where the
-  // surface's slope along the factor is zero, if it curves down.
-  auto interior_max = [&](int f) {
-    const auto& t = a_up.beta;
-    // d/dx_f of the quadratic at the optimum's other coordinates: linear + interactions + 2 q x.
-    const int lin = 1 + f, sq = 7 + f;
-    const int inter[3][3] = {{-1, 4, 5}, {4, -1, 6}, {5, 6, -1}};
-    double slope0 = t(lin);
-    for (int g = 0; g < 3; ++g)
-      if (g != f) slope0 += t(inter[f][g]) * best.coded(g);
-    const double curvature = 2.0 * t(sq);
-    if (curvature >= 0.0) return std::string("no: the surface curves up or is flat");
-    const double x = -slope0 / curvature;
-    if (x <= -1.0 || x >= 1.0)
-      return "no: the maximum lies outside the design, at " + fmt("%.4g", kFactors[f].value(x)) +
-             " " + kFactors[f].unit;
-    return "yes, at " + fmt("%.4g", kFactors[f].value(x)) + " " + kFactors[f].unit;
-  };
-  std::vector<std::string> differ;
-  for (const auto& t : a_up.terms) {
-    const bool ours = t.p_value < 0.05;
-    const bool theirs = std::find(kPaperSignificant.begin(), kPaperSignificant.end(), t.name) !=
-                        kPaperSignificant.end();
-    if (ours != theirs)
-      differ.push_back(t.name + (ours ? " (significant here, not in the paper)"
-                                      : " (significant in the paper, not here)"));
-  }
-  std::string differ_text;
-  for (const auto& d : differ) differ_text += (differ_text.empty() ? "" : ", ") + d;
-  if (differ_text.empty()) differ_text = "none";
+// The interior maximum of uprightness along factor `k`, through the optimum: where the
+// surface's slope along it is zero, if it curves down.
+std::string interior_max(const SweepFindings& f, int k) {
+  const auto& t = f.a_up.beta;
+  // d/dx_k of the quadratic at the optimum's other coordinates: linear + interactions + 2 q x.
+  const int lin = 1 + k, sq = 7 + k;
+  const int inter[3][3] = {{-1, 4, 5}, {4, -1, 6}, {5, 6, -1}};
+  double slope0 = t(lin);
+  for (int g = 0; g < 3; ++g)
+    if (g != k) slope0 += t(inter[k][g]) * f.best.coded(g);
+  const double curvature = 2.0 * t(sq);
+  if (curvature >= 0.0) return "no: the surface curves up or is flat";
+  const double x = -slope0 / curvature;
+  if (x <= -1.0 || x >= 1.0)
+    return "no: the maximum lies outside the design, at " + fmt("%.4g", kFactors[k].value(x)) +
+           " " + kFactors[k].unit;
+  return "yes, at " + fmt("%.4g", kFactors[k].value(x)) + " " + kFactors[k].unit;
+}
 
-  // sweep.csv: every run.
+// sweep.csv: every run.
+std::string sweep_csv(const SweepFindings& f) {
   std::ostringstream csv;
   csv << "point,replicate,contact_area_mm2,disc_speed_radps,depth_mm,uprightness_pct,damage_pct,"
          "seedling_peak_force_mean_N,clamp_force_max_N,seedlings_planted,seedlings_damaged\n";
-  for (const Run& r : runs) {
-    csv << r.point + 1 << ',' << r.replicate + 1 << ',' << kFactors[0].value(design(r.point, 0))
-        << ',' << kFactors[1].value(design(r.point, 1)) << ','
-        << kFactors[2].value(design(r.point, 2)) << ',' << r.uprightness_pct << ',' << r.damage_pct
-        << ',' << r.peak_force_N << ',' << r.clamp_force_max_N << ',' << r.planted << ','
-        << r.damaged << '\n';
+  for (const Run& r : f.runs) {
+    csv << r.point + 1 << ',' << r.replicate + 1 << ',' << kFactors[0].value(f.design(r.point, 0))
+        << ',' << kFactors[1].value(f.design(r.point, 1)) << ','
+        << kFactors[2].value(f.design(r.point, 2)) << ',' << r.uprightness_pct << ','
+        << r.damage_pct << ',' << r.peak_force_N << ',' << r.clamp_force_max_N << ',' << r.planted
+        << ',' << r.damaged << '\n';
   }
+  return csv.str();
+}
+
+nlohmann::json sweep_json(const Scenario& base, const SweepFindings& f, const SweepOptions& o) {
   nlohmann::json j;
   j["scenario"] = base.name;
-  j["runs"] = runs.size();
+  j["runs"] = f.runs.size();
   j["distance_m_per_run"] = o.distance_m;
-  j["damage_standard_error_pts_worst"] = worst_se;
-  j["uprightness"] = anova_json(a_up, l_up);
-  j["damage"] = anova_json(a_dmg, l_dmg);
-  j["seedling_peak_force"] = anova_json(a_force, l_force);
-  j["optimum"] = {{"contact_area_mm2", opt[0]},
-                  {"disc_speed_radps", opt[1]},
-                  {"depth_mm", opt[2]},
-                  {"desirability", best.desirability},
-                  {"uprightness_pct", doe::predict_quadratic_3(a_up, best.coded)},
-                  {"seedling_peak_force_N", doe::predict_quadratic_3(a_force, best.coded)}};
+  j["damage_standard_error_pts_worst"] = f.worst_se;
+  j["uprightness"] = anova_json(f.a_up, f.l_up);
+  j["damage"] = anova_json(f.a_dmg, f.l_dmg);
+  j["seedling_peak_force"] = anova_json(f.a_force, f.l_force);
+  j["optimum"] = {{"contact_area_mm2", f.opt[0]},
+                  {"disc_speed_radps", f.opt[1]},
+                  {"depth_mm", f.opt[2]},
+                  {"desirability", f.best.desirability},
+                  {"uprightness_pct", doe::predict_quadratic_3(f.a_up, f.best.coded)},
+                  {"seedling_peak_force_N", doe::predict_quadratic_3(f.a_force, f.best.coded)}};
   j["paper_optimum"] = {{"contact_area_mm2", kPaperOptimum[0]},
                         {"disc_speed_radps", kPaperOptimum[1]},
                         {"depth_mm", kPaperOptimum[2]}};
-  j["terms_differing_from_paper"] = differ;
-  j["centre_uprightness_pct"] = centre_up;
-  j["centre_damage_pct"] = centre_dmg;
+  j["terms_differing_from_paper"] = f.differ;
+  j["centre_uprightness_pct"] = f.centre_up;
+  j["centre_damage_pct"] = f.centre_dmg;
   j["paper_centre"] = {{"uprightness_pct", kPaperCentreUprightness_pct},
                        {"damage_pct", kPaperCentreDamage_pct}};
-  for (std::size_t i = 0; i < force_curve.size(); ++i) {
-    const Summary& f = force_curve[i];
-    j["force_curve"].push_back({{"clamp_force_N", force_row_N(i)},
+  for (std::size_t i = 0; i < f.force_curve.size(); ++i) {
+    const Summary& s = f.force_curve[i];
+    j["force_curve"].push_back({{"clamp_force_N", force_row_N(f, i)},
                                 {"grip", grip_name(i)},
-                                {"uprightness_pct", f.uprightness_pct},
-                                {"damage_pct", f.damage_pct},
-                                {"skips", f.truth_skips},
-                                {"fell_in_carry", f.seedlings_fell_in_carry},
-                                {"turned_in_clamp", f.seedlings_turned_in_clamp},
-                                {"slid_in_clamp", f.seedlings_slid_in_clamp},
-                                {"planted", f.seedlings_planted}});
+                                {"uprightness_pct", s.uprightness_pct},
+                                {"damage_pct", s.damage_pct},
+                                {"skips", s.truth_skips},
+                                {"fell_in_carry", s.seedlings_fell_in_carry},
+                                {"turned_in_clamp", s.seedlings_turned_in_clamp},
+                                {"slid_in_clamp", s.seedlings_slid_in_clamp},
+                                {"planted", s.seedlings_planted}});
   }
+  return j;
+}
 
+std::string sweep_html(const Scenario& base, const SweepFindings& f, const SweepOptions& o) {
   std::ostringstream html;
   html << "<!doctype html><html><head>" << report::kReportHead
        << "<title>Sweep: " << report::html_escape(base.name) << "</title>"
        << report::kTablePageStyle << "</head><body>"
-       << "<h1>The paper's Box-Behnken experiment, simulated</h1><p>" << runs.size() << " runs of "
-       << o.distance_m << " m on " << points << " design points (" << kCentrePoints
+       << "<h1>The paper's Box-Behnken experiment, simulated</h1><p>" << f.runs.size()
+       << " runs of " << o.distance_m << " m on " << f.points << " design points (" << kCentrePoints
        << " centre points), at least " << o.replicates
        << " replicates each, more where the damage rate's standard error was above "
-       << o.damage_precision_pts << " points (worst reached: " << fmt("%.2f", worst_se)
+       << o.damage_precision_pts << " points (worst reached: " << fmt("%.2f", f.worst_se)
        << ").</p><h2>Optimum (desirability: uprightness up, peak radial force down)</h2><p>"
-       << optimum_text(opt[0], opt[1], opt[2]) << " (desirability "
-       << fmt("%.3f", best.desirability)
+       << optimum_text(f.opt[0], f.opt[1], f.opt[2]) << " (desirability "
+       << fmt("%.3f", f.best.desirability)
        << "); the paper's: " << optimum_text(kPaperOptimum[0], kPaperOptimum[1], kPaperOptimum[2])
        << ". Terms of uprightness whose significance differs from the paper's: "
-       << report::html_escape(differ_text) << ". Centre point: uprightness "
-       << fmt("%.2f", centre_up) << " % (paper " << fmt("%.1f", kPaperCentreUprightness_pct)
-       << " predicted), damage " << fmt("%.2f", centre_dmg) << " % (paper "
+       << report::html_escape(f.differ_text) << ". Centre point: uprightness "
+       << fmt("%.2f", f.centre_up) << " % (paper " << fmt("%.1f", kPaperCentreUprightness_pct)
+       << " predicted), damage " << fmt("%.2f", f.centre_dmg) << " % (paper "
        << fmt("%.0f", kPaperCentreDamage_pct) << ").</p>"
-       << surface_map("uprightness", "%", a_up, 1, 2, best.coded, paper, best.coded, 0.0, 100.0)
-       << surface_map("uprightness", "%", a_up, 0, 1, best.coded, paper, best.coded, 0.0, 100.0)
-       << surface_map("peak radial force on the seedling", "N", a_force, 1, 2, best.coded, paper,
-                      best.coded, 0.0, std::numeric_limits<double>::infinity())
+       << surface_map("uprightness", "%", f.a_up, 1, 2, f.best.coded, f.paper, f.best.coded, 0.0,
+                      100.0)
+       << surface_map("uprightness", "%", f.a_up, 0, 1, f.best.coded, f.paper, f.best.coded, 0.0,
+                      100.0)
+       << surface_map("peak radial force on the seedling", "N", f.a_force, 1, 2, f.best.coded,
+                      f.paper, f.best.coded, 0.0, std::numeric_limits<double>::infinity())
        << "<h2>Response surfaces (coded factors A area, B disc speed, C depth)</h2>"
-       << anova_html("Uprightness", "%", a_up, l_up) << anova_html("Damage rate", "%", a_dmg, l_dmg)
-       << anova_html("Peak radial force on the seedling", "N", a_force, l_force)
+       << anova_html("Uprightness", "%", f.a_up, f.l_up)
+       << anova_html("Damage rate", "%", f.a_dmg, f.l_dmg)
+       << anova_html("Peak radial force on the seedling", "N", f.a_force, f.l_force)
        << "<h2>Clamp force: grip against crushing, at the design's centre</h2>"
        << "<table><tr><th>set-point [N]</th><th>uprightness [%]</th><th>damage [%]</th>"
           "<th>skips</th><th>fell from the clamp</th><th>turned in the clamp</th><th>slid in "
           "the clamp</th><th>planted</th></tr>";
-  for (std::size_t i = 0; i < force_curve.size(); ++i) {
-    const Summary& f = force_curve[i];
-    html << "<tr><td>" << force_row_N(i) << (i < kConstantRows ? "" : ", each stem's ceiling")
-         << "</td><td>" << fmt("%.2f", f.uprightness_pct) << "</td><td>"
-         << fmt("%.2f", f.damage_pct) << "</td><td>" << f.truth_skips << "</td><td>"
-         << f.seedlings_fell_in_carry << "</td><td>" << f.seedlings_turned_in_clamp << "</td><td>"
-         << f.seedlings_slid_in_clamp << "</td><td>" << f.seedlings_planted << "</td></tr>";
+  for (std::size_t i = 0; i < f.force_curve.size(); ++i) {
+    const Summary& s = f.force_curve[i];
+    html << "<tr><td>" << force_row_N(f, i) << (i < kConstantRows ? "" : ", each stem's ceiling")
+         << "</td><td>" << fmt("%.2f", s.uprightness_pct) << "</td><td>"
+         << fmt("%.2f", s.damage_pct) << "</td><td>" << s.truth_skips << "</td><td>"
+         << s.seedlings_fell_in_carry << "</td><td>" << s.seedlings_turned_in_clamp << "</td><td>"
+         << s.seedlings_slid_in_clamp << "</td><td>" << s.seedlings_planted << "</td></tr>";
   }
   html << "</table><h2>Model values</h2><p>Every value the figures rest on, its origin and "
           "plausible range; <code>planter-sim sensitivity</code> ranks them.</p>"
@@ -493,46 +514,73 @@ int run_sweep(const std::string& scenario_path, const std::string& out_dir, cons
   for (const std::string& a : model_assumptions(base))
     html << "<li>" << report::html_escape(a) << "</li>";
   html << "</ul></body></html>";
+  return html.str();
+}
 
-  out.write("sweep.csv", csv.str());
-  out.write("sweep.json", j.dump(2) + "\n");
-  out.write("report.html", html.str());
-  out.commit();
+void print_anova(const char* name, const doe::Anova& a, const doe::LackOfFit& l) {
+  std::printf(
+      "%s: R^2 %.4f, adjusted %.4f, model p %.3g, lack of fit %s\n  significant (p < 0.05):", name,
+      a.r2, a.r2_adjusted, a.model_p,
+      l.available ? fmt("p %.3g", l.p_value).c_str() : "not testable");
+  for (const auto& t : a.terms)
+    if (t.p_value < 0.05) std::printf(" %s", t.name.c_str());
+  std::printf("\n");
+}
 
-  auto print_anova = [](const char* name, const doe::Anova& a, const doe::LackOfFit& l) {
-    std::printf(
-        "%s: R^2 %.4f, adjusted %.4f, model p %.3g, lack of fit %s\n  significant (p < 0.05):",
-        name, a.r2, a.r2_adjusted, a.model_p,
-        l.available ? fmt("p %.3g", l.p_value).c_str() : "not testable");
-    for (const auto& t : a.terms)
-      if (t.p_value < 0.05) std::printf(" %s", t.name.c_str());
-    std::printf("\n");
-  };
+// What the sweep prints: the figures, then where it wrote them, the optimum last.
+void print_sweep(const SweepFindings& f, const SweepOptions& o, int jobs,
+                 const std::string& out_dir) {
   std::printf(
       "%zu runs of %.0f m on %d points, %d jobs; damage resolved to +-%.2f points (worst "
       "point; goal %.2f)\n",
-      runs.size(), o.distance_m, points, jobs, worst_se, o.damage_precision_pts);
-  print_anova("uprightness", a_up, l_up);
-  print_anova("damage", a_dmg, l_dmg);
-  print_anova("peak radial force", a_force, l_force);
-  std::printf("terms of uprightness differing from the paper: %s\n", differ_text.c_str());
-  std::printf("interior maximum of uprightness in disc speed: %s\n", interior_max(1).c_str());
-  std::printf("interior maximum of uprightness in depth: %s\n", interior_max(2).c_str());
+      f.runs.size(), o.distance_m, f.points, jobs, f.worst_se, o.damage_precision_pts);
+  print_anova("uprightness", f.a_up, f.l_up);
+  print_anova("damage", f.a_dmg, f.l_dmg);
+  print_anova("peak radial force", f.a_force, f.l_force);
+  std::printf("terms of uprightness differing from the paper: %s\n", f.differ_text.c_str());
+  std::printf("interior maximum of uprightness in disc speed: %s\n", interior_max(f, 1).c_str());
+  std::printf("interior maximum of uprightness in depth: %s\n", interior_max(f, 2).c_str());
   std::printf(
       "centre point: uprightness %.2f %% (paper %.1f; the tilt scatter is calibrated to it), "
       "damage %.2f %% (paper %.0f)\n",
-      centre_up, kPaperCentreUprightness_pct, centre_dmg, kPaperCentreDamage_pct);
+      f.centre_up, kPaperCentreUprightness_pct, f.centre_dmg, kPaperCentreDamage_pct);
   std::printf(
       "clamp force at the centre: set-point, uprightness, damage, skips, turned in clamp\n");
-  for (std::size_t i = 0; i < force_curve.size(); ++i)
-    std::printf("  %5.0f N  %6.2f %%  %5.2f %%  %3d  %4d%s\n", force_row_N(i),
-                force_curve[i].uprightness_pct, force_curve[i].damage_pct,
-                force_curve[i].truth_skips, force_curve[i].seedlings_turned_in_clamp,
+  for (std::size_t i = 0; i < f.force_curve.size(); ++i)
+    std::printf("  %5.0f N  %6.2f %%  %5.2f %%  %3d  %4d%s\n", force_row_N(f, i),
+                f.force_curve[i].uprightness_pct, f.force_curve[i].damage_pct,
+                f.force_curve[i].truth_skips, f.force_curve[i].seedlings_turned_in_clamp,
                 i < kConstantRows ? "" : "  (per stem: each under its own ceiling)");
   std::printf("wrote %s/{sweep.csv,sweep.json,report.html}\n", out_dir.c_str());
   std::printf("optimum: %s (desirability %.3f); paper: %s\n",
-              optimum_text(opt[0], opt[1], opt[2]).c_str(), best.desirability,
+              optimum_text(f.opt[0], f.opt[1], f.opt[2]).c_str(), f.best.desirability,
               optimum_text(kPaperOptimum[0], kPaperOptimum[1], kPaperOptimum[2]).c_str());
+}
+
+}  // namespace
+
+int run_sweep(const std::string& scenario_path, const std::string& out_dir, const SweepOptions& o) {
+  Scenario base = load_scenario(scenario_path);
+  for (const auto& w : base.board.warnings)
+    std::fprintf(stderr, "planter-sim: warning: %s\n", w.c_str());
+  if (const std::string why = executor_refusal(o.executor); !why.empty())
+    throw std::runtime_error(why);
+  config::OutputSet out(out_dir, "planter-sim sweep", o.force);
+  SweepFindings f;
+  f.design = doe::box_behnken_3(kCentrePoints);
+  f.points = static_cast<int>(f.design.rows());
+  const int jobs =
+      o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const std::string runs_dir = runs_folder(out_dir);
+  f.runs = run_replicates(base, scenario_path, f.design, o, runs_dir);
+  fit_surfaces(f);
+  f.machine_setpoint_N = base.board.controller.clamp.setpoint_N;
+  f.force_curve = run_force_curve(base, scenario_path, o, runs_dir);
+  out.write("sweep.csv", sweep_csv(f));
+  out.write("sweep.json", sweep_json(base, f, o).dump(2) + "\n");
+  out.write("report.html", sweep_html(base, f, o));
+  out.commit();
+  print_sweep(f, o, jobs, out_dir);
   return 0;
 }
 

@@ -44,6 +44,19 @@ std::vector<std::size_t> rows(const Split& split) {
   return out;
 }
 
+// pred - y over pred's rows, through the filter if any (a non-finite error is kept as 1e6 so
+// that a filter does not spread it).
+std::vector<double> error_of(const std::vector<double>& pred, const std::vector<double>& y,
+                             const ResidualFilter* filter) {
+  std::vector<double> e(pred.size());
+  for (std::size_t k = 0; k < e.size(); ++k) {
+    const double v = pred[k] - y[k];
+    e[k] = std::isfinite(v) ? v : 1e6;
+  }
+  if (filter != nullptr) (*filter)(e);
+  return e;
+}
+
 struct SimulationError {
   const ChannelModel* channel;
   const Recording* rec;
@@ -52,13 +65,15 @@ struct SimulationError {
   mutable std::vector<double> nominal;
   mutable std::vector<Effect> effects;
   Layout* lay;  // points into nominal/effects above
+  const ResidualFilter* filter = nullptr;
   bool operator()(double const* const* p, double* residual) const {
     for (std::size_t k = 0; k < lay->slots.size(); ++k) *lay->slots[k] = p[0][k];
     std::vector<double> pred;
     channel->simulate(*rec, nominal, effects, pred);
+    const std::vector<double> e = error_of(pred, *y, filter);
     for (std::size_t i = 0; i < at->size(); ++i) {
-      const double e = pred[(*at)[i]] - (*y)[(*at)[i]];
-      residual[i] = std::isfinite(e) ? e : 1e6;
+      const double v = e[(*at)[i]];
+      residual[i] = std::isfinite(v) ? v : 1e6;
     }
     return true;
   }
@@ -67,7 +82,8 @@ struct SimulationError {
 // Solves the smooth parameters with the grid ones fixed; returns the calibration RSS.
 double solve(const ChannelModel& ch, const Recording& r, const Split& split,
              std::vector<double>& nominal, std::vector<Effect>& effects, double huber,
-             std::vector<double>* sd, ChannelFit* spread = nullptr) {
+             std::vector<double>* sd, ChannelFit* spread = nullptr,
+             const ResidualFilter* filter = nullptr) {
   const std::vector<double>& y = r.at(ch.output());
   const std::vector<std::size_t> at = rows(split);
   // A row's simulation reads no further than rows_ahead() rows on: the solver's thousands of
@@ -80,7 +96,7 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
     calibration_rows = first_rows(r, needed);
     simulated = &calibration_rows;
   }
-  auto* functor = new SimulationError{&ch, simulated, &y, &at, nominal, effects, nullptr};
+  auto* functor = new SimulationError{&ch, simulated, &y, &at, nominal, effects, nullptr, filter};
   Layout lay = layout(functor->nominal, functor->effects, ch.nominal_params(), false);
   functor->lay = &lay;
   bounds_for_output(lay.specs, y);
@@ -119,8 +135,9 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
   for (std::size_t k = 0; k < x.size(); ++k) *out.slots[k] = x[k];
   std::vector<double> pred;
   ch.simulate(r, nominal, effects, pred);
+  const std::vector<double> fitted_error = error_of(pred, y, filter);
   double rss = 0;
-  for (std::size_t i : at) rss += (pred[i] - y[i]) * (pred[i] - y[i]);
+  for (std::size_t i : at) rss += fitted_error[i] * fitted_error[i];
   if (sd) {
     // Standard deviations from the Jacobian at the solution, allowing for residuals correlated
     // from row to row (parameter_covariance.h).
@@ -138,9 +155,10 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
         std::vector<double> p2;
         ch.simulate(r, nominal, effects, p2);
         *out.slots[c] = keep;
+        const std::vector<double> e2 = error_of(p2, y, filter);
         for (std::size_t i = 0; i < at.size(); ++i)
           jac(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) =
-              (p2[at[i]] - pred[at[i]]) / h;
+              (e2[at[i]] - fitted_error[at[i]]) / h;
         for (std::size_t i = 0; i < held; ++i) {
           const std::size_t k = split.calibration_end + i;
           held_jac(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) =
@@ -149,11 +167,19 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
       }
       Eigen::VectorXd e(static_cast<Eigen::Index>(at.size()));
       for (std::size_t i = 0; i < at.size(); ++i)
-        e(static_cast<Eigen::Index>(i)) = pred[at[i]] - y[at[i]];
+        e(static_cast<Eigen::Index>(i)) = fitted_error[at[i]];
       const Eigen::MatrixXd cov = hac_covariance(jac, e).covariance;
       for (std::size_t c = 0; c < x.size(); ++c)
         (*sd)[c] = std::sqrt(
             std::max(0.0, cov(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c))));
+      if (spread != nullptr) {
+        const std::size_t m = std::min(nominal.size(), x.size());
+        spread->nominal_covariance.assign(m * m, 0.0);
+        for (std::size_t a = 0; a < m; ++a)
+          for (std::size_t b = 0; b < m; ++b)
+            spread->nominal_covariance[a * m + b] =
+                cov(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+      }
       if (spread != nullptr && held > 0) {
         // The first-order (delta-method) variance of the held-out prediction, row by row, and
         // each parameter's own share of it (its variance alone, correlations left out).
@@ -289,7 +315,8 @@ void bounds_for_output(std::vector<ParamSpec>& specs, const std::vector<double>&
 }
 
 ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& split,
-                       const std::vector<double>& nominal_start, std::vector<Effect> effects) {
+                       const std::vector<double>& nominal_start, std::vector<Effect> effects,
+                       const ResidualFilter* filter) {
   const std::vector<double>& y = r.at(ch.output());
   std::vector<double> nominal = nominal_start;
   // Grid values for the non-smooth parameters, scaled to the data.
@@ -320,7 +347,8 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
   // A first solve without the effects' help sets the Huber scale from the nominal residual.
   std::vector<double> pred;
   ch.simulate(r, nominal, {}, pred);
-  const double huber = 3.0 * robust_scale(pred, y, split.calibration_end);
+  const std::vector<double> zero(y.size(), 0.0);
+  const double huber = 3.0 * robust_scale(error_of(pred, y, filter), zero, split.calibration_end);
 
   double best_rss = std::numeric_limits<double>::infinity();
   std::vector<double> best_nominal = nominal;
@@ -329,7 +357,7 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
   // values set), the best kept; returns the calibration RSS.
   auto solve_keeping_best = [&](std::vector<Effect> fx) {
     std::vector<double> nom = nominal_start;
-    const double rss = solve(ch, r, split, nom, fx, huber, nullptr);
+    const double rss = solve(ch, r, split, nom, fx, huber, nullptr, nullptr, filter);
     if (rss < best_rss) {
       best_rss = rss;
       best_nominal = std::move(nom);
@@ -421,7 +449,7 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
   fit.nominal = best_nominal;
   fit.effects = best_effects;
   std::vector<double> sd;
-  const double rss = solve(ch, r, split, fit.nominal, fit.effects, huber, &sd, &fit);
+  const double rss = solve(ch, r, split, fit.nominal, fit.effects, huber, &sd, &fit, filter);
   finish(ch, r, split, sd, resolution, fit);
   const double n = static_cast<double>(rows(split).size());
   fit.bic = n * std::log(std::max(rss, 1e-300) / n) + fit.parameters * std::log(n);

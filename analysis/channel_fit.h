@@ -2,6 +2,7 @@
 // Fits a channel's nominal parameters, with or without candidate effects, in simulation
 // (free-run) error form: Ceres with bounds and a Huber loss on the calibration part; the
 // non-smooth parameters (a delay, a gap, a width, a step) on a grid around the solver.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,9 @@ struct ChannelFit {
   std::vector<double> nominal;
   std::vector<Effect> effects;
   std::vector<double> nominal_sd;
+  // The nominal parameters' covariance, row by row (nominal.size() squared; empty where none was
+  // estimated): what propagates their uncertainty into a quantity read through them.
+  std::vector<double> nominal_covariance;
   std::vector<std::vector<double>> effect_sd;
   double rms_calibration = 0.0;
   double rms_held_out = 0.0;
@@ -38,8 +42,15 @@ struct ChannelFit {
   }
 };
 
+// What a fit minimises instead of the simulation error where a disturbance process is named
+// beside the nominal: the error over the rows it is given, mapped in place to what the least
+// squares weighs (a linear filter: the process's standardised one-step innovations, so that the
+// fit is a prediction-error fit, Ljung, "System Identification", 2nd ed., 1999, sec. 7.2).
+using ResidualFilter = std::function<void(std::vector<double>&)>;
+
 ChannelFit fit_channel(const ChannelModel& channel, const Recording& r, const Split& split,
-                       const std::vector<double>& nominal_start, std::vector<Effect> effects);
+                       const std::vector<double>& nominal_start, std::vector<Effect> effects,
+                       const ResidualFilter* filter = nullptr);
 
 // The fit's prediction over all of `r`'s rows and its RMS on either side of the split, from
 // its values as they are (after they were refined on other rows than `r`'s).

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/disturbance.h"
 #include "analysis/recording.h"
 
 namespace planter::analysis {
@@ -115,6 +116,18 @@ class ChannelModel {
   // simulator's known_* columns, docs/recording-format.md): what the scenario varies on
   // purpose is then not a mismatch. A recording without them is fitted as before.
   [[nodiscard]] virtual std::vector<std::string> known_inputs() const { return {}; }
+  // The unmeasured disturbance the channel carries where the recording lacks its known_*
+  // column (a field log: disturbance.h), or nullptr (none, or the column is there as an input).
+  [[nodiscard]] virtual const DisturbanceSpec* disturbance(const Recording&) const {
+    return nullptr;
+  }
+  // The residual's (prediction less record) sensitivity to that disturbance at each row, for
+  // the nominal values and the prediction given.
+  [[nodiscard]] virtual std::vector<double> disturbance_gain(
+      const Recording& r, const std::vector<double>& /*nominal*/,
+      const std::vector<double>& /*prediction*/) const {
+    return std::vector<double>(r.size(), 0.0);
+  }
   // The recorded displacement a rate-independent effect follows (the clamp's hysteresis
   // follows its roller), or none. A thinned recording carries its path apart (Recording::travel).
   [[nodiscard]] virtual std::string displacement() const { return {}; }
@@ -157,6 +170,10 @@ class ChannelModel {
 // of the recorded output's largest size. There a constant added to the output is seen alone.
 std::size_t rows_at_zero_load(const ChannelModel& ch, const Recording& r,
                               const std::vector<double>& nominal, std::size_t end);
+
+// The distance the machine has travelled at each row (m): the integral of the ground speed
+// sensor's v_ground, or of v_wheel where there is none, 0 throughout where neither is recorded.
+std::vector<double> distance_travelled(const Recording& r);
 
 // Every channel of the nominal structures; the caller keeps those the recording observes.
 std::vector<const ChannelModel*> all_channels();

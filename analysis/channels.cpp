@@ -301,6 +301,15 @@ class GroundChannel : public ChannelModel {
   std::string input() const override { return "v_ground"; }
   std::vector<std::string> needs() const override { return {"v_ground", "v_wheel"}; }
   std::vector<std::string> known_inputs() const override { return {"known_slip"}; }
+  // v_wheel = v (1 - s): the prediction exceeds the record by v s.
+  const DisturbanceSpec* disturbance(const Recording& r) const override {
+    static const DisturbanceSpec slip{"slip of the soil wheel along the row", "%", 100.0};
+    return r.has("known_slip") ? nullptr : &slip;
+  }
+  std::vector<double> disturbance_gain(const Recording&, const std::vector<double>&,
+                                       const std::vector<double>& prediction) const override {
+    return prediction;
+  }
   // The encoder speed is an estimate over a window of edges: it lags the true speed by
   // about half the window. That lag is part of the measurement, not missing physics.
   std::vector<ParamSpec> nominal_params() const override {
@@ -485,6 +494,20 @@ class ClampChannel : public ChannelModel {
   std::string displacement() const override { return "clamp_pos_mm"; }
   std::vector<std::string> needs() const override { return {"clamp_pos_mm", "clamp_force"}; }
   std::vector<std::string> known_inputs() const override { return {"known_nip_mm"}; }
+  // A stem of thickness d in the nip moves the law's contact by d: the record exceeds the
+  // prediction by dF/dx d = k n (x - x0)^(n-1) d.
+  const DisturbanceSpec* disturbance(const Recording& r) const override {
+    static const DisturbanceSpec stems{"the stems' spread in the nip", "mm", 1.0};
+    return r.has("known_nip_mm") ? nullptr : &stems;
+  }
+  std::vector<double> disturbance_gain(const Recording& r, const std::vector<double>& p,
+                                       const std::vector<double>&) const override {
+    const auto& x = r.at("clamp_pos_mm");
+    std::vector<double> g(x.size(), 0.0);
+    for (std::size_t k = 0; k < x.size(); ++k)
+      if (x[k] > p[1]) g[k] = -p[0] * p[2] * std::pow(x[k] - p[1], p[2] - 1.0);
+    return g;
+  }
   std::vector<ParamSpec> nominal_params() const override {
     return {{"k_c", "N/mm^n", 10.0, 1e-3, 1e5},
             {"x0", "mm", 0.0, -50.0, 50.0},
@@ -542,6 +565,15 @@ class DepthChannel : public ChannelModel {
   std::string input() const override { return "depth_cmd_mm"; }
   std::vector<std::string> needs() const override { return {"depth_cmd_mm", "depth_mm"}; }
   std::vector<std::string> known_inputs() const override { return {"known_terrain_depth_mm"}; }
+  // The terrain adds to the furrow's depth as recorded: the record exceeds the prediction by it.
+  const DisturbanceSpec* disturbance(const Recording& r) const override {
+    static const DisturbanceSpec terrain{"terrain under the depth wheel", "mm", 1.0};
+    return r.has("known_terrain_depth_mm") ? nullptr : &terrain;
+  }
+  std::vector<double> disturbance_gain(const Recording& r, const std::vector<double>&,
+                                       const std::vector<double>&) const override {
+    return std::vector<double>(r.size(), -1.0);
+  }
   std::vector<ParamSpec> nominal_params() const override {
     return {{"T_a", "s", 0.5, 0.01, 20.0}, {"r_max", "mm/s", 50.0, 0.1, 2000.0}};
   }
@@ -683,6 +715,16 @@ std::vector<double> ChannelModel::initial_guess(const Recording&) const {
   std::vector<double> out;
   for (const auto& p : nominal_params()) out.push_back(p.initial);
   return out;
+}
+
+std::vector<double> distance_travelled(const Recording& r) {
+  std::vector<double> s(r.size(), 0.0);
+  const char* column = r.has("v_ground") ? "v_ground" : r.has("v_wheel") ? "v_wheel" : nullptr;
+  if (column == nullptr) return s;
+  const auto& v = r.at(column);
+  for (std::size_t k = 1; k < s.size(); ++k)
+    s[k] = s[k - 1] + 0.5 * (std::abs(v[k]) + std::abs(v[k - 1])) * (r.t[k] - r.t[k - 1]);
+  return s;
 }
 
 std::size_t rows_at_zero_load(const ChannelModel& ch, const Recording& r,

@@ -85,7 +85,28 @@ nlohmann::json fast_tone_json(const FastTone& f, const ChannelModel& c, double a
           {"held_out_rms", {{"before", f.held_out_rms_before}, {"after", f.held_out_rms_after}}}};
 }
 
+nlohmann::json disturbance_json(const DisturbanceFit& d) {
+  const double k = d.spec->shown_per_unit;
+  return {{"name", d.spec->name},
+          {"unit", d.spec->unit},
+          {"rms", k * d.rms},
+          {"rms_sd", k * d.rms_sd},
+          {d.periodic ? "wavelength_m" : "correlation_length_m", d.scale_m},
+          {"scale_sd_m", d.scale_sd_m},
+          {"damping", d.zeta},
+          {"mean", k * d.mean},
+          {"noise_rms", d.noise_rms},
+          {"delta_bic", d.delta_bic},
+          {"held_out_one_step_rms", d.rms_held_out},
+          {"held_out_one_step_rms_predicted", d.predicted_held_out},
+          {"whiteness_violations", d.whiteness_violations}};
+}
+
 }  // namespace
+
+double held_out_after(const ChannelReport& c) {
+  return c.disturbance ? c.disturbance->rms_held_out : c.final_fit.rms_held_out;
+}
 
 // "relaxation of the clamp: fraction = 0.2987 +- 0.001, tau = 3.023 +- 0.011 s"
 // An effect that is another effect seen from this channel says so after its values.
@@ -149,8 +170,11 @@ std::string fit_json(const FitReport& r, double wall_s) {
     ch["input_noise_rms"] = c.input_noise_rms;
     ch["held_out_prediction_sd"] = c.final_fit.held_out_prediction_sd;
     if (!c.undetermined.empty()) ch["undetermined"] = c.undetermined;
+    if (c.disturbance) ch["disturbance"] = disturbance_json(*c.disturbance);
+    if (!c.beside_disturbance.empty()) ch["beside_disturbance"] = c.beside_disturbance;
     ch["held_out_rms"] = {{"nominal", c.nominal.rms_held_out},
-                          {"augmented", c.final_fit.rms_held_out}};
+                          {"augmented", c.final_fit.rms_held_out},
+                          {"one_step_ahead", held_out_after(c)}};
     ch["calibration_rms"] = {{"nominal", c.nominal.rms_calibration},
                              {"augmented", c.final_fit.rms_calibration}};
     ch["effects"] = effects_json(c);
@@ -306,8 +330,9 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
       << (found ? " style='color:#a40'" : "") << "><b>" << report::html_escape(c.verdict) << "</b>";
     for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
       h << "<br>" << report::html_escape(effect_text(c, e));
-    h << "</td><td>" << c.nominal.rms_held_out << " &rarr; " << c.final_fit.rms_held_out << " "
-      << report::html_escape(unit) << "</td></tr>";
+    if (c.disturbance) h << "<br>" << report::html_escape(c.disturbance->describe());
+    h << "</td><td>" << c.nominal.rms_held_out << " &rarr; " << held_out_after(c) << " "
+      << report::html_escape(unit) << (c.disturbance ? " (one step ahead)" : "") << "</td></tr>";
   }
   h << "</table><p>A candidate effect is kept when it lowers BIC by more than "
     << r.options.min_delta_bic << ", explains at least " << 100.0 * r.options.min_explained
@@ -345,6 +370,14 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
     for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
       h << "<p><b>" << report::html_escape(effect_text(c, e)) << "</b> ("
         << c.final_fit.effects[e].spec->signature << ")</p>";
+    if (c.disturbance)
+      h << "<p><b>" << report::html_escape(c.disturbance->describe())
+        << "</b> (an unmeasured process along the row, fitted from the residual: its one-step "
+           "predictions leave a held-out RMS of "
+        << c.disturbance->rms_held_out << ", where the process gives "
+        << c.disturbance->predicted_held_out << ")</p>";
+    for (const std::string& note : c.beside_disturbance)
+      h << "<p>" << report::html_escape(note) << "</p>";
     if (r.day) {
       const ChannelDay& d = r.day->channels[static_cast<std::size_t>(&c - r.channels.data())];
       h << "<p><b>Across " << r.day->windows << " windows of " << r.day->window_s

@@ -14,6 +14,9 @@ std::string fit_json(const FitReport& r, double wall_s);
 // One effect of a channel as the summary and the report print it, with its parameters, their
 // SDs and units ("relaxation of the clamp: fraction = 0.2987 +- 0.001, tau_s = 3.023 +- 0.011
 // s"), and why when it is another effect seen from this channel.
+// The held-out RMS the channel's final model leaves: its one-step predictions beside a named
+// disturbance, else its free-run prediction's.
+double held_out_after(const ChannelReport& c);
 std::string effect_text(const ChannelReport& report, std::size_t effect);
 std::string fit_model_toml(const FitReport& r);
 std::string fit_report_html(const FitReport& r, const Recording& rec);

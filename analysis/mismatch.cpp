@@ -14,6 +14,7 @@
 #include "analysis/decimation.h"
 #include "analysis/effect_hooks.h"
 #include "analysis/model_file.h"
+#include "analysis/named_disturbance.h"
 #include "analysis/residual_stats.h"
 #include "firmware/io/signal_table.h"
 #include "firmware/supervisor/supervisor.h"
@@ -380,6 +381,9 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       order_prony_terms(rep.final_fit.effects, rep.final_fit.effect_sd);
     }
   }
+  // A field log's unmeasured disturbance (terrain, slip, the stems in the nip), where the
+  // recording lacks its column: named as a process along the row, the effects judged beside it.
+  name_disturbance(rep, r, split, o);
   // What is left is unexplained when it is well above the measurement noise, structured
   // (not white), and a real share of the output's size in the held-out part: half a percent
   // of its RMS (below that it is a numerical detail of the model, not physics to act on).
@@ -394,11 +398,17 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   // and how far the parameters' own uncertainty moves the held-out prediction. A parameter the
   // calibration part leaves undetermined (the draft's relaxation at rest, in a recording whose
   // only stop is in the held-out part) is then said to be undetermined, not a residual to name.
+  // With a named disturbance, what is left is its one-step innovations, against the spread
+  // the process itself gives them.
   auto beyond = [&](bool with_parameters) {
-    const double left = rep.final_fit.rms_held_out;
+    const DisturbanceFit* d = rep.disturbance ? &*rep.disturbance : nullptr;
+    const double left = d ? d->rms_held_out : rep.final_fit.rms_held_out;
     const double spread = with_parameters ? rep.final_fit.held_out_prediction_sd : 0.0;
-    const double floor = std::hypot(std::hypot(rep.noise_rms, rep.input_noise_rms), spread);
-    return left > 3.0 * std::max(floor, 1e-12) && rep.location.whiteness_violations > 0.5 &&
+    const double floor = std::hypot(
+        std::hypot(std::max(rep.noise_rms, d ? d->predicted_held_out : 0.0), rep.input_noise_rms),
+        spread);
+    const double whiteness = d ? d->whiteness_violations : rep.location.whiteness_violations;
+    return left > 3.0 * std::max(floor, 1e-12) && whiteness > 0.5 &&
            left > o.min_unexplained_share * std::sqrt(mean_square);
   };
   auto unexplained = [&] {
@@ -471,7 +481,10 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     for (std::size_t k = 0; k < bounds.size() && k < named.values.size(); ++k)
       at_edge(bounds[k], named.values[k], named.spec->name + ": ", "the effect's form");
   }
-  if (rep.chosen.empty() && !rep.change)
+  if (rep.chosen.empty() && !rep.change && rep.disturbance)
+    rep.verdict = rep.unexplained ? "disturbance named; a residual is still unexplained"
+                                  : "disturbance named";
+  else if (rep.chosen.empty() && !rep.change)
     rep.verdict = rep.unexplained ? "unexplained residual" : "no significant mismatch";
   else
     rep.verdict =

@@ -3,12 +3,14 @@
 // nominal structure, locate where its residual concentrates, score the named candidate
 // effects (and pairs) by BIC and held-out error, and refit the chosen ones.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "analysis/change_points.h"
 #include "analysis/channel_fit.h"
 #include "analysis/day_report.h"
+#include "analysis/disturbance.h"
 #include "analysis/glitches.h"
 #include "analysis/model_file.h"
 #include "analysis/tones.h"
@@ -108,7 +110,12 @@ struct ChannelReport {
       if (x.effect == effect) return &x;
     return nullptr;
   }
-  std::string verdict;  // "no significant mismatch", "effect(s) found", "unexplained residual"
+  // An unmeasured disturbance named as a random process along the row (named_disturbance.h),
+  // and what it changed: effects left out beside it, or why it was not named.
+  std::optional<DisturbanceFit> disturbance;
+  std::vector<std::string> beside_disturbance;
+  std::string verdict;  // "no significant mismatch", "effect(s) found", "unexplained residual",
+                        // "disturbance named"
   bool unexplained = false;
   // The final fit's nominal parameters that ended at an edge of their range, as
   // "[effect: ]name = value (range lo to hi): the nominal structure (or the effect's form) may

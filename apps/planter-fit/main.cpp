@@ -64,11 +64,16 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
     std::printf("\n");
   }
   for (const auto& c : r.channels) {
-    std::printf("%-10s %-12s %-26s held-out RMS %.4g -> %.4g (noise %.3g)\n",
+    std::printf("%-10s %-12s %-26s held-out RMS %.4g -> %.4g%s (noise %.3g)\n",
                 c.channel->subsystem().c_str(), c.channel->output().c_str(), c.verdict.c_str(),
-                c.nominal.rms_held_out, c.final_fit.rms_held_out, c.noise_rms);
+                c.nominal.rms_held_out, held_out_after(c), c.disturbance ? " one step ahead" : "",
+                c.noise_rms);
     for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
       std::printf("    %s\n", effect_text(c, e).c_str());
+    if (c.disturbance)
+      std::printf("    %s (the process gives its one-step predictions a held-out RMS of %.3g)\n",
+                  c.disturbance->describe().c_str(), c.disturbance->predicted_held_out);
+    for (const auto& note : c.beside_disturbance) std::printf("    %s\n", note.c_str());
     for (const auto& note : c.refined) std::printf("    %s\n", note.c_str());
     if (c.change) {
       std::printf("    a parameter changed at t = %.1f +- %.1f s:", c.change->at_s,

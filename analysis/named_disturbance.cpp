@@ -1,0 +1,136 @@
+#include "analysis/named_disturbance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace planter::analysis {
+namespace {
+
+std::vector<double> residual_of(const ChannelFit& fit, const std::vector<double>& y) {
+  std::vector<double> e(y.size());
+  for (std::size_t k = 0; k < y.size(); ++k) e[k] = fit.prediction[k] - y[k];
+  return e;
+}
+
+std::optional<DisturbanceFit> fitted_beside(const ChannelModel& ch, const DisturbanceSpec& spec,
+                                            const Recording& r, const std::vector<double>& s_m,
+                                            const Split& split, const ChannelFit& fit) {
+  const std::vector<double> gain = ch.disturbance_gain(r, fit.nominal, fit.prediction);
+  return fit_disturbance(spec, gain, s_m, residual_of(fit, r.at(ch.output())),
+                         split.calibration_end);
+}
+
+// Why the process does not earn its place, or "" when it does.
+std::string rejection(const DisturbanceFit& d, double held_out_rms, const FitOptions& o) {
+  char buf[240];
+  if (d.delta_bic >= -o.min_delta_bic) {
+    std::snprintf(buf, sizeof buf, "lowers BIC by %.1f; %.0f is required", -d.delta_bic,
+                  o.min_delta_bic);
+    return buf;
+  }
+  if (!(d.rms >= 2.0 * d.rms_sd)) {
+    std::snprintf(buf, sizeof buf, "its size, %.3g, is within two SD (%.2g) of none", d.rms,
+                  d.rms_sd);
+    return buf;
+  }
+  const double gain = held_out_rms > 0.0 ? 1.0 - d.rms_held_out / held_out_rms : 0.0;
+  if (gain < o.min_improvement) {
+    std::snprintf(buf, sizeof buf,
+                  "its one-step predictions lower the held-out RMS by %.1f %%; %.0f %% is "
+                  "required",
+                  100.0 * gain, 100.0 * o.min_improvement);
+    return buf;
+  }
+  return "";
+}
+
+// The relative SD of the gain's size (its RMS over the calibration rows) from the nominal
+// parameters' covariance (first order): a process read through a law (the stems through the
+// clamp law's slope) is known no better than that law's slope.
+double gain_relative_sd(const ChannelModel& ch, const Recording& r, const ChannelFit& fit,
+                        std::size_t end) {
+  const std::size_t m = fit.nominal.size();
+  if (fit.nominal_covariance.size() != m * m) return 0.0;
+  auto size_of = [&](const std::vector<double>& nominal) {
+    const std::vector<double> g = ch.disturbance_gain(r, nominal, fit.prediction);
+    double sum = 0.0;
+    for (std::size_t k = 0; k < std::min(end, g.size()); ++k) sum += g[k] * g[k];
+    return std::sqrt(sum / static_cast<double>(std::max<std::size_t>(1, end)));
+  };
+  const double base = size_of(fit.nominal);
+  if (!(base > 0.0)) return 0.0;
+  std::vector<double> jac(m, 0.0);
+  for (std::size_t i = 0; i < m; ++i) {
+    std::vector<double> moved = fit.nominal;
+    const double h = std::max(1e-7, 1e-4 * std::abs(moved[i]));
+    moved[i] += h;
+    jac[i] = (size_of(moved) - base) / h;
+  }
+  double var = 0.0;
+  for (std::size_t a = 0; a < m; ++a)
+    for (std::size_t b = 0; b < m; ++b) var += jac[a] * fit.nominal_covariance[a * m + b] * jac[b];
+  return std::sqrt(std::max(0.0, var)) / base;
+}
+
+}  // namespace
+
+void name_disturbance(ChannelReport& c, const Recording& r, const Split& split,
+                      const FitOptions& o) {
+  const ChannelModel& ch = *c.channel;
+  const DisturbanceSpec* spec = ch.disturbance(r);
+  if (spec == nullptr) return;
+  const std::vector<double> s_m = distance_travelled(r);
+  std::optional<DisturbanceFit> d = fitted_beside(ch, *spec, r, s_m, split, c.final_fit);
+  if (!d) return;
+  if (const std::string why = rejection(*d, c.final_fit.rms_held_out, o); !why.empty()) {
+    c.beside_disturbance.push_back(spec->name + " not named: " + why);
+    return;
+  }
+  // Each effect chosen without the process must still earn its place beside it: a terrain
+  // read as a play between the depth drive and its load is the terrain.
+  for (std::size_t i = c.final_fit.effects.size(); i-- > 0;) {
+    std::vector<Effect> without = c.final_fit.effects;
+    const std::string name = without[i].spec->name;
+    without.erase(without.begin() + static_cast<std::ptrdiff_t>(i));
+    ChannelFit fit_without =
+        without.empty() ? c.nominal : fit_channel(ch, r, split, c.nominal.nominal, without);
+    const std::optional<DisturbanceFit> dw = fitted_beside(ch, *spec, r, s_m, split, fit_without);
+    const double gain =
+        dw && dw->rms_held_out > 0.0 ? 1.0 - d->rms_held_out / dw->rms_held_out : 1.0;
+    if (gain >= o.min_improvement) continue;
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "%s left out: beside the %s it lowers the held-out one-step RMS by %.1f %% "
+                  "(%.4g -> %.4g); %.0f %% is required",
+                  name.c_str(), spec->name.c_str(), 100.0 * gain, dw->rms_held_out, d->rms_held_out,
+                  100.0 * o.min_improvement);
+    c.beside_disturbance.emplace_back(buf);
+    std::erase_if(c.chosen, [&](const Candidate& k) { return k.effect == name; });
+    std::erase_if(c.ties, [&](const Tie& t) { return t.chosen == name; });
+    c.final_fit = std::move(fit_without);
+    d = dw;
+  }
+  // The nominal (and what effects stay) fitted again beside the process, by its one-step
+  // innovations rather than by the free-run error the process distorts (a stems' spread left
+  // the clamp law's exponent at its range's edge), the process refitted on what that leaves;
+  // kept while the likelihood of the calibration rows rises, twice at most.
+  for (int pass = 0; pass < 2; ++pass) {
+    const DisturbanceFit held = *d;
+    const ResidualFilter whiten = [&held](std::vector<double>& e) {
+      standardised_innovations(held, e);
+    };
+    ChannelFit beside =
+        fit_channel(ch, r, split, c.final_fit.nominal, c.final_fit.effects, &whiten);
+    std::optional<DisturbanceFit> again = fitted_beside(ch, *spec, r, s_m, split, beside);
+    if (!again || again->neg2ll >= d->neg2ll) break;
+    c.final_fit = std::move(beside);
+    d = std::move(again);
+  }
+  // The size's SD with the gain's own: the process is the residual over the gain.
+  const double relative = gain_relative_sd(ch, r, c.final_fit, split.calibration_end);
+  d->rms_sd = std::hypot(d->rms_sd, relative * d->rms);
+  c.disturbance = d;
+}
+
+}  // namespace planter::analysis

@@ -174,6 +174,9 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
             std::max(0.0, cov(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c))));
       if (spread != nullptr) {
         const std::size_t m = std::min(nominal.size(), x.size());
+        spread->nominal_exercised.assign(nominal.size(), true);
+        for (std::size_t c = 0; c < m; ++c)
+          spread->nominal_exercised[c] = jac.col(static_cast<Eigen::Index>(c)).norm() > 0.0;
         spread->nominal_covariance.assign(m * m, 0.0);
         for (std::size_t a = 0; a < m; ++a)
           for (std::size_t b = 0; b < m; ++b)

@@ -24,6 +24,9 @@ struct ChannelFit {
   // The nominal parameters' covariance, row by row (nominal.size() squared; empty where none was
   // estimated): what propagates their uncertainty into a quantity read through them.
   std::vector<double> nominal_covariance;
+  // Per nominal parameter, false where moving it changes no fitted row's prediction (a speed
+  // limit the rows never reach): not fitted, whatever its value says (empty: not checked).
+  std::vector<bool> nominal_exercised;
   std::vector<std::vector<double>> effect_sd;
   double rms_calibration = 0.0;
   double rms_held_out = 0.0;

@@ -37,6 +37,7 @@ enum class EffectKind {
   kGain,            // * (1 + g)
   kDrift,           // + d * t
   kPeriodic,        // + A sin(2 pi f t + phi)
+  kSaturation,      // min(y, limit): a sensor or output that reads no higher
   kQuantisation,    // round to q
   kRelaxation,      // a Maxwell branch takes share `frac` of the output with time constant tau
   kRelaxation2,     // a second branch beside it: a two-term Prony series
@@ -132,6 +133,9 @@ class ChannelModel {
   // follows its roller), or none. A thinned recording carries its path apart (Recording::travel).
   [[nodiscard]] virtual std::string displacement() const { return {}; }
   [[nodiscard]] virtual std::vector<ParamSpec> nominal_params() const = 0;
+  // The nominal structure in the machine's words ("the clamp law"), for what the summary says of
+  // it.
+  [[nodiscard]] virtual std::string law() const { return "the " + subsystem() + " model"; }
   // The candidate effects that make sense on this channel, given the recording's columns (an
   // effect driven by another signal, such as sag by the draft, needs that signal).
   [[nodiscard]] virtual std::vector<const EffectSpec*> candidates(const Recording& r) const = 0;

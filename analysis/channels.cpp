@@ -294,10 +294,58 @@ void as_estimated(const Recording& r, const std::vector<double>& rolled, double 
   }
 }
 
+// A recorded input's own measurement noise as the analysed rows carry it: white noise of the
+// size measured at the recording's own rate (second differences, before any filter), passed
+// through the same anti-alias filter and thinning as the recording (a fixed seed: the same
+// figure each run). What a structure makes of it is the errors-in-variables floor of its
+// residual (ChannelModel::input_noise_rms): the input's noise is not the output's to explain.
+struct AnalysedNoise {
+  std::vector<double> n;
+  std::size_t stride = 1, rows = 0;
+  double dt = 0.0;
+  [[nodiscard]] double at(std::size_t row) const { return n[row * stride]; }
+};
+AnalysedNoise analysed_input_noise(const Recording& r, const std::string& column, std::size_t end) {
+  AnalysedNoise out;
+  const auto measured = r.full_rate_noise.find(column);
+  const double sigma = measured != r.full_rate_noise.end()
+                           ? measured->second
+                           : white_noise_rms(r.at(column), std::min(end, r.size()));
+  out.stride = r.decimation_stride;
+  const std::size_t rows = std::min<std::size_t>(std::min(end, r.size()), 20000);
+  if (rows < 9 || sigma <= 0.0) return out;
+  out.rows = rows;
+  out.dt = (r.t[rows - 1] - r.t[0]) / static_cast<double>(rows - 1);
+  std::mt19937 rng(1);
+  std::normal_distribution<double> white(0.0, sigma);
+  out.n.resize(rows * out.stride);
+  for (double& v : out.n) v = white(rng);
+  if (out.stride > 1) {
+    const double rate = static_cast<double>(out.stride) / out.dt;
+    zero_phase_lowpass(out.n, anti_alias_cutoff_hz(1.0 / out.dt), rate);
+  }
+  return out;
+}
+
+// `always`, and a hard limit too where the output shows one: its largest value recorded
+// exactly, at the recording's own rate, on 20 rows or more. A saturating sensor records its limit
+// over and over; a loop that holds a force has its largest reading once, a noise peak (a limit
+// there clipped the noise and named a ceiling of 89.7 N on the field's clamp).
+std::vector<const EffectSpec*> with_flat_top(const Recording& r, const std::string& output,
+                                             std::initializer_list<EffectKind> always) {
+  std::vector<const EffectSpec*> out = specs(always);
+  const auto full_rate = r.full_rate_top_rows.find(output);
+  const std::size_t held =
+      full_rate != r.full_rate_top_rows.end() ? full_rate->second : rows_at_top(r.at(output));
+  if (held >= 20) out.push_back(&effect_spec(EffectKind::kSaturation));
+  return out;
+}
+
 class GroundChannel : public ChannelModel {
  public:
   std::string subsystem() const override { return "ground"; }
   std::string output() const override { return "v_wheel"; }
+  std::string law() const override { return "the soil wheel's speed estimate"; }
   std::string input() const override { return "v_ground"; }
   std::vector<std::string> needs() const override { return {"v_ground", "v_wheel"}; }
   std::vector<std::string> known_inputs() const override { return {"known_slip"}; }
@@ -309,6 +357,20 @@ class GroundChannel : public ChannelModel {
   std::vector<double> disturbance_gain(const Recording&, const std::vector<double>&,
                                        const std::vector<double>& prediction) const override {
     return prediction;
+  }
+  // The ground speed sensor's noise reaches v_wheel's prediction whole where the model shifts
+  // v_ground by the lag; the firmware's estimate from the counts averages the distance over a
+  // window of twice the lag, which keeps dt / (2 lag) of its variance.
+  double input_noise_rms(const Recording& r, const std::vector<double>& p,
+                         std::size_t end) const override {
+    const AnalysedNoise n = analysed_input_noise(r, "v_ground", end);
+    if (n.rows < 9) return 0.0;
+    double sum = 0.0;
+    for (std::size_t k = 0; k < n.rows; ++k) sum += n.at(k) * n.at(k);
+    double rms = std::sqrt(sum / static_cast<double>(n.rows));
+    const bool from_counts = r.has("wheel_counts") && r.decimation_stride == 1 && p[0] > 0.0;
+    if (from_counts) rms *= std::sqrt(std::min(1.0, n.dt / (2.0 * p[0])));
+    return rms;
   }
   // The encoder speed is an estimate over a window of edges: it lags the true speed by
   // about half the window. That lag is part of the measurement, not missing physics.
@@ -336,6 +398,7 @@ class DiscSpeedChannel : public ChannelModel {
  public:
   std::string subsystem() const override { return "disc drive"; }
   std::string output() const override { return "omega"; }
+  std::string law() const override { return "the disc drive's speed loop"; }
   std::string input() const override { return "omega_cmd"; }
   std::vector<std::string> needs() const override { return {"omega_cmd", "omega"}; }
   std::vector<ParamSpec> nominal_params() const override {
@@ -363,6 +426,7 @@ class DiscTorqueChannel : public ChannelModel {
  public:
   std::string subsystem() const override { return "disc drive"; }
   std::string output() const override { return "disc_torque"; }
+  std::string law() const override { return "the disc's inertia and damping"; }
   std::string input() const override { return "omega"; }
   std::vector<std::string> needs() const override { return {"omega", "disc_torque"}; }
   std::vector<ParamSpec> nominal_params() const override {
@@ -370,10 +434,12 @@ class DiscTorqueChannel : public ChannelModel {
   }
   // Stiction needs the speed command (the drive's effort while the disc is held).
   std::vector<const EffectSpec*> candidates(const Recording& r) const override {
-    return specs(r,
-                 {EffectKind::kCoulomb, EffectKind::kStribeck, EffectKind::kOffset,
-                  EffectKind::kPeriodic, EffectKind::kDelay},
-                 "omega_cmd", EffectKind::kStiction);
+    std::vector<const EffectSpec*> out =
+        with_flat_top(r, output(),
+                      {EffectKind::kCoulomb, EffectKind::kStribeck, EffectKind::kOffset,
+                       EffectKind::kPeriodic, EffectKind::kDelay});
+    if (r.has("omega_cmd")) out.push_back(&effect_spec(EffectKind::kStiction));
+    return out;
   }
   // At one steady speed the viscous term b omega is a constant: an offset trades with it unless
   // the disc is also recorded at rest.
@@ -388,29 +454,14 @@ class DiscTorqueChannel : public ChannelModel {
   // and thinning as the recording, then through that map (a fixed seed: the same figure each run).
   double input_noise_rms(const Recording& r, const std::vector<double>& p,
                          std::size_t end) const override {
-    const auto measured = r.full_rate_noise.find("omega");
-    const double sigma = measured != r.full_rate_noise.end()
-                             ? measured->second
-                             : white_noise_rms(r.at("omega"), std::min(end, r.size()));
-    const std::size_t stride = r.decimation_stride;
-    const std::size_t rows = std::min<std::size_t>(std::min(end, r.size()), 20000);
-    if (rows < 9 || sigma <= 0.0) return 0.0;
-    const double dt = (r.t[rows - 1] - r.t[0]) / static_cast<double>(rows - 1);
-    std::mt19937 rng(1);
-    std::normal_distribution<double> white(0.0, sigma);
-    std::vector<double> n(rows * stride);
-    for (double& v : n) v = white(rng);
-    if (stride > 1) {
-      const double rate = static_cast<double>(stride) / dt;
-      zero_phase_lowpass(n, anti_alias_cutoff_hz(1.0 / dt), rate);
-    }
+    const AnalysedNoise n = analysed_input_noise(r, "omega", end);
+    if (n.rows < 9) return 0.0;
     double sum = 0.0;
-    for (std::size_t k = 1; k + 1 < rows; ++k) {
-      const double e =
-          p[0] * (n[(k + 1) * stride] - n[(k - 1) * stride]) / (2.0 * dt) + p[1] * n[k * stride];
+    for (std::size_t k = 1; k + 1 < n.rows; ++k) {
+      const double e = p[0] * (n.at(k + 1) - n.at(k - 1)) / (2.0 * n.dt) + p[1] * n.at(k);
       sum += e * e;
     }
-    return std::sqrt(sum / static_cast<double>(rows - 2));
+    return std::sqrt(sum / static_cast<double>(n.rows - 2));
   }
   // d(omega)/dt by central differences over +-kHalf samples: wider windows smear the fast
   // torque transients of a drive whose loop is quicker than the thinned sampling.
@@ -490,6 +541,7 @@ class ClampChannel : public ChannelModel {
  public:
   std::string subsystem() const override { return "clamp"; }
   std::string output() const override { return "clamp_force"; }
+  std::string law() const override { return "the clamp law"; }
   std::string input() const override { return "clamp_pos_mm"; }
   std::string displacement() const override { return "clamp_pos_mm"; }
   std::vector<std::string> needs() const override { return {"clamp_pos_mm", "clamp_force"}; }
@@ -497,7 +549,7 @@ class ClampChannel : public ChannelModel {
   // A stem of thickness d in the nip moves the law's contact by d: the record exceeds the
   // prediction by dF/dx d = k n (x - x0)^(n-1) d.
   const DisturbanceSpec* disturbance(const Recording& r) const override {
-    static const DisturbanceSpec stems{"the stems' spread in the nip", "mm", 1.0};
+    static const DisturbanceSpec stems{"stems' spread in the nip", "mm", 1.0};
     return r.has("known_nip_mm") ? nullptr : &stems;
   }
   std::vector<double> disturbance_gain(const Recording& r, const std::vector<double>& p,
@@ -538,10 +590,11 @@ class ClampChannel : public ChannelModel {
   // n within 0.9-2.5: the format gives 1-1.5 from the DEM; a law much softer than linear
   // would be the fit bending to mimic creep. A sensor gain error is the same as a different
   // k_c: the nominal fit absorbs it.
-  std::vector<const EffectSpec*> candidates(const Recording&) const override {
-    return specs({EffectKind::kOffset, EffectKind::kDrift, EffectKind::kRelaxation,
-                  EffectKind::kRelaxation2, EffectKind::kHysteresis, EffectKind::kBacklash,
-                  EffectKind::kPeriodic, EffectKind::kQuantisation, EffectKind::kDelay});
+  std::vector<const EffectSpec*> candidates(const Recording& r) const override {
+    return with_flat_top(r, output(),
+                         {EffectKind::kOffset, EffectKind::kDrift, EffectKind::kRelaxation,
+                          EffectKind::kRelaxation2, EffectKind::kHysteresis, EffectKind::kBacklash,
+                          EffectKind::kPeriodic, EffectKind::kQuantisation, EffectKind::kDelay});
   }
   void simulate(const Recording& r, const std::vector<double>& p, const std::vector<Effect>& fx,
                 std::vector<double>& y) const override {
@@ -562,6 +615,7 @@ class DepthChannel : public ChannelModel {
  public:
   std::string subsystem() const override { return "depth"; }
   std::string output() const override { return "depth_mm"; }
+  std::string law() const override { return "the depth actuator's lag"; }
   std::string input() const override { return "depth_cmd_mm"; }
   std::vector<std::string> needs() const override { return {"depth_cmd_mm", "depth_mm"}; }
   std::vector<std::string> known_inputs() const override { return {"known_terrain_depth_mm"}; }
@@ -629,6 +683,7 @@ class DraftChannel : public ChannelModel {
  public:
   std::string subsystem() const override { return "depth"; }
   std::string output() const override { return "depth_force"; }
+  std::string law() const override { return "the draft law"; }
   std::string input() const override { return "depth_mm"; }
   std::vector<std::string> needs() const override { return {"depth_mm", "depth_force", "v_wheel"}; }
   std::vector<ParamSpec> nominal_params() const override {
@@ -642,9 +697,10 @@ class DraftChannel : public ChannelModel {
             {"mobilisation_mm", "mm", row.mobilisation_mm, 0.01, 1000.0},
             {"rest_relaxation_s", "s", row.rest_relaxation_s, 0.01, 3600.0}};
   }
-  std::vector<const EffectSpec*> candidates(const Recording&) const override {
-    return specs({EffectKind::kOffset, EffectKind::kPeriodic, EffectKind::kDelay,
-                  EffectKind::kQuantisation});
+  std::vector<const EffectSpec*> candidates(const Recording& r) const override {
+    return with_flat_top(r, output(),
+                         {EffectKind::kOffset, EffectKind::kPeriodic, EffectKind::kDelay,
+                          EffectKind::kQuantisation});
   }
   // The mobilisation travel and the relaxation time trade against each other and against the
   // draft's size (at a steady speed only K / (v tau) shows): starts a decade either side of

@@ -134,6 +134,7 @@ Recording decimated(const Recording& r, std::size_t stride, const std::vector<st
     } else {
       out.full_rate_noise.emplace(name, white_noise_rms(v, v.size()));
       out.full_rate_grid.emplace(name, value_grid(v));
+      out.full_rate_top_rows.emplace(name, rows_at_top(v));
       o = thinned_as_filtered(v, stride, rate);
       if (r.decimation_stride == 1 && std::find(travel.begin(), travel.end(), name) != travel.end())
         out.travel.emplace(name, v);

@@ -334,6 +334,7 @@ std::optional<DisturbanceFit> fit_disturbance(const DisturbanceSpec& spec,
   out.spec = &spec;
   const double lambda = std::exp(z[0]), zeta = std::exp(z[1]), q = std::exp(z[2]);
   out.zeta = zeta;
+  out.step_m = step_m;
   out.noise_rms = std::sqrt(best.r);
   out.periodic = zeta < 0.5;
   out.scale_m = out.periodic ? lambda : zeta * lambda / std::numbers::pi;  // 2 zeta / omega
@@ -367,7 +368,7 @@ std::optional<DisturbanceFit> fit_disturbance(const DisturbanceSpec& spec,
     const double stretches = std::max(1.0, row_m / std::max(out.scale_m, step_m));
     out.rms_sd = std::sqrt((4.0 * ms * var + 2.0 * var * var) / stretches) /
                  (2.0 * std::max(out.rms, 1e-300));
-    }
+  }
   std::vector<double> standardised;
   for (std::size_t k = x.skip; k < calibration_end; ++k)
     standardised.push_back(trace.nu[k] / std::sqrt(trace.s[k]));
@@ -411,8 +412,7 @@ void standardised_innovations(const DisturbanceFit& d, std::vector<double>& e) {
   }
   Trace trace;
   run_filter(x, cache.phi, omega, d.shape.q, n, &trace);
-  for (std::size_t k = 0; k < n; ++k)
-    e[k] = k < x.skip ? 0.0 : trace.nu[k] / std::sqrt(trace.s[k]);
+  for (std::size_t k = 0; k < n; ++k) e[k] = k < x.skip ? 0.0 : trace.nu[k] / std::sqrt(trace.s[k]);
   for (std::size_t k = n; k < e.size(); ++k) e[k] = 0.0;
 }
 

@@ -34,6 +34,7 @@ struct DisturbanceFit {
   // Along the row: the dominant wavelength (periodic) or the correlation length, and its SD.
   double scale_m = 0.0, scale_sd_m = 0.0;
   bool periodic = false;  // zeta under 0.5: a wavelength shows in its spectrum
+  double step_m = 0.0;    // the rows' median travel, what the rows resolve along the row
   double zeta = 0.0;
   double mean = 0.0;                // the constant part, as filtered at the last calibration row
   double noise_rms = 0.0;           // the white noise under it, sqrt(R)

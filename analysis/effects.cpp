@@ -245,6 +245,14 @@ void periodic(const OutputContext& c, const std::vector<double>& p, std::vector<
     y[k] += amplitude * std::sin(kTwoPi * p[1] * c.r.t[k] + p[2]);
 }
 
+// A hard limit on the output (a load cell's range, an amplifier's rail): the reading stops at
+// the limit however far the quantity goes on (the saturation nonlinearity of Slotine & Li,
+// ch. 5). Only the upper one: the machine's loads push one way.
+void saturation(const OutputContext&, const std::vector<double>& p, std::vector<double>& y) {
+  if (p[0] <= 0.0) return;
+  for (auto& v : y) v = std::min(v, p[0]);
+}
+
 void quantisation(const OutputContext&, const std::vector<double>& p, std::vector<double>& y) {
   if (p[0] <= 0.0) return;
   for (auto& v : y) v = p[0] * std::round(v / p[0]);
@@ -408,6 +416,20 @@ const std::vector<EffectSpec>& library() {
          .start = periodic_start,
          .separating_experiment =
              "a run at another engine or disc speed: a vibration moves with its source"});
+    add({.kind = EffectKind::kSaturation,
+         .name = "hard limit of the output (saturation)",
+         .signature = "a flat top where the output would go on rising",
+         // On a grid up to the largest recorded value: a sensor that saturates records its
+         // limit, and no more.
+         .params = {{"limit", "output units", 0.0, 0.0, 0.0, true}},
+         .on_output = saturation,
+         .grid_upper =
+             [](double, double, const std::vector<double>& y) {
+               return y.empty() ? 0.0 : *std::max_element(y.begin(), y.end());
+             },
+         .separating_experiment = "a load beyond the limit read by a second sensor: the "
+                                  "saturating one stays flat while the other rises",
+         .size_param = -1});
     add({.kind = EffectKind::kQuantisation,
          .name = "quantisation",
          .signature = "a staircase residual, uniform within a step",

@@ -104,6 +104,20 @@ nlohmann::json disturbance_json(const DisturbanceFit& d) {
 
 }  // namespace
 
+std::string not_exercised(const ChannelReport& c) {
+  std::string out;
+  const std::vector<ParamSpec> specs = c.channel->nominal_params();
+  for (std::size_t k = 0; k < c.final_fit.nominal_exercised.size() && k < specs.size(); ++k) {
+    if (c.final_fit.nominal_exercised[k]) continue;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s%s (at %.4g %s)", out.empty() ? "" : ", ",
+                  specs[k].name.c_str(), c.final_fit.nominal[k],
+                  concrete_unit(specs[k].unit, *c.channel).c_str());
+    out += buf;
+  }
+  return out;
+}
+
 double held_out_after(const ChannelReport& c) {
   return c.disturbance ? c.disturbance->rms_held_out : c.final_fit.rms_held_out;
 }
@@ -167,9 +181,11 @@ std::string fit_json(const FitReport& r, double wall_s) {
                                 c.nominal.nominal_sd, *c.channel);
     ch["noise_rms"] = c.noise_rms;
     ch["resolution_rms"] = c.resolution_rms;
+    if (c.logged_step > 0.0) ch["recorded_in_steps_of"] = c.logged_step;
     ch["input_noise_rms"] = c.input_noise_rms;
     ch["held_out_prediction_sd"] = c.final_fit.held_out_prediction_sd;
     if (!c.undetermined.empty()) ch["undetermined"] = c.undetermined;
+    if (!c.degenerate.empty()) ch["degenerate"] = c.degenerate;
     if (c.disturbance) ch["disturbance"] = disturbance_json(*c.disturbance);
     if (!c.beside_disturbance.empty()) ch["beside_disturbance"] = c.beside_disturbance;
     ch["held_out_rms"] = {{"nominal", c.nominal.rms_held_out},
@@ -182,6 +198,12 @@ std::string fit_json(const FitReport& r, double wall_s) {
       ch["effects"].push_back(fast_tone_json(f, *c.channel, r.analysed_up_to_hz));
     ch["augmented_nominal"] = params_json(c.channel->nominal_params(), c.final_fit.nominal,
                                           c.final_fit.nominal_sd, *c.channel);
+    // A parameter the rows never exercised is not fitted: no SD, and said (issue 52).
+    for (std::size_t k = 0; k < c.final_fit.nominal_exercised.size(); ++k) {
+      if (c.final_fit.nominal_exercised[k] || k >= ch["augmented_nominal"].size()) continue;
+      ch["augmented_nominal"][k]["exercised"] = false;
+      ch["augmented_nominal"][k].erase("sd");
+    }
     if (c.change) {
       nlohmann::json moved = nlohmann::json::array();
       for (const auto& m : c.change->changed)
@@ -378,6 +400,14 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
         << c.disturbance->predicted_held_out << ")</p>";
     for (const std::string& note : c.beside_disturbance)
       h << "<p>" << report::html_escape(note) << "</p>";
+    if (!c.degenerate.empty()) h << "<p><b>" << report::html_escape(c.degenerate) << "</b></p>";
+    if (const std::string idle = not_exercised(c); !idle.empty())
+      h << "<p>Not exercised by this recording, so not fitted: " << report::html_escape(idle)
+        << ".</p>";
+    if (c.logged_step > 0.0)
+      h << "<p>" << c.channel->output() << " is recorded in steps of " << c.logged_step
+        << ": their rounding, " << c.resolution_rms
+        << " RMS, is the floor no model matches closer than.</p>";
     if (r.day) {
       const ChannelDay& d = r.day->channels[static_cast<std::size_t>(&c - r.channels.data())];
       h << "<p><b>Across " << r.day->windows << " windows of " << r.day->window_s

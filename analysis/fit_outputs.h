@@ -17,6 +17,9 @@ std::string fit_json(const FitReport& r, double wall_s);
 // The held-out RMS the channel's final model leaves: its one-step predictions beside a named
 // disturbance, else its free-run prediction's.
 double held_out_after(const ChannelReport& c);
+// The nominal parameters no fitted row exercised, with the values they were left at
+// ("omega_max (at 0.511 rad/s)"), or "".
+std::string not_exercised(const ChannelReport& c);
 std::string effect_text(const ChannelReport& report, std::size_t effect);
 std::string fit_model_toml(const FitReport& r);
 std::string fit_report_html(const FitReport& r, const Recording& rec);

@@ -155,6 +155,28 @@ double output_resolution_rms(const Recording& r, const std::string& output) {
   return resolution_rms(it != r.full_rate_grid.end() ? it->second : value_grid(r.at(output)));
 }
 
+// "the clamp law undetermined: k_c = 1.15 +- 233 N/mm^n, x0 = -13 +- 625 mm; ..." where the
+// fit's nominal parameters are spread over a quarter of their range or more, or a positive one
+// over its own value; "" where none is.
+std::string degenerate_nominal(const ChannelModel& ch, const ChannelFit& fit) {
+  const std::vector<ParamSpec> specs = ch.nominal_params();
+  std::string list;
+  for (std::size_t k = 0; k < specs.size() && k < fit.nominal_sd.size(); ++k) {
+    const ParamSpec& p = specs[k];
+    const double sd = fit.nominal_sd[k], v = fit.nominal[k];
+    if (p.grid || p.of_output_size || !(sd > 0.0)) continue;
+    const bool wide = p.upper > p.lower && sd >= 0.25 * (p.upper - p.lower);
+    if (!wide && !(p.lower >= 0.0 && sd >= std::abs(v))) continue;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s%s = %.4g +- %.3g %s", list.empty() ? "" : ", ",
+                  p.name.c_str(), v, sd, p.unit.c_str());
+    list += buf;
+  }
+  if (list.empty()) return "";
+  return ch.law() + " undetermined: " + list + "; the recording does not move " + ch.input() +
+         " over enough of its range to fix it";
+}
+
 ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const FitOptions& o,
                               const Split& split) {
   ChannelReport rep;
@@ -165,6 +187,14 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
   // a transport delay that bent the fit around a steady value's rounding; issue 32).
   rep.resolution_rms = output_resolution_rms(r, ch.output());
   rep.noise_rms = std::max(white_noise_rms(y, split.calibration_end), rep.resolution_rms);
+  {
+    const auto full_noise = r.full_rate_noise.find(ch.output());
+    const double white = full_noise != r.full_rate_noise.end()
+                             ? full_noise->second
+                             : white_noise_rms(y, split.calibration_end);
+    if (rep.resolution_rms > 0.0 && rep.resolution_rms >= white)
+      rep.logged_step = rep.resolution_rms * std::sqrt(12.0);
+  }
   // A model given with --model: its values start the fit and its effects are already known;
   // the search is for what is missing beyond them.
   const ModelChannel* given = nullptr;
@@ -381,9 +411,6 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
       order_prony_terms(rep.final_fit.effects, rep.final_fit.effect_sd);
     }
   }
-  // A field log's unmeasured disturbance (terrain, slip, the stems in the nip), where the
-  // recording lacks its column: named as a process along the row, the effects judged beside it.
-  name_disturbance(rep, r, split, o);
   // What is left is unexplained when it is well above the measurement noise, structured
   // (not white), and a real share of the output's size in the held-out part: half a percent
   // of its RMS (below that it is a numerical detail of the model, not physics to act on).
@@ -428,8 +455,11 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     return result;
   };
   rep.unexplained = unexplained();
-  // What is left may be one parameter that changed during the recording.
-  if (rep.unexplained) {
+  rep.degenerate = degenerate_nominal(ch, rep.final_fit);
+  // What is left may be one parameter that changed during the recording: sought where the
+  // residual is unexplained, and where the parameters' spread covers it (a clamp law made
+  // degenerate by a stiffness that changed mid-run covers a residual 12 times the noise).
+  if (rep.unexplained || !rep.undetermined.empty() || !rep.degenerate.empty()) {
     if (std::optional<ChangePoint> cp =
             find_change_point(ch, r, split, rep.final_fit, rep.noise_rms)) {
       const double noise2 = rep.noise_rms * rep.noise_rms;
@@ -453,7 +483,19 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
             rep.noise_rms,
             white_noise_rms(residual_of(rep.final_fit.prediction, y), split.calibration_end));
         rep.unexplained = unexplained();
+        rep.degenerate = degenerate_nominal(ch, rep.final_fit);
       }
+    }
+  }
+  // A field log's unmeasured disturbance (terrain, slip, the stems in the nip), where the
+  // recording lacks its column: named as a process along the row, the effects judged beside it.
+  // Not beside a change: a step in a parameter is no stationary process, and was sought first.
+  if (!rep.change) {
+    name_disturbance(rep, r, split, o);
+    if (rep.disturbance) {
+      rep.noise_rms = noise_under(rep.final_fit.prediction);
+      rep.input_noise_rms = ch.input_noise_rms(r, rep.final_fit.nominal, split.calibration_end);
+      rep.unexplained = unexplained();
     }
   }
   // A value that ended at an edge of its range: the nominal's, or a named effect's (its bounds

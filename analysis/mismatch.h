@@ -65,6 +65,10 @@ struct ChannelReport {
   double noise_rms = 0.0;  // white measurement noise: second differences of the final residual
   // What the output's resolution alone leaves, step / sqrt(12): the floor of noise_rms.
   double resolution_rms = 0.0;
+  // The step the output is recorded in, where its rounding sets the floor rather than its noise
+  // (resolution_rms at least the white noise at the recording's own rate): a coarse log's steps
+  // are named as such, not measured as noise (issue 52). 0 otherwise.
+  double logged_step = 0.0;
   // What the measured input's noise makes in the residual through the final fit's nominal
   // (ChannelModel::input_noise_rms); "unexplained" must stand above both.
   double input_noise_rms = 0.0;
@@ -72,6 +76,10 @@ struct ChannelReport {
   // parameters' uncertainty gives the held-out prediction: the parameter that contributes most,
   // which this recording's calibration part does not determine.
   std::string undetermined;
+  // Set when the final fit's nominal is degenerate: parameters whose SD is a quarter of their
+  // range or more, or as large as a positive one's value (a clamp law fitted at one held force:
+  // k_c 1.15 +- 233): "the clamp law undetermined: ...". It sends the change-point search too.
+  std::string degenerate;
   Location location;
   std::vector<Candidate> ranked;  // single effects, best BIC first
   std::vector<Candidate> chosen;  // accepted (one or two)

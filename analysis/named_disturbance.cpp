@@ -34,6 +34,15 @@ std::string rejection(const DisturbanceFit& d, double held_out_rms, const FitOpt
                   d.rms_sd);
     return buf;
   }
+  // A process shorter than a row's travel is white noise to these rows, not a process along
+  // the row (a noisy ground speed read as a slip 2 mm long).
+  if (d.scale_m < d.step_m) {
+    std::snprintf(buf, sizeof buf,
+                  "its scale along the row, %.3g m, is under a row's travel (%.3g m): noise, "
+                  "not a process the rows resolve",
+                  d.scale_m, d.step_m);
+    return buf;
+  }
   const double gain = held_out_rms > 0.0 ? 1.0 - d.rms_held_out / held_out_rms : 0.0;
   if (gain < o.min_improvement) {
     std::snprintf(buf, sizeof buf,
@@ -80,6 +89,11 @@ void name_disturbance(ChannelReport& c, const Recording& r, const Split& split,
   const ChannelModel& ch = *c.channel;
   const DisturbanceSpec* spec = ch.disturbance(r);
   if (spec == nullptr) return;
+  // Sought only where the nominal leaves more than the noise and the input's noise make (by
+  // the factor a residual must exceed them to be unexplained): a noisy ground speed is no slip.
+  const double floor =
+      std::hypot(c.noise_rms, ch.input_noise_rms(r, c.nominal.nominal, split.calibration_end));
+  if (!(c.nominal.rms_held_out > 3.0 * floor)) return;
   const std::vector<double> s_m = distance_travelled(r);
   std::optional<DisturbanceFit> d = fitted_beside(ch, *spec, r, s_m, split, c.final_fit);
   if (!d) return;
@@ -100,11 +114,12 @@ void name_disturbance(ChannelReport& c, const Recording& r, const Split& split,
         dw && dw->rms_held_out > 0.0 ? 1.0 - d->rms_held_out / dw->rms_held_out : 1.0;
     if (gain >= o.min_improvement) continue;
     char buf[320];
-    std::snprintf(buf, sizeof buf,
-                  "%s left out: beside the %s it lowers the held-out one-step RMS by %.1f %% "
-                  "(%.4g -> %.4g); %.0f %% is required",
-                  name.c_str(), spec->name.c_str(), 100.0 * gain, dw->rms_held_out, d->rms_held_out,
-                  100.0 * o.min_improvement);
+    std::snprintf(
+        buf, sizeof buf,
+        "%s left out: beside the process (%s) it lowers the held-out one-step RMS by %.1f %% "
+        "(%.4g -> %.4g); %.0f %% is required",
+        name.c_str(), spec->name.c_str(), 100.0 * gain, dw->rms_held_out, d->rms_held_out,
+        100.0 * o.min_improvement);
     c.beside_disturbance.emplace_back(buf);
     std::erase_if(c.chosen, [&](const Candidate& k) { return k.effect == name; });
     std::erase_if(c.ties, [&](const Tie& t) { return t.chosen == name; });

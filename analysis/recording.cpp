@@ -132,6 +132,7 @@ Recording without_rows(const Recording& r) {
   out.decimation_stride = r.decimation_stride;
   out.full_rate_noise = r.full_rate_noise;
   out.full_rate_grid = r.full_rate_grid;
+  out.full_rate_top_rows = r.full_rate_top_rows;
   return out;
 }
 

@@ -39,6 +39,9 @@ struct Recording {
   // Each low-pass filtered column's value grid (a quantised sensor's step: value_grid()), found
   // before decimation: the filtered averages fill the grid in.
   std::map<std::string, double> full_rate_grid;
+  // Each low-pass filtered column's count of rows holding its largest value exactly, before the
+  // filter rings at a flat top's edges: a saturating sensor records its limit over and over.
+  std::map<std::string, std::size_t> full_rate_top_rows;
   // A thinned recording's displacement columns (a channel's displacement()) at the recording's
   // own rate, unfiltered: decimation_stride rows for each row here. A rate-independent effect
   // runs on this path and is then filtered and thinned as the recorded output was

@@ -49,6 +49,13 @@ inline double value_grid(const std::vector<double>& y) {
   return gaps[gaps.size() / 2];
 }
 
+// How many of y's values are exactly its largest.
+inline std::size_t rows_at_top(const std::vector<double>& y) {
+  if (y.empty()) return 0;
+  const double top = *std::max_element(y.begin(), y.end());
+  return static_cast<std::size_t>(std::count(y.begin(), y.end(), top));
+}
+
 // The RMS error a sensor's resolution alone leaves: rounding to a step q is an error spread
 // evenly over +-q/2, of standard deviation q / sqrt(12) (the resolution of a digital
 // indication, JCGM 100:2008 "GUM", F.2.2.1). No model matches a recording closer than that,

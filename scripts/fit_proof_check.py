@@ -1,14 +1,47 @@
 #!/usr/bin/python3
 """Checks one planter-fit verdict against the effect hidden in the recording.
 
-Usage: fit_proof_check.py FIT_JSON CASE EXPECT [COVERAGE_OUT]
+Usage: fit_proof_check.py FIT_JSON CASE EXPECT [COVERAGE_OUT [RECORDING]]
 EXPECT is "clean", "unexplained:OUTPUT" or "channel:effect name:param=value[,param=value]" items joined by ";".
+An item may also be "OUTPUT:disturbance:COLUMN[*SCALE]": a disturbance named on OUTPUT whose RMS
+is the SD of RECORDING's COLUMN (times SCALE) over the rows the fit calibrated on; or
+"OUTPUT:steps:step=V": OUTPUT said to be recorded in steps of V (within 1 %), a property of the
+log, not physics.
 Prints one line: PASS or FAIL, the case, and what was found. Exit 0 on PASS, 1 on FAIL.
 COVERAGE_OUT, if given, gets one line per hidden parameter found: whether the stated interval
 (+-1.96 SD; a grid parameter's resolution) holds the hidden value (issue 32, item 5).
 """
+import csv
 import json
+import math
 import sys
+
+
+def column_sd(path, column, until_s):
+    values = []
+    with open(path) as f:
+        for row in csv.DictReader(line for line in f if not line.startswith("#")):
+            if float(row["t"]) < until_s:
+                values.append(float(row[column]))
+    mean = sum(values) / len(values)
+    return math.sqrt(sum((v - mean) ** 2 for v in values) / len(values))
+
+
+def check_disturbance(ch, params, fit, problems, coverage):
+    """A disturbance named on the channel with the dropped column's size: within 20 % to pass,
+    and whether its stated 95 % interval holds the truth is counted as coverage."""
+    d = ch.get("disturbance")
+    if d is None:
+        problems.append("%s: no disturbance named (%s)" % (ch["output"], ch["verdict"]))
+        return
+    if ch["effects"]:
+        problems.append("%s: named %s beside it" % (
+            ch["output"], ", ".join(e["effect"] for e in ch["effects"])))
+    column, _, scale = params.partition("*")
+    truth = float(scale or 1.0) * column_sd(sys.argv[5], column, fit["held_out_from_s"])
+    if abs(d["rms"] - truth) > 0.2 * truth:
+        problems.append("%s RMS %.4g, dropped %s %.4g" % (d["name"], d["rms"], column, truth))
+    coverage.append((d["name"] + " RMS", abs(d["rms"] - truth) <= 1.96 * d["rms_sd"], False))
 
 
 def main():
@@ -17,6 +50,9 @@ def main():
     found = []
     by_output = {c["output"]: c for c in fit["channels"]}
     named = {"%s:%s" % (c["output"], e["effect"]) for c in fit["channels"] for e in c["effects"]}
+    for c in fit["channels"]:
+        if c.get("disturbance"):
+            found.append("%s:disturbance" % c["output"])
     for c in fit["channels"]:
         for e in c["effects"]:
             # An effect that is another named effect seen from this channel is that effect's,
@@ -73,6 +109,17 @@ def main():
             ch = by_output.get(output)
             if ch is None:
                 problems.append("%s not analysed" % output)
+                continue
+            if name == "disturbance":
+                check_disturbance(ch, params, fit, problems, coverage)
+                continue
+            if name == "steps":
+                want = float(params.split("=")[1])
+                got = ch.get("recorded_in_steps_of")
+                if got is None or abs(got - want) > 0.01 * want:
+                    problems.append("%s: recorded in steps of %s, logged %g" % (output, got, want))
+                else:
+                    found.append("%s:steps" % output)
                 continue
             effect = next((e for e in ch["effects"] if e["effect"] == name), None)
             if effect is None:

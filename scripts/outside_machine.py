@@ -13,7 +13,8 @@ with options.
 Usage: outside_machine.py OUT.csv [--noise K] [--seed N] [--relaxation FRAC TAU_S]
        [--command-delay S] [--coulomb NM] [--force-offset N] [--vibration HZ AMP_N]
        [--hysteresis H_N DELTA_MM] [--draw-nominal SEED] [--instant-draft]
-       [--depth-play GAP_MM low|high] [--clamp-scale S]
+       [--depth-play GAP_MM low|high] [--clamp-scale S] [--ground-noise MPS]
+       [--force-limit N] [--omega-step RADPS] [--stiffer-at T_S RATIO] [--disc-only]
 --noise scales every channel's measurement noise (1: the reference levels).
 --draw-nominal draws every nominal value uniformly across a range around this file's own (the
   ranges are in DRAWN below; the depth exponent across the 1-2 a soil's D497 exponent spans).
@@ -23,6 +24,13 @@ Usage: outside_machine.py OUT.csv [--noise K] [--seed N] [--relaxation FRAC TAU_
   the opener's), powered up against one end of the gap, as a gear train is.
 --clamp-scale multiplies the clamp's stiffness and its load cell's noise (a larger press), so a
   hysteresis of kilonewtons keeps its share of the channel's range.
+--ground-noise: the ground speed sensor's (v_ground's) noise, m/s (an input the ground channel
+  reads; the reference is NOISE["v"]).
+--force-limit: the load cell reads no more than N (a hard limit on an output).
+--omega-step: the disc speed is logged in steps of RADPS (a coarse speed log).
+--stiffer-at: the clamp is RATIO times as stiff from T_S on (a new seedling batch).
+--disc-only: only t, omega_cmd and omega are written (a clean first-order system, as a log of
+  another machine's speed loop would be).
 """
 import argparse
 import math
@@ -42,6 +50,11 @@ p.add_argument("--draw-nominal", type=int, default=None)
 p.add_argument("--instant-draft", action="store_true")
 p.add_argument("--depth-play", nargs=2, default=None)
 p.add_argument("--clamp-scale", type=float, default=1.0)
+p.add_argument("--ground-noise", type=float, default=None)
+p.add_argument("--force-limit", type=float, default=None)
+p.add_argument("--omega-step", type=float, default=None)
+p.add_argument("--stiffer-at", type=float, nargs=2, default=None)
+p.add_argument("--disc-only", action="store_true")
 a = p.parse_args()
 rng = random.Random(a.seed)
 
@@ -132,13 +145,21 @@ def derivatives(t, y):
     dw = (target - w) / T_D
     dd = max(-R_MAX, min(R_MAX, (depth_command(t) - d) / T_A))
     dx = max(-40.0, min(40.0, (clamp_target(t) - x) / 0.01))
-    elastic = K_C * max(0.0, x - X0) ** N_EXP
+    elastic = clamp_k(t) * max(0.0, x - X0) ** N_EXP
     frac, tau = a.relaxation
     dr = (frac * elastic - relaxed) / tau if frac > 0 else 0.0
     delta = a.hysteresis[1]
     dz = (dx - 0.5 * abs(dx) * z - 0.5 * dx * abs(z)) / delta
     dshare = 0.0 if a.instant_draft else ground_speed(t) * (1.0 - share) / K_MOB - share / TAU_REST
     return [dw, dd, dr, dx, dz, dshare]
+
+
+def clamp_k(t):
+    return K_C * (a.stiffer_at[1] if a.stiffer_at and t >= a.stiffer_at[0] else 1.0)
+
+
+def logged_omega(w):
+    return round(w / a.omega_step) * a.omega_step if a.omega_step else w
 
 
 def opener(d):
@@ -152,33 +173,38 @@ def opener(d):
 
 columns = ["t", "v_ground", "v_wheel", "omega_cmd", "omega", "disc_torque", "clamp_pos_mm",
            "clamp_force", "depth_cmd_mm", "depth_mm", "depth_force"]
+written = [columns.index(c) for c in (["t", "omega_cmd", "omega"] if a.disc_only else columns)]
 t, y = 0.0, [0.0, 60.0, 0.0, 0.0, 0.0, 0.0]
 opener_at = 60.0 + (0.5 * PLAY if a.depth_play and a.depth_play[1] == "high" else -0.5 * PLAY)
 next_sample = 0.0
 noise = {k: v * a.noise for k, v in NOISE.items()}
+ground_noise = noise["v"] if a.ground_noise is None else a.ground_noise
 with open(a.out, "w") as out:
     out.write("# source: outside_machine.py (a second generator, not planter-sim)\n")
-    out.write(",".join(columns) + "\n")
+    out.write(",".join(columns[i] for i in written) + "\n")
     while t < DURATION:
         if t >= next_sample:
             w, d, relaxed, x, z, share = y
             dw = derivatives(t, y)[0]
             v = ground_speed(t)
             dry = a.coulomb * math.tanh(w / 1e-3)
-            elastic = K_C * max(0.0, x - X0) ** N_EXP
+            elastic = clamp_k(t) * max(0.0, x - X0) ** N_EXP
             force = max(0.0, elastic - relaxed) + a.hysteresis[0] * z + a.force_offset + \
                 a.vibration[1] * math.sin(2 * math.pi * a.vibration[0] * t)
+            read = force + rng.gauss(0, noise["f"])
+            if a.force_limit is not None:
+                read = min(read, a.force_limit)
             s_kmh = 3.6 * max(0.0, v)
             if a.instant_draft:
                 share = 1.0 if v > 0.0 else 0.0
             d = opener(d)
             draft = F_TEX * (A_D + B_D * s_kmh) * 10.0 * (max(0.0, d) / 100.0) ** M_D * share
-            row = [t, v + rng.gauss(0, noise["v"]), wheel_speed(t),
-                   omega_command(t), w + rng.gauss(0, noise["w"]),
+            row = [t, v + rng.gauss(0, ground_noise), wheel_speed(t),
+                   omega_command(t), logged_omega(w + rng.gauss(0, noise["w"])),
                    J * dw + B * w + dry + rng.gauss(0, noise["q"]), x,
-                   force + rng.gauss(0, noise["f"]), depth_command(t), d + rng.gauss(0, noise["d"]),
+                   read, depth_command(t), d + rng.gauss(0, noise["d"]),
                    draft + rng.gauss(0, noise["df"])]
-            out.write(",".join("%.6g" % x if i else "%.4f" % x for i, x in enumerate(row)) + "\n")
+            out.write(",".join("%.6g" % row[i] if i else "%.4f" % row[i] for i in written) + "\n")
             next_sample += 0.01 + rng.uniform(-0.001, 0.001)
         y = rk4(derivatives, y, t, DT)
         t += DT

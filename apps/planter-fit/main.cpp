@@ -64,12 +64,22 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
     std::printf("\n");
   }
   for (const auto& c : r.channels) {
-    std::printf("%-10s %-12s %-26s held-out RMS %.4g -> %.4g%s (noise %.3g)\n",
+    std::printf("%-10s %-12s %-26s held-out RMS %.4g -> %.4g%s (noise %.3g",
                 c.channel->subsystem().c_str(), c.channel->output().c_str(), c.verdict.c_str(),
                 c.nominal.rms_held_out, held_out_after(c), c.disturbance ? " one step ahead" : "",
                 c.noise_rms);
+    if (c.input_noise_rms > 0.0) std::printf(", from the input's noise %.3g", c.input_noise_rms);
+    std::printf(")\n");
     for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
       std::printf("    %s\n", effect_text(c, e).c_str());
+    if (!c.degenerate.empty()) std::printf("    %s\n", c.degenerate.c_str());
+    if (const std::string idle = not_exercised(c); !idle.empty())
+      std::printf("    not exercised by this recording, so not fitted: %s\n", idle.c_str());
+    if (c.logged_step > 0.0)
+      std::printf(
+          "    %s is recorded in steps of %.3g: their rounding, %.3g RMS, is the floor no "
+          "model matches closer than (not noise, not a mismatch)\n",
+          c.channel->output().c_str(), c.logged_step, c.resolution_rms);
     if (c.disturbance)
       std::printf("    %s (the process gives its one-step predictions a held-out RMS of %.3g)\n",
                   c.disturbance->describe().c_str(), c.disturbance->predicted_held_out);

@@ -254,6 +254,16 @@ ChannelReport analyse_channel(const ChannelModel& ch, const Recording& r, const 
     const double before2 = base.rms_calibration * base.rms_calibration;
     const double after2 = c.fit.rms_calibration * c.fit.rms_calibration;
     c.explained = before2 > noise2 ? (before2 - after2) / (before2 - noise2) : 0.0;
+    c.credited_rms = std::sqrt(std::max(0.0, before2 - after2));
+    // Without what the candidate adds to its base (one effect, or a pair judged together).
+    std::vector<Effect> without = c.fit.effects;
+    std::erase_if(without, [&](const Effect& added) {
+      return std::none_of(base.effects.begin(), base.effects.end(),
+                          [&](const Effect& b) { return b.spec == added.spec; });
+    });
+    std::vector<double> alone;
+    ch.simulate(r, c.fit.nominal, without, alone);
+    c.own_rms = rms_between(c.fit.prediction, alone, 0, split.calibration_end);
   };
   // What a candidate is judged against: the noise under a base fit (from its residual, so that
   // an effect already modelled, a vibration near the thinned Nyquist rate, no longer counts as
@@ -618,6 +628,13 @@ std::string rejection(const Candidate& c, const FitOptions& o) {
                   100.0 * c.explained, 100.0 * o.min_explained);
     return buf;
   }
+  if (c.credited_rms > 0.0 && c.own_rms < 0.5 * c.credited_rms) {
+    std::snprintf(buf, sizeof buf,
+                  "its own part of the fit, %.3g RMS, is under half of what it is credited with "
+                  "(%.3g): the nominal refitted beside it took the rest",
+                  c.own_rms, c.credited_rms);
+    return buf;
+  }
   if (c.cv_improvement < o.min_improvement && c.held_out_improvement < o.min_improvement) {
     std::snprintf(buf, sizeof buf,
                   "improves the best fold by %.1f %% and the held-out part by %.1f %%; %.0f %% "
@@ -675,6 +692,21 @@ void leave_out(std::vector<std::size_t> out, ChannelReport& c, const Recording& 
     c.verdict = c.unexplained ? "unexplained residual" : "no significant mismatch";
 }
 
+// A delay is read no closer than a row of the rows it was read on: the channels hold each row's
+// command over the next interval (a zero-order hold), so the fitted delay carries that timing,
+// short by up to a row (the outside generator's 0.2 s read 0.1927 s at 100 Hz, 0.1855 s on the
+// thinned rows; its grid's +- was 0.002). Its stated SD is at least that row (issue 52: an
+// interval includes the known biases).
+void widen_delay_by_row(ChannelReport& c, const Recording& rows_read) {
+  const std::size_t n = rows_read.size();
+  if (n < 2) return;
+  const double row_s = (rows_read.t[n - 1] - rows_read.t[0]) / static_cast<double>(n - 1);
+  auto& fx = c.final_fit.effects;
+  for (std::size_t e = 0; e < fx.size() && e < c.final_fit.effect_sd.size(); ++e)
+    if (fx[e].spec->kind == EffectKind::kDelay && !c.final_fit.effect_sd[e].empty())
+      c.final_fit.effect_sd[e][0] = std::max(c.final_fit.effect_sd[e][0], row_s);
+}
+
 // A transport delay found on decimated rows is a time-resolution parameter: the decimation's
 // own timing (a command averaged over each kept row's interval, decimation.h) can read as a
 // few milliseconds of delay. It is refined at the recording's own rate: the channel is fitted
@@ -709,6 +741,12 @@ void refine_delay_at_full_rate(ChannelReport& c, const Recording& r, std::size_t
   char note[260];
   if (improvement >= o.min_improvement) {
     it->values[0] = refined;
+    // Its resolution as the full-rate fit reached it, then at least a row of the full rate.
+    for (std::size_t e = 0; e < with_fit.effects.size() && e < with_fit.effect_sd.size(); ++e)
+      if (with_fit.effects[e].spec->kind == EffectKind::kDelay &&
+          index < c.final_fit.effect_sd.size())
+        c.final_fit.effect_sd[index] = with_fit.effect_sd[e];
+    widen_delay_by_row(c, r);
     std::snprintf(note, sizeof note,
                   "transport delay refined at the full rate: %.4g s (decimated rows: %.4g s); "
                   "full-rate held-out RMS %.4g without it, %.4g with it",
@@ -1045,6 +1083,7 @@ FitReport analyse(const Recording& whole, const FitOptions& o) {
         std::lower_bound(at_rate.t.begin(), at_rate.t.end(), rep.held_out_from_s) -
         at_rate.t.begin());
     for (auto& c : rep.channels) {
+      widen_delay_by_row(c, r);  // as read on the thinned rows, unless refined below
       refine_delay_at_full_rate(c, at_rate, held_out, r, rep.split.calibration_end, o);
       const std::optional<ChannelFit> confirmed =
           confirm_at_full_rate(c, at_rate, held_out, r, rep.split.calibration_end);
@@ -1071,6 +1110,8 @@ FitReport analyse(const Recording& whole, const FitOptions& o) {
             c.unexplained ? "effect(s) found; a residual is still unexplained" : "effect(s) found";
     }
   }
+  if (!decimated)
+    for (auto& c : rep.channels) widen_delay_by_row(c, r);
   for (auto& c : rep.channels) judge_friction_hold(c);
   judge_speed_loop_deficit(rep);
   return rep;

@@ -41,6 +41,13 @@ struct Candidate {
   double held_out_improvement = 0.0;  // 1 - rms_after / rms_before on the held-out part
   double cv_improvement = 0.0;        // blocked cross-validation: the best of 3 folds (or a loss)
   double explained = 0.0;  // share of the calibration residual beyond noise it accounts for
+  // The effect's own part of the fit (issue 52): the RMS over the calibration rows of the
+  // prediction less the same fit's prediction without it, every other value held; and the
+  // RMS it is credited with, sqrt(base's mean square less the fit's). A nominal that refitted
+  // better beside the effect gives the effect credit it has not earned (a quantisation step of
+  // 0.00046 N against 3.46 N of noise "explained" 70 %): its own part must be half the credit.
+  double own_rms = 0.0;
+  double credited_rms = 0.0;
   // Non-empty when the recording cannot tell this effect from the nominal's own parameters:
   // why, and the experiment that would (rejection() returns it first).
   std::string not_separable;

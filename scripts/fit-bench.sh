@@ -3,8 +3,9 @@
 # channel, against a 10-minute excerpt holding the same effect. Both come from planter-sim's
 # clean base scenario (scripts/fit-base-scenario.sh) with clamp relaxation (0.3, 3 s) hidden;
 # the day repeats 10-minute runs, its second half from a run whose clamp is 40 % stiffer (a new
-# seedling batch at 5 h). Prints both summaries, whether their verdicts agree, and last the
-# wall time and peak RSS of the day (goals: under 60 s, under 1 GB).
+# seedling batch at 5 h). Prints the CPU per recording of a sample of the blind proof's (above),
+# both summaries, whether their verdicts agree, and last the wall time and peak RSS of the day
+# (goals: under 60 s, under 1 GB).
 # Usage: scripts/fit-bench.sh BUILD_DIR
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -15,6 +16,13 @@ source "$root/scripts/fit-base-scenario.sh"
 sim=$build/apps/planter-sim/planter-sim
 fit=$build/apps/planter-fit/planter-fit
 rows=60000  # 10 minutes at 100 Hz: one copy, and planter-fit's window
+# CPU per 10-minute recording on one core, as a distribution (issue 52, goal under 30 s): over
+# a sample of the blind proof's recordings (every third) and the field run as a field log, when
+# the proof has run (scripts/test.sh runs it just before).
+if [ -d "$build/fit-proof" ]; then
+  echo "== CPU per recording, one core"
+  "$root/scripts/fit-cpu.sh" "$build" "$build/fit-proof" 3
+fi
 for run in relaxed stiffer; do
   { base 1.0 | sed -e "s|^distance_m = .*|distance_m = 34.0|" -e "s|^name = .*|name = \"fit-bench\"|"
     printf '%s\n' "clamp_relaxation_frac = 0.3" "clamp_relaxation_tau_s = 3.0"

@@ -368,8 +368,10 @@ TEST(Analysis, HiddenClampRelaxationIsNamedDespiteAGlitch) {
 }
 
 // A transport delay between grid points (80 ms; the grid steps 31.25 ms) is placed below the
-// grid, and its +- is the resolution the refinement reached. The drive is simulated as the
-// channel models it (the command of the previous sample, held), at the analysis's own rate.
+// grid. The drive is simulated as the channel models it (the command of the previous sample,
+// held), at the analysis's own rate. Its +- is a row (10 ms), not the refinement's resolution
+// (under 31.25 ms / 8): a machine whose drive does not hold its command a row as the model does
+// reads short by up to a row, and the interval says so (issue 52).
 TEST(Analysis, ADelayBetweenGridPointsIsRefined) {
   std::mt19937 rng(3);
   std::normal_distribution<double> noise(0.0, 0.002);
@@ -397,8 +399,7 @@ TEST(Analysis, ADelayBetweenGridPointsIsRefined) {
   EXPECT_EQ(c.final_fit.effects[0].spec->kind, EffectKind::kDelay);
   EXPECT_NEAR(c.final_fit.effects[0].values[0], 0.080, 0.008);
   ASSERT_FALSE(c.final_fit.effect_sd.empty());
-  EXPECT_GT(c.final_fit.effect_sd[0][0], 0.0);
-  EXPECT_LT(c.final_fit.effect_sd[0][0], 0.005);  // 31.25 ms / 8
+  EXPECT_NEAR(c.final_fit.effect_sd[0][0], 0.01, 1e-9);
 }
 
 // Decimation filters before it thins: a 38 Hz tone on a 100 Hz recording kept 1 row in 3 (33 Hz,

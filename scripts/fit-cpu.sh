@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# planter-fit's CPU time per recording, as a distribution (issue 52, item 4: under 30 s of CPU
+# on one core for any 10-minute recording). Runs planter-fit with --jobs 1 on every recording a
+# blind proof left (scripts/fit-proof.sh BUILD OUT: the proof's own cases, the outside
+# generator's and the field logs), and on the field scenario's own run as a field log, timing
+# user + system CPU of each, scaled to 10 minutes of recording. Prints one line per recording,
+# then the distribution, and last the count within 30 s.
+# Usage: scripts/fit-cpu.sh BUILD_DIR PROOF_OUT_DIR [EVERY]
+# EVERY=K takes every K-th of the proof's recordings (1: all; CI takes a sample). Two run at a
+# time, each on one core (--jobs 1): a process's CPU time is its own.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:?usage: fit-cpu.sh BUILD_DIR PROOF_OUT_DIR}
+proof=${2:?usage: fit-cpu.sh BUILD_DIR PROOF_OUT_DIR}
+fit=$build/apps/planter-fit/planter-fit
+sim=$build/apps/planter-sim/planter-sim
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+"$sim" run "$root/scenarios/zhangqiu-field.toml" --out "$work/field" --quiet >/dev/null
+/usr/bin/python3 "$root/scripts/drop-columns.py" "$work/field/recording.csv" "$work/field-log.csv" \
+  'known_*' 'true_*'
+every=${3:-1}
+recordings=("$work/field-log.csv")
+i=0
+for r in "$proof"/*/recording.csv "$proof"/*-field-log.csv; do
+  [ -f "$r" ] || continue
+  [ $((i % every)) -eq 0 ] && recordings+=("$r")
+  i=$((i + 1))
+done
+[ ${#recordings[@]} -gt 1 ] || { echo "fit-cpu: no recordings under $proof (run scripts/fit-proof.sh first)" >&2; exit 2; }
+one() {  # one INDEX RECORDING: its line into $work/INDEX.line
+  local n=$1 r=$2 user sys minutes
+  /usr/bin/time -f "%U %S" -o "$work/$n.time" "$fit" "$r" --out "$work/fit-$n" --jobs 1 --force \
+    >/dev/null || { echo "fit-cpu: planter-fit failed on $r" >&2; return 1; }
+  read -r user sys <"$work/$n.time"
+  minutes=$(/usr/bin/python3 -c 'import sys
+t = [float(l.split(",")[0]) for l in open(sys.argv[1]) if l[:1].isdigit()]
+print((t[-1] - t[0]) / 60.0)' "$r")
+  /usr/bin/python3 -c 'import sys
+cpu, minutes, name = float(sys.argv[1]) + float(sys.argv[2]), float(sys.argv[3]), sys.argv[4]
+print("%8.1f s CPU per 10 min  (%5.1f s for %4.1f min)  %s" % (cpu * 10.0 / max(minutes, 1e-9), cpu, minutes, name))' \
+    "$user" "$sys" "$minutes" "${r#"$proof"/}" >"$work/$n.line"
+}
+for n in "${!recordings[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge 2 ]; do wait -n; done
+  one "$n" "${recordings[$n]}" &
+done
+wait
+: >"$work/per10"
+for n in "${!recordings[@]}"; do
+  [ -s "$work/$n.line" ] || { echo "fit-cpu: no time for ${recordings[$n]}" >&2; exit 1; }
+  cat "$work/$n.line"
+  awk '{print $1}' "$work/$n.line" >>"$work/per10"
+done
+/usr/bin/python3 - "$work/per10" <<'PY'
+import sys
+v = sorted(float(x) for x in open(sys.argv[1]))
+q = lambda p: v[min(len(v) - 1, int(p * (len(v) - 1) + 0.5))]
+print("CPU s per 10 min of recording over %d recordings: min %.1f, median %.1f, 90 %% %.1f, max %.1f"
+      % (len(v), v[0], q(0.5), q(0.9), v[-1]))
+print("planter-fit CPU per 10-minute recording, one core: %d of %d within 30 s"
+      % (sum(x <= 30.0 for x in v), len(v)))
+PY

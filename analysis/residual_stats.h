@@ -7,6 +7,14 @@
 
 namespace planter::analysis {
 
+// The residual pred - y, row by row.
+inline std::vector<double> residual_of(const std::vector<double>& pred,
+                                       const std::vector<double>& y) {
+  std::vector<double> e(y.size());
+  for (std::size_t k = 0; k < y.size(); ++k) e[k] = pred[k] - y[k];
+  return e;
+}
+
 // RMS of a - b over samples [from, to).
 inline double rms_between(const std::vector<double>& a, const std::vector<double>& b,
                           std::size_t from, std::size_t to) {

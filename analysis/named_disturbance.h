@@ -2,7 +2,7 @@
 // The unmeasured disturbance a channel carries, judged (issue 52, items 1 and 3): fitted on the
 // final fit's residual where the recording lacks the disturbance's known_* column, named when it
 // earns its parameters, and every effect chosen before it judged again beside it.
-#include "analysis/mismatch.h"
+#include "analysis/channel_report.h"
 
 namespace planter::analysis {
 

@@ -51,9 +51,11 @@ struct ChannelFit {
 // fit is a prediction-error fit, Ljung, "System Identification", 2nd ed., 1999, sec. 7.2).
 using ResidualFilter = std::function<void(std::vector<double>&)>;
 
+// `hold_located`: grid parameters already located (a first effect's, in a second's fit) are held
+// where they are rather than refined around their value.
 ChannelFit fit_channel(const ChannelModel& channel, const Recording& r, const Split& split,
                        const std::vector<double>& nominal_start, std::vector<Effect> effects,
-                       const ResidualFilter* filter = nullptr);
+                       const ResidualFilter* filter = nullptr, bool hold_located = false);
 
 // The fit's prediction over all of `r`'s rows and its RMS on either side of the split, from
 // its values as they are (after they were refined on other rows than `r`'s).

@@ -122,19 +122,20 @@ Filtered evaluate(const Series& x, const Shape& z, std::size_t to = 0, Trace* tr
 }
 
 // The grid's best shape: wavelengths from four steps to half the row, dampings from a sharp
-// peak to a low-pass, variances from a hundredth of the noise's to ten million times it.
+// peak to a low-pass, variances from a hundredth of the noise's to ten million times it, a
+// decade apart (Nelder-Mead refines from there).
 Shape grid_search(const Series& x, double lambda_lo, double lambda_hi) {
   Shape best{};
   double best_value = std::numeric_limits<double>::infinity();
-  constexpr int kLambdas = 12, kQs = 19;
+  constexpr int kLambdas = 10, kQs = 10;
   for (int i = 0; i < kLambdas; ++i) {
     const double ln_lambda =
         std::log(lambda_lo) + std::log(lambda_hi / lambda_lo) * i / (kLambdas - 1);
-    for (const double zeta : {0.1, 0.3, 0.7, 1.5, 4.0}) {
+    for (const double zeta : {0.1, 0.3, 1.0, 3.0}) {
       const double omega = kTwoPi / std::exp(ln_lambda);
       const std::vector<Eigen::Matrix2d> phi = transitions(x, omega, zeta);
       for (int j = 0; j < kQs; ++j) {
-        const double ln_q = std::log(1e-2) + std::log(10.0) * 0.5 * j;
+        const double ln_q = std::log(1e-2) + std::log(10.0) * j;
         const double v = run_filter(x, phi, omega, std::exp(ln_q), x.end, nullptr).neg2ll;
         if (v < best_value) best_value = v, best = {ln_lambda, std::log(zeta), ln_q};
       }
@@ -285,7 +286,8 @@ std::optional<DisturbanceFit> fit_disturbance(const DisturbanceSpec& spec,
                                               const std::vector<double>& gain,
                                               const std::vector<double>& distance_m,
                                               const std::vector<double>& residual,
-                                              std::size_t calibration_end) {
+                                              std::size_t calibration_end,
+                                              const DisturbanceFit* near) {
   const std::size_t n = residual.size();
   if (gain.size() != n || distance_m.size() != n || calibration_end < 50 || calibration_end > n)
     return std::nullopt;
@@ -321,7 +323,12 @@ std::optional<DisturbanceFit> fit_disturbance(const DisturbanceSpec& spec,
   const double lambda_lo = std::max(4.0 * step_m, 1e-4),
                lambda_hi = std::max(2.0 * lambda_lo, 0.5 * row_m);
 
-  const Shape start = grid_search(x, lambda_lo, lambda_hi);
+  // The shape a nearby fit found, its q rescaled to this gain (q is the process's variance
+  // over the noise's, the gain normalised), or the grid's best.
+  const Shape start = near != nullptr && near->shape.q > 0.0
+                          ? Shape{std::log(near->shape.lambda_m), std::log(near->shape.zeta),
+                                  std::log(near->shape.q)}
+                          : grid_search(x, lambda_lo, lambda_hi);
   const Shape lo{std::log(0.5 * lambda_lo), std::log(0.02), std::log(1e-4)};
   const Shape hi{std::log(2.0 * lambda_hi), std::log(20.0), std::log(1e9)};
   const Shape z = refine(x, start, lo, hi);

@@ -62,11 +62,14 @@ struct DisturbanceFit {
 // filtered over every row with those values. `gain` is the residual's sensitivity to the
 // process at each row, `distance_m` the distance travelled at each row (non-decreasing). nullopt
 // where the rows are too few to say anything (under 50) or the gain is nowhere non-zero.
+// `near`: a fit of the same process on a nearby residual (the same channel refitted); its shape
+// starts the search, which then skips the grid.
 std::optional<DisturbanceFit> fit_disturbance(const DisturbanceSpec& spec,
                                               const std::vector<double>& gain,
                                               const std::vector<double>& distance_m,
                                               const std::vector<double>& residual,
-                                              std::size_t calibration_end);
+                                              std::size_t calibration_end,
+                                              const DisturbanceFit* near = nullptr);
 
 // e (a residual over the recording's first e.size() rows) replaced by the process's one-step
 // innovations over the SD the filter gives each, with the fitted shape and gains held: linear in

@@ -15,10 +15,11 @@ std::vector<double> residual_of(const ChannelFit& fit, const std::vector<double>
 
 std::optional<DisturbanceFit> fitted_beside(const ChannelModel& ch, const DisturbanceSpec& spec,
                                             const Recording& r, const std::vector<double>& s_m,
-                                            const Split& split, const ChannelFit& fit) {
+                                            const Split& split, const ChannelFit& fit,
+                                            const DisturbanceFit* near = nullptr) {
   const std::vector<double> gain = ch.disturbance_gain(r, fit.nominal, fit.prediction);
   return fit_disturbance(spec, gain, s_m, residual_of(fit, r.at(ch.output())),
-                         split.calibration_end);
+                         split.calibration_end, near);
 }
 
 // Why the process does not earn its place, or "" when it does.
@@ -109,7 +110,8 @@ void name_disturbance(ChannelReport& c, const Recording& r, const Split& split,
     without.erase(without.begin() + static_cast<std::ptrdiff_t>(i));
     ChannelFit fit_without =
         without.empty() ? c.nominal : fit_channel(ch, r, split, c.nominal.nominal, without);
-    const std::optional<DisturbanceFit> dw = fitted_beside(ch, *spec, r, s_m, split, fit_without);
+    const std::optional<DisturbanceFit> dw =
+        fitted_beside(ch, *spec, r, s_m, split, fit_without, &*d);
     const double gain =
         dw && dw->rms_held_out > 0.0 ? 1.0 - d->rms_held_out / dw->rms_held_out : 1.0;
     if (gain >= o.min_improvement) continue;
@@ -137,7 +139,7 @@ void name_disturbance(ChannelReport& c, const Recording& r, const Split& split,
     };
     ChannelFit beside =
         fit_channel(ch, r, split, c.final_fit.nominal, c.final_fit.effects, &whiten);
-    std::optional<DisturbanceFit> again = fitted_beside(ch, *spec, r, s_m, split, beside);
+    std::optional<DisturbanceFit> again = fitted_beside(ch, *spec, r, s_m, split, beside, &held);
     if (!again || again->neg2ll >= d->neg2ll) break;
     c.final_fit = std::move(beside);
     d = std::move(again);

@@ -4,21 +4,17 @@
 #include <cmath>
 #include <cstdio>
 
+#include "analysis/residual_stats.h"
+
 namespace planter::analysis {
 namespace {
-
-std::vector<double> residual_of(const ChannelFit& fit, const std::vector<double>& y) {
-  std::vector<double> e(y.size());
-  for (std::size_t k = 0; k < y.size(); ++k) e[k] = fit.prediction[k] - y[k];
-  return e;
-}
 
 std::optional<DisturbanceFit> fitted_beside(const ChannelModel& ch, const DisturbanceSpec& spec,
                                             const Recording& r, const std::vector<double>& s_m,
                                             const Split& split, const ChannelFit& fit,
                                             const DisturbanceFit* near = nullptr) {
   const std::vector<double> gain = ch.disturbance_gain(r, fit.nominal, fit.prediction);
-  return fit_disturbance(spec, gain, s_m, residual_of(fit, r.at(ch.output())),
+  return fit_disturbance(spec, gain, s_m, residual_of(fit.prediction, r.at(ch.output())),
                          split.calibration_end, near);
 }
 

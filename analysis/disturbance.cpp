@@ -50,7 +50,7 @@ struct Filtered {
 };
 
 struct Trace {
-  std::vector<double> nu, s, estimate;  // innovations, their variance in units of R, g x
+  std::vector<double> nu, s;  // innovations, their variance in units of R
   // For the smoother (when asked): the state and covariance after each row's update, and
   // predicted to it before.
   bool keep_states = false;
@@ -78,7 +78,7 @@ Filtered run_filter(const Series& x, const std::vector<Eigen::Matrix2d>& phi, do
   Eigen::Vector3d state = Eigen::Vector3d::Zero();
   double sum_nu2 = 0.0, sum_log_s = 0.0;
   std::size_t n = 0;
-  if (trace) trace->nu.assign(to, 0.0), trace->s.assign(to, 0.0), trace->estimate.assign(to, 0.0);
+  if (trace) trace->nu.assign(to, 0.0), trace->s.assign(to, 0.0);
   const bool keep = trace != nullptr && trace->keep_states;
   if (keep) {
     trace->x_filtered.resize(to), trace->x_predicted.resize(to);
@@ -104,7 +104,7 @@ Filtered run_filter(const Series& x, const std::vector<Eigen::Matrix2d>& phi, do
     p -= gain * ph.transpose();
     p = 0.5 * (p + p.transpose());
     if (k >= x.skip && k < x.end) sum_nu2 += nu * nu / s, sum_log_s += std::log(s), ++n;
-    if (trace) trace->nu[k] = nu, trace->s[k] = s, trace->estimate[k] = h.dot(state);
+    if (trace) trace->nu[k] = nu, trace->s[k] = s;
     if (keep) trace->x_filtered[k] = state, trace->p_filtered[k] = p;
   }
   Filtered out;
@@ -380,12 +380,10 @@ std::optional<DisturbanceFit> fit_disturbance(const DisturbanceSpec& spec,
   for (std::size_t k = x.skip; k < calibration_end; ++k)
     standardised.push_back(trace.nu[k] / std::sqrt(trace.s[k]));
   out.whiteness_violations = whiteness_violations(standardised);
-  out.neg2ll = evaluate(x, z).neg2ll;
+  out.neg2ll = best.neg2ll;  // summed over the calibration rows whatever rows were filtered
   out.shape.gain = x.g, out.shape.step_m = x.ds;
   out.shape.lambda_m = lambda, out.shape.zeta = zeta, out.shape.q = q;
   out.shape.prior_b = x.prior_b, out.shape.skip = x.skip;
-  out.innovations = trace.nu;
-  out.estimate = trace.estimate;
   double nu2 = 0.0, s_sum = 0.0;
   for (std::size_t k = calibration_end; k < n; ++k)
     nu2 += trace.nu[k] * trace.nu[k], s_sum += trace.s[k];

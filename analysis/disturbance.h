@@ -44,9 +44,7 @@ struct DisturbanceFit {
   // Share of lags 1-50 where the calibration rows' standardised innovations correlate beyond
   // +-1.96 / sqrt(N): a process that explains the residual leaves them white.
   double whiteness_violations = 0.0;
-  std::vector<double> innovations;  // one-step prediction errors, every row
-  std::vector<double> estimate;     // g[k] (d + mean) as filtered, every row
-  double neg2ll = 0.0;              // -2 log-likelihood of the calibration rows
+  double neg2ll = 0.0;  // -2 log-likelihood of the calibration rows
 
   // The fitted shape, as the filter runs it (standardised_innovations).
   struct Shape {

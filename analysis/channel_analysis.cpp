@@ -571,14 +571,9 @@ class ChannelAnalysis {
     judge_residual();
   }
 
-  // A value that ended at an edge of its range (a grid parameter only at its own bound, where
-  // the grid could go no further). A lower bound of 0 is the physics' own limit (no lag, no
-  // inertia): ending there is an answer, not a sign of a wrong structure.
+  // A value that ended at an edge of its range (at_range_edge).
   void at_edge(const ParamSpec& p, double v, const std::string& owner, const char* structure) {
-    const double tolerance = 1e-6 * (p.upper - p.lower);
-    if (!(p.upper > p.lower)) return;  // unbounded (a grid's top comes from the data)
-    const bool at_lower = !p.grid && v <= p.lower + tolerance && p.lower != 0.0;
-    if (!at_lower && v < p.upper - tolerance) return;
+    if (!at_range_edge(p, v)) return;
     char buf[300];
     std::snprintf(buf, sizeof buf, "%s%s = %.4g %s (range %.4g to %.4g): %s may be wrong here",
                   owner.c_str(), p.name.c_str(), v, p.unit.c_str(), p.lower, p.upper, structure);

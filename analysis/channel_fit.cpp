@@ -317,6 +317,22 @@ void bounds_for_output(std::vector<ParamSpec>& specs, const std::vector<double>&
   }
 }
 
+bool at_range_edge(const ParamSpec& p, double v) {
+  const double tolerance = 1e-6 * (p.upper - p.lower);
+  if (!(p.upper > p.lower)) return false;  // unbounded (a grid's top comes from the data)
+  const bool at_lower = !p.grid && v <= p.lower + tolerance && p.lower != 0.0;
+  return at_lower || v >= p.upper - tolerance;
+}
+
+void widen_delay_by_row(ChannelFit& fit, const Recording& rows_read) {
+  const std::size_t n = rows_read.size();
+  if (n < 2) return;
+  const double row_s = (rows_read.t[n - 1] - rows_read.t[0]) / static_cast<double>(n - 1);
+  for (std::size_t e = 0; e < fit.effects.size() && e < fit.effect_sd.size(); ++e)
+    if (fit.effects[e].spec->kind == EffectKind::kDelay && !fit.effect_sd[e].empty())
+      fit.effect_sd[e][0] = std::max(fit.effect_sd[e][0], row_s);
+}
+
 ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& split,
                        const std::vector<double>& nominal_start, std::vector<Effect> effects,
                        const ResidualFilter* filter, bool hold_located) {

@@ -87,6 +87,18 @@ ParameterLayout fitted_layout(const ChannelModel& channel, ChannelFit& fit);
 // made absolute for the recorded output y.
 void bounds_for_output(std::vector<ParamSpec>& specs, const std::vector<double>& y);
 
+// Whether v ended at an edge of p's range: a grid parameter only at its own top (the grid could
+// go no further), and a lower bound of 0 is the physics' own limit (no lag, no inertia), an
+// answer rather than a sign of a wrong form.
+bool at_range_edge(const ParamSpec& p, double v);
+
+// A delay is read no closer than a row of the rows it was read on: the channels hold each row's
+// command over the next interval (a zero-order hold), so the fitted delay carries that timing,
+// short by up to a row (the outside generator's 0.2 s read 0.1927 s at 100 Hz, 0.1855 s on the
+// thinned rows; its grid's +- was 0.002). Its stated SD is made at least that row (issue 52:
+// an interval includes the known biases).
+void widen_delay_by_row(ChannelFit& fit, const Recording& rows_read);
+
 // How many calibration rows a fit on `split` compares (the n of its BIC).
 std::size_t fitted_rows(const Split& split);
 

@@ -126,6 +126,9 @@ struct ChannelReport {
   // and what it changed: effects left out beside it, or why it was not named.
   std::optional<DisturbanceFit> disturbance;
   std::vector<std::string> beside_disturbance;
+  // Where an effect was named beside the process: the process's one-step held-out RMS beside
+  // the nominal alone, what the effect is judged against (0 otherwise).
+  double one_step_nominal = 0.0;
   std::string verdict;  // "no significant mismatch", "effect(s) found", "unexplained residual",
                         // "disturbance named"
   bool unexplained = false;

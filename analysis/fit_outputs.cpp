@@ -191,6 +191,7 @@ std::string fit_json(const FitReport& r, double wall_s) {
     ch["held_out_rms"] = {{"nominal", c.nominal.rms_held_out},
                           {"augmented", c.final_fit.rms_held_out},
                           {"one_step_ahead", held_out_after(c)}};
+    if (c.one_step_nominal > 0.0) ch["held_out_rms"]["one_step_ahead_nominal"] = c.one_step_nominal;
     ch["calibration_rms"] = {{"nominal", c.nominal.rms_calibration},
                              {"augmented", c.final_fit.rms_calibration}};
     ch["effects"] = effects_json(c);

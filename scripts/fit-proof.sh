@@ -126,9 +126,10 @@ run_case field-log 1.0 \
   "v_wheel:disturbance:known_slip*100;clamp_force:disturbance:known_nip_mm;depth_mm:disturbance:known_terrain_depth_mm" \
   --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|; s|^slip_variation_pct = .*|slip_variation_pct = 1.0|; s|^diameter_min_mm = .*|diameter_min_mm = 8.3|; s|^diameter_max_mm = .*|diameter_max_mm = 11.4|" \
   --drop "known_* true_*"
-# The same field log with the clamp's relaxation hidden: named beside the disturbances.
+# The same field log with the clamp's relaxation hidden: named beside the disturbances, the
+# stems' spread among them.
 run_case field-log-relaxation 1.0 \
-  "clamp_force:viscoelastic relaxation (creep) of the clamp:fraction=0.3,tau_s=3;v_wheel:disturbance:known_slip*100;depth_mm:disturbance:known_terrain_depth_mm" \
+  "clamp_force:viscoelastic relaxation (creep) of the clamp:fraction=0.3,tau_s=3;v_wheel:disturbance:known_slip*100;clamp_force:disturbance:known_nip_mm;depth_mm:disturbance:known_terrain_depth_mm" \
   --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|; s|^slip_variation_pct = .*|slip_variation_pct = 1.0|; s|^diameter_min_mm = .*|diameter_min_mm = 8.3|; s|^diameter_max_mm = .*|diameter_max_mm = 11.4|" \
   --drop "known_* true_*" "clamp_relaxation_frac = 0.3" "clamp_relaxation_tau_s = 3.0"
 # Nothing hidden, and everything the field scenario varies on purpose put back (terrain, the

@@ -36,6 +36,10 @@ bench/grip_benchmark.sh "$root/build"
 # `robustness: N of M cases held, S silent` last.
 "$root/build/apps/planter-sim/planter-sim" robustness "$root/scenarios/zhangqiu-field.toml" \
   --out "$root/build/robustness" --force
+stage "the docs' commands in order, on a terminal: each one's first output (issue 54)"
+# Each runs in a scratch folder, to its end or for 8 s after it first prints; the count of
+# those that print within 2 s is last.
+/usr/bin/python3 scripts/docs-walk.py "$root/build"
 stage "seedling DEM: compression with the calibrated parameters, calibration, reduced-order model, speed against Yade"
 scripts/dem-test.sh "$root/build"
 stage "planter-fit: the blind proof on planter-sim recordings (its count is the figure), then its speed"

@@ -192,6 +192,7 @@ class ChannelAnalysis {
   }
 
   ChannelReport run() {
+    step("its nominal model");
     measure_noise();
     fit_nominal();
     choose_effects();
@@ -272,6 +273,10 @@ class ChannelAnalysis {
   }
 
   bool earns(const Candidate& c) const { return rejection(c, o_).empty(); }
+
+  void step(const std::string& what) const {
+    if (o_.on_step) o_.on_step(ch_.output(), what);
+  }
 
   // A candidate's figures against the fit it would replace. The share of the residual beyond
   // the noise that the effect accounts for: a real mechanism explains the shape of what is
@@ -364,8 +369,12 @@ class ChannelAnalysis {
                                      const std::vector<Effect>& start) const {
     std::vector<Candidate> out;
     const std::vector<double> base_e = residual_of(base.prediction, y_);
-    for (const EffectSpec* spec : ch_.candidates(r_)) {
+    const std::vector<const EffectSpec*> specs = ch_.candidates(r_);
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      const EffectSpec* spec = specs[i];
       if (!tried_beside(spec, start)) continue;
+      step((start.size() > known_.size() ? "beside " + start.back().spec->name + ", " : "") +
+           spec->name + " (" + std::to_string(i + 1) + " of " + std::to_string(specs.size()) + ")");
       Candidate c = fitted_candidate(spec, base, start, base_e);
       judge(base, figures, c);
       out.push_back(std::move(c));
@@ -533,8 +542,12 @@ class ChannelAnalysis {
     rep_.noise_rms = noise_under(rep_.final_fit.prediction);
     rep_.input_noise_rms = ch_.input_noise_rms(r_, rep_.final_fit.nominal, end_);
     judge_residual();
-    if (rep_.unexplained || !rep_.undetermined.empty() || !rep_.degenerate.empty()) seek_change();
+    if (rep_.unexplained || !rep_.undetermined.empty() || !rep_.degenerate.empty()) {
+      step("a change of a parameter");
+      seek_change();
+    }
     if (rep_.change) return;
+    step("a disturbance along the row");
     name_disturbance(rep_, r_, split_, o_);
     if (!rep_.disturbance) return;
     rep_.noise_rms = noise_under(rep_.final_fit.prediction);

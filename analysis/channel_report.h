@@ -160,6 +160,9 @@ struct FitOptions {
   // Told as each channel's analysis ends (from any worker, one call at a time): for progress.
   std::function<void(std::size_t done, std::size_t total, const std::string& channel)>
       on_channel_done;
+  // Told as a channel's analysis takes each step (from any worker, at any time: the callee
+  // serialises): for progress on a terminal, where one channel runs for seconds.
+  std::function<void(const std::string& channel, const std::string& step)> on_step;
   std::size_t max_rows = 12000;  // longer recordings are decimated to this many rows
   // A recording longer than this many rows is analysed on its first window of them and its
   // model tracked across the rest, window by window (day_tracks.h): 10 minutes at 100 Hz.

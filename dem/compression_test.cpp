@@ -119,7 +119,8 @@ long compression_steps(const CompressionSetup& s) {
   return std::lround(s.stroke_m / (s.platen_speed_mps * s.speedup) / s.time_step_s);
 }
 
-CompressionResult run_compression(const CompressionSetup& s, int threads) {
+CompressionResult run_compression(const CompressionSetup& s, int threads,
+                                  const std::function<void(const CurvePoint&)>& on_sample) {
   CompressionWorld c = make_compression_world(s);
   DemWorld& world = c.world;
   world.set_threads(threads);
@@ -146,6 +147,7 @@ CompressionResult run_compression(const CompressionSetup& s, int threads) {
       p.force_N = force_sum / static_cast<double>(in_sample);
       p.broken_bonds = world.broken_bonds();
       r.curve.push_back(p);
+      if (on_sample) on_sample(p);
       if (p.displacement_m > 0.1 * s.stroke_m && work_J > 0.0) {
         r.max_kinetic_to_work = std::max(r.max_kinetic_to_work, world.kinetic_energy() / work_J);
       }

@@ -3,6 +3,7 @@
 // platen comes down on it at the loading speed. Speeding the platen up is the usual shortcut
 // (the paper's 0.2 m/min needs ~1e6 steps); the result carries the speed used and the largest
 // kinetic-to-work ratio, so a run that was too fast to be quasi-static says so.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -64,7 +65,9 @@ CompressionWorld make_compression_world(const CompressionSetup& setup);
 
 // Runs the test; deterministic for a given setup.
 // `threads` share each step (DemWorld::set_threads): the same result on any number.
-CompressionResult run_compression(const CompressionSetup& setup, int threads = 1);
+// `on_sample`, when set, is told each point of the curve as it is made (progress on a terminal).
+CompressionResult run_compression(const CompressionSetup& setup, int threads = 1,
+                                  const std::function<void(const CurvePoint&)>& on_sample = {});
 // The number of time steps run_compression takes: the stroke at the platen's (sped-up) speed.
 [[nodiscard]] long compression_steps(const CompressionSetup& setup);
 

@@ -98,7 +98,18 @@ int compress(const Common& c, int threads) {
   std::printf("compressing: %ld steps...\n", dem::compression_steps(run.setup));
   std::fflush(stdout);
   const auto t0 = std::chrono::steady_clock::now();
-  run.result = dem::run_compression(run.setup, threads);
+  // On a terminal, the platen's travel as it goes (a compression runs for seconds).
+  std::function<void(const dem::CurvePoint&)> on_sample;
+  std::size_t samples = 0;
+  if (isatty(STDOUT_FILENO))
+    on_sample = [&](const dem::CurvePoint& p) {
+      if (++samples % 10 != 0) return;
+      std::printf("\rcompressing: %.2f of %.2f mm, %.1f N, %d bonds broken\x1b[K",
+                  p.displacement_m * 1e3, run.setup.stroke_m * 1e3, p.force_N, p.broken_bonds);
+      std::fflush(stdout);
+    };
+  run.result = dem::run_compression(run.setup, threads, on_sample);
+  if (on_sample) std::printf("\r\x1b[K");
   run.wall_s = seconds_since(t0);
   dem::write_compression_outputs(out, run);
   const auto& r = run.result;

@@ -238,6 +238,28 @@ try:
 
     # 4. The e-stop at 25 s wins over every command.
     wait(lambda: el("state").text == "estop", 60, "the e-stop shows")
+    # Issue 54: an alarm clears when its cause does, or is marked as past. The page's own show()
+    # is given the machine's real state, stopped, after the same state planting with both the
+    # spacing and the singulation beyond their limits; then the page is put back as it was.
+    marks = driver.execute_async_script(
+        "const done = arguments[arguments.length - 1];"
+        "fetch('/api/state', {cache: 'no-store'}).then((r) => r.json()).then((now) => {"
+        "  const planting = JSON.parse(JSON.stringify(now)); planting.state = 'running';"
+        "  planting.planting = Object.assign({}, now.planting, {spacings: 40,"
+        "    spacing_cv: info.spacing_cv_alarm + 0.1,"
+        "    singulation_pct: info.singulation_alarm_pct - 10});"
+        "  const tiles = () => [$('cv_tile').className, $('singulation_tile').className];"
+        "  show(planting); const during = tiles();"
+        "  show(now); const after = tiles();"
+        "  cv_was = false; sing_was = false; show(now);"
+        "  done([during, after, now.state, tiles()]); });")
+    during, after, stopped_state, reset = marks
+    check(all("alarm" in c.split() and "past" not in c.split() for c in during),
+          "planting beyond the limits, both monitor alarms are raised", during)
+    check(stopped_state == "estop" and
+          all("alarm" not in c.split() and "past" in c.split() for c in after),
+          "stopped, both alarms clear and are marked as past", after)
+    check(all("past" not in c.split() for c in reset), "the page is put back", reset)
     for button, what in (("cmd_run", "start"), ("cmd_reset", "fault reset")):
         text, cls, status = click_and_answer(button)
         check(status == "409" and "e-stop" in text, "during the e-stop, %s is refused" % what, text)

@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "apps/planter-sim/as_planted.h"
@@ -270,189 +272,240 @@ int print_effect_keys() {
   return 0;
 }
 
-}  // namespace
+// A subcommand and what it runs once parsed; its options live in the closure.
+struct Command {
+  CLI::App* sub = nullptr;
+  std::function<int()> run;
+};
 
-int main(int argc, char** argv) {
-  CLI::App app{"planter-sim: the transplanter's plant model and lockstep simulation runner"};
-  app.set_version_flag("--version", std::string("planter-sim ") + planter::apps::version());
-  planter::apps::add_list_keys_flag(app, planter::sim::kScenarioFileKeys,
-                                    "a scenario and of a seedling force model");
-  app.require_subcommand(1);
-  std::string scenario, out = "out";
-  bool quiet = false, force = false;
-#ifdef PLANTER_WITH_SWEEP
-  SweepOptions sweep_options;
-#endif
+Command add_run(CLI::App& app) {
+  struct Opts {
+    std::string scenario, out = "out";
+    bool quiet = false, force = false;
+  };
+  auto o = std::make_shared<Opts>();
   auto* run = app.add_subcommand("run", "run a scenario: recording.csv, summary.json, report.html");
-  run->add_option("scenario", scenario, "scenario file (TOML)")->required();
-  run->add_option("--out", out, "output directory")->capture_default_str();
-  run->add_flag("--quiet", quiet, "do not print the summary");
-  run->add_flag("--force", force, "replace --out even if it holds something other than a run");
+  run->add_option("scenario", o->scenario, "scenario file (TOML)")->required();
+  run->add_option("--out", o->out, "output directory")->capture_default_str();
+  run->add_flag("--quiet", o->quiet, "do not print the summary");
+  run->add_flag("--force", o->force, "replace --out even if it holds something other than a run");
+  return {run, [o] { return run_scenario(o->scenario, o->out, o->quiet, o->force); }};
+}
+
 #ifdef PLANTER_WITH_SWEEP
+Command add_sweep(CLI::App& app) {
+  struct Opts {
+    std::string scenario, out = "out";
+    SweepOptions sweep;
+  };
+  auto o = std::make_shared<Opts>();
+  SweepOptions& so = o->sweep;
   auto* sweep = app.add_subcommand(
       "sweep", "the paper's Box-Behnken experiment: replicated runs, response surfaces, optimum");
-  sweep->add_option("scenario", scenario, "base scenario file (TOML)")->required();
-  sweep->add_option("--out", out, "output directory")->capture_default_str();
-  sweep->add_flag("--force", sweep_options.force,
+  sweep->add_option("scenario", o->scenario, "base scenario file (TOML)")->required();
+  sweep->add_option("--out", o->out, "output directory")->capture_default_str();
+  sweep->add_flag("--force", so.force,
                   "replace --out even if it holds something other than a sweep");
-  sweep->add_option("--distance", sweep_options.distance_m, "metres per run")
+  sweep->add_option("--distance", so.distance_m, "metres per run")
       ->capture_default_str()
       ->check(planter::config::finite_range(0.5, 1000.0));
-  sweep->add_option("--replicates", sweep_options.replicates, "runs per design point, at least")
+  sweep->add_option("--replicates", so.replicates, "runs per design point, at least")
       ->capture_default_str()
       ->check(planter::config::finite_range(1, 50));
   sweep
-      ->add_option("--max-replicates", sweep_options.max_replicates,
+      ->add_option("--max-replicates", so.max_replicates,
                    "runs per design point, at most, while its damage rate is not resolved")
       ->capture_default_str()
       ->check(planter::config::finite_range(1, 200));
   sweep
-      ->add_option("--damage-precision", sweep_options.damage_precision_pts,
+      ->add_option("--damage-precision", so.damage_precision_pts,
                    "goal for the standard error of each point's damage rate, in points")
       ->capture_default_str()
       ->check(planter::config::finite_range(0.01, 50.0));
-  sweep->add_option("--jobs", sweep_options.jobs, "runs at a time (0: one per core)")
+  sweep->add_option("--jobs", so.jobs, "runs at a time (0: one per core)")
       ->capture_default_str()
       ->check(planter::config::finite_range(0, 256));
-  planter::apps::add_executor_options(*sweep, sweep_options.executor);
-  SensitivityOptions sensitivity_options;
+  planter::apps::add_executor_options(*sweep, so.executor);
+  return {sweep, [o] {
+            o->sweep.max_replicates = std::max(o->sweep.max_replicates, o->sweep.replicates);
+            return run_sweep(o->scenario, o->out, o->sweep);
+          }};
+}
+
+Command add_sensitivity(CLI::App& app) {
+  struct Opts {
+    std::string scenario, out = "out";
+    SensitivityOptions study;
+  };
+  auto o = std::make_shared<Opts>();
+  SensitivityOptions& so = o->study;
   auto* sensitivity = add_study(
       app, "sensitivity",
       "which model values the figures rest on: Morris elementary effects over their ranges",
-      scenario, out, sensitivity_options.force, sensitivity_options.distance_m,
-      sensitivity_options.jobs, sensitivity_options.executor);
-  sensitivity->add_option("--trajectories", sensitivity_options.trajectories, "Morris's r")
+      o->scenario, o->out, so.force, so.distance_m, so.jobs, so.executor);
+  sensitivity->add_option("--trajectories", so.trajectories, "Morris's r")
       ->capture_default_str()
       ->check(planter::config::finite_range(2, 100));
   sensitivity->add_flag(
-      "--optimum", sensitivity_options.optimum,
+      "--optimum", so.optimum,
       "also run the paper's design (15 runs) at each point: the optimum's spread");
-  MonteCarloOptions monte_carlo_options;
+  return {sensitivity, [o] { return run_sensitivity(o->scenario, o->out, o->study); }};
+}
+
+Command add_monte_carlo(CLI::App& app) {
+  struct Opts {
+    std::string scenario, out = "out";
+    MonteCarloOptions study;
+  };
+  auto o = std::make_shared<Opts>();
+  MonteCarloOptions& mo = o->study;
   auto* monte_carlo = add_study(
       app, "montecarlo",
       "what the figures may be given what is not known: every model value drawn across its "
       "range (Latin hypercube), a seed a run",
-      scenario, out, monte_carlo_options.force, monte_carlo_options.distance_m,
-      monte_carlo_options.jobs, monte_carlo_options.executor);
-  monte_carlo->add_option("--runs", monte_carlo_options.runs, "runs (seasons) to draw")
+      o->scenario, o->out, mo.force, mo.distance_m, mo.jobs, mo.executor);
+  monte_carlo->add_option("--runs", mo.runs, "runs (seasons) to draw")
       ->capture_default_str()
       ->check(planter::config::finite_range(2, 100000));
-  monte_carlo->add_flag("--grip", monte_carlo_options.grip,
+  monte_carlo->add_flag("--grip", mo.grip,
                         "also run each draw at every constant clamp force of the sweep's "
                         "trade-off: does gripping each stem halve the damage?");
-  monte_carlo->add_option("--stems-mm", monte_carlo_options.stems_mm,
+  monte_carlo->add_option("--stems-mm", mo.stems_mm,
                           "stems of this diameter range in every run, MIN-MAX (e.g. 5-15)");
-  RobustnessOptions robustness_options;
+  return {monte_carlo, [o] { return run_monte_carlo(o->scenario, o->out, o->study); }};
+}
+
+Command add_robustness(CLI::App& app) {
+  struct Opts {
+    std::string scenario, out = "out";
+    RobustnessOptions study;
+  };
+  auto o = std::make_shared<Opts>();
+  RobustnessOptions& ro = o->study;
   auto* robustness = add_study(
       app, "robustness",
       "the controller under disturbance: each loop held, alarmed or silent, case by case, "
       "beside the paper's drive",
-      scenario, out, robustness_options.force, robustness_options.distance_m,
-      robustness_options.jobs, robustness_options.executor);
+      o->scenario, o->out, ro.force, ro.distance_m, ro.jobs, ro.executor);
   robustness
-      ->add_option("--combinations", robustness_options.combinations,
+      ->add_option("--combinations", ro.combinations,
                    "random combinations of disturbances (Latin hypercube)")
       ->capture_default_str()
       ->check(planter::config::finite_range(0, 10000));
+  return {robustness, [o] { return run_robustness(o->scenario, o->out, o->study); }};
+}
 #endif
-  std::string plan_path;
-  std::size_t plan_index = 0;
+
+Command add_plan_run(CLI::App& app) {
+  struct Opts {
+    std::string plan;
+    std::size_t index = 0;
+  };
+  auto o = std::make_shared<Opts>();
   auto* plan_run = app.add_subcommand(
       "plan-run", "run one run of a plan (what each local process or Slurm task executes)");
-  plan_run->add_option("plan", plan_path, "plan.json")->required();
-  plan_run->add_option("index", plan_index, "the run's index in the plan")
+  plan_run->add_option("plan", o->plan, "plan.json")->required();
+  plan_run->add_option("index", o->index, "the run's index in the plan")
       ->required()
       ->check(planter::config::whole_number());
+  return {plan_run, [o] {
+            execute_planned_run(o->plan, o->index, planter::apps::version());
+            return 0;
+          }};
+}
+
+Command add_values(CLI::App& app) {
+  auto scenario = std::make_shared<std::string>();
   auto* values = app.add_subcommand(
       "values", "every model value the conclusions rest on: value, unit, range, origin, source");
-  std::string values_scenario;
-  values->add_option("scenario", values_scenario, "scenario file (default: the built-in values)");
-  auto* effects =
-      app.add_subcommand("effects", "list the [effects] keys a scenario may set to hide physics");
-  RealtimeDevicesOptions devices_options;
-  std::string devices_board;
+  values->add_option("scenario", *scenario, "scenario file (default: the built-in values)");
+  return {values, [scenario] {
+            const PlantConfig plant =
+                scenario->empty() ? PlantConfig{} : load_scenario(*scenario).plant;
+            std::printf("%-40s %9s %-7s %19s %-10s %s\n", "value", "in use", "unit",
+                        "plausible range", "origin", "source");
+            std::fputs(model_values_text(plant).c_str(), stdout);
+            return 0;
+          }};
+}
+
+Command add_devices(CLI::App& app) {
+  struct Opts {
+    std::string scenario, board;
+    RealtimeDevicesOptions devices;
+  };
+  auto o = std::make_shared<Opts>();
+  RealtimeDevicesOptions& d = o->devices;
   auto* devices = app.add_subcommand(
       "devices", "the plant and its CANopen nodes in real time on a real CAN bus and gpio-sim");
-  devices->add_option("scenario", scenario, "scenario file (TOML)")->required();
-  devices->add_option("--can", devices_options.can_interface, "SocketCAN interface")->required();
-  devices->add_option("--gpio", devices_options.gpio_chip, "gpio-sim chip (name, path or label)")
-      ->required();
-  devices->add_option("--board", devices_board, "board file (default: the scenario's)");
-  devices->add_option("--truth", devices_options.truth_path, "write ground truth CSV here");
-  devices->add_option("--duration", devices_options.duration_s, "seconds (0 = whole route)")
+  devices->add_option("scenario", o->scenario, "scenario file (TOML)")->required();
+  devices->add_option("--can", d.can_interface, "SocketCAN interface")->required();
+  devices->add_option("--gpio", d.gpio_chip, "gpio-sim chip (name, path or label)")->required();
+  devices->add_option("--board", o->board, "board file (default: the scenario's)");
+  devices->add_option("--truth", d.truth_path, "write ground truth CSV here");
+  devices->add_option("--duration", d.duration_s, "seconds (0 = whole route)")
       ->check(planter::config::finite_range(0.0, 1e6));
+  return {devices, [o] { return run_devices(o->scenario, o->board, o->devices); }};
+}
+
 #ifdef PLANTER_WITH_CONSOLE
-  LiveOptions live_options;
+Command add_live(CLI::App& app) {
+  struct Opts {
+    std::string scenario;
+    LiveOptions live;
+  };
+  auto o = std::make_shared<Opts>();
+  LiveOptions& lo = o->live;
   auto* live = app.add_subcommand(
       "live", "the simulated machine in real time, with the operator's console in a browser");
-  live->add_option("scenario", scenario, "scenario file (TOML)")->required();
-  live->add_option("--port", live_options.console.port, "TCP port of the console (0: any free)")
+  live->add_option("scenario", o->scenario, "scenario file (TOML)")->required();
+  live->add_option("--port", lo.console.port, "TCP port of the console (0: any free)")
       ->capture_default_str()
       ->check(planter::config::finite_range(0, 65535));
-  live->add_option("--bind", live_options.console.bind,
+  live->add_option("--bind", lo.console.bind,
                    "address to serve on (0.0.0.0: every network of this machine)")
       ->capture_default_str();
-  live->add_option("--duration", live_options.duration_s, "simulated seconds (0: until Ctrl-C)")
+  live->add_option("--duration", lo.duration_s, "simulated seconds (0: until Ctrl-C)")
       ->capture_default_str()
       ->check(planter::config::finite_range(0.0, 1e6));
-  live->add_option("--speed", live_options.speed, "simulated seconds per wall-clock second")
+  live->add_option("--speed", lo.speed, "simulated seconds per wall-clock second")
       ->capture_default_str()
       ->check(planter::config::finite_range(0.1, 100.0));
-  live->add_option("--dir", live_options.dir,
-                   "where the console's recordings (recordings/) and audit.log go")
+  live->add_option("--dir", lo.dir, "where the console's recordings (recordings/) and audit.log go")
       ->capture_default_str();
-  live->add_option("--pairing-secret-file", live_options.pairing_secret_file,
+  live->add_option("--pairing-secret-file", lo.pairing_secret_file,
                    "the operator's pairing secret (default: a new one, shown on the terminal)");
-  live->add_option("--viewer-secret-file", live_options.viewer_secret_file,
+  live->add_option("--viewer-secret-file", lo.viewer_secret_file,
                    "viewing needs this secret (default: viewing is open)");
-  live->add_flag("--view-only", live_options.view_only, "the console takes no command");
+  live->add_flag("--view-only", lo.view_only, "the console takes no command");
+  return {live, [o] { return run_live(o->scenario, o->live); }};
+}
 #endif
+
 #ifdef PLANTER_WITH_REPLAY
-  std::string model, recording;
+Command add_replay(CLI::App& app) {
+  struct Opts {
+    std::string model, recording, out = "out";
+    bool force = false;
+  };
+  auto o = std::make_shared<Opts>();
   auto* replay = app.add_subcommand(
       "replay", "run planter-fit's augmented model (model.toml) on a recording's inputs");
-  replay->add_option("model", model, "model.toml from planter-fit")->required();
-  replay->add_option("recording", recording, "recording CSV")->required();
-  replay->add_option("--out", out, "output directory (replay.csv)")->capture_default_str();
-  replay->add_flag("--force", force,
+  replay->add_option("model", o->model, "model.toml from planter-fit")->required();
+  replay->add_option("recording", o->recording, "recording CSV")->required();
+  replay->add_option("--out", o->out, "output directory (replay.csv)")->capture_default_str();
+  replay->add_flag("--force", o->force,
                    "replace --out even if it holds something other than a replay");
+  return {replay, [o] { return run_replay(o->model, o->recording, o->out, o->force); }};
+}
 #endif
+
+// The parsed subcommand run, each failure one line on stderr and its exit code.
+int run_parsed(const std::vector<Command>& commands) {
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return planter::apps::parse_ended(app, e, "planter-sim", argc, argv, 2);
-  }
-  try {
-    if (*run) return run_scenario(scenario, out, quiet, force);
-#ifdef PLANTER_WITH_SWEEP
-    if (*sweep) {
-      sweep_options.max_replicates =
-          std::max(sweep_options.max_replicates, sweep_options.replicates);
-      return run_sweep(scenario, out, sweep_options);
-    }
-    if (*sensitivity) return run_sensitivity(scenario, out, sensitivity_options);
-    if (*monte_carlo) return run_monte_carlo(scenario, out, monte_carlo_options);
-    if (*robustness) return run_robustness(scenario, out, robustness_options);
-#endif
-    if (*plan_run) {
-      execute_planned_run(plan_path, plan_index, planter::apps::version());
-      return 0;
-    }
-    if (*values) {
-      const PlantConfig plant =
-          values_scenario.empty() ? PlantConfig{} : load_scenario(values_scenario).plant;
-      std::printf("%-40s %9s %-7s %19s %-10s %s\n", "value", "in use", "unit", "plausible range",
-                  "origin", "source");
-      std::fputs(model_values_text(plant).c_str(), stdout);
-      return 0;
-    }
-    if (*effects) return print_effect_keys();
-    if (*devices) return run_devices(scenario, devices_board, devices_options);
-#ifdef PLANTER_WITH_CONSOLE
-    if (*live) return run_live(scenario, live_options);
-#endif
+    for (const Command& c : commands)
+      if (*c.sub) return c.run();
 #ifdef PLANTER_WITH_REPLAY
-    if (*replay) return run_replay(model, recording, out, force);
   } catch (const analysis::RecordingError& e) {
     std::fprintf(stderr, "planter-sim: %s\n", e.what());
     return 2;
@@ -475,4 +528,39 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"planter-sim: the transplanter's plant model and lockstep simulation runner"};
+  app.set_version_flag("--version", std::string("planter-sim ") + planter::apps::version());
+  planter::apps::add_list_keys_flag(app, planter::sim::kScenarioFileKeys,
+                                    "a scenario and of a seedling force model");
+  app.require_subcommand(1);
+  std::vector<Command> commands{add_run(app)};
+#ifdef PLANTER_WITH_SWEEP
+  commands.push_back(add_sweep(app));
+  commands.push_back(add_sensitivity(app));
+  commands.push_back(add_monte_carlo(app));
+  commands.push_back(add_robustness(app));
+#endif
+  commands.push_back(add_plan_run(app));
+  commands.push_back(add_values(app));
+  commands.push_back(
+      {app.add_subcommand("effects", "list the [effects] keys a scenario may set to hide physics"),
+       print_effect_keys});
+  commands.push_back(add_devices(app));
+#ifdef PLANTER_WITH_CONSOLE
+  commands.push_back(add_live(app));
+#endif
+#ifdef PLANTER_WITH_REPLAY
+  commands.push_back(add_replay(app));
+#endif
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return planter::apps::parse_ended(app, e, "planter-sim", argc, argv, 2);
+  }
+  return run_parsed(commands);
 }

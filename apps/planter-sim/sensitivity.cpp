@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <random>
+#include <span>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -70,280 +71,366 @@ std::string fmt(const char* f, double v) {
   return b;
 }
 
-}  // namespace
+// One Morris study: the design, its runs, what they show and the outputs, one step a method.
+class SensitivityStudy {
+ public:
+  SensitivityStudy(const std::string& scenario_path, const SensitivityOptions& o)
+      : path_(scenario_path),
+        o_(o),
+        base_(load_scenario(scenario_path)),
+        values_(model_values()),
+        k_(values_.size()),
+        responses_(o.optimum ? kResponseCount : kPointResponses) {}
 
-int run_sensitivity(const std::string& scenario_path, const std::string& out_dir,
-                    const SensitivityOptions& o) {
-  const Scenario base = load_scenario(scenario_path);
-  if (const std::string why = executor_refusal(o.executor); !why.empty())
-    throw std::runtime_error(why);
-  config::OutputSet out(out_dir, "planter-sim sensitivity", o.force);
-  const auto values = model_values();
-  const std::size_t k = values.size();
-  const int r = o.trajectories;
-  const int jobs =
-      o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  void run(const std::string& out_dir) {
+    design();
+    plan_runs();
+    execute(out_dir);
+    read_figures();
+    elementary_effects();
+    rank_by_mu_star();
+    spread_across_ranges();
+  }
 
-  // The design: per trajectory a base point on the grid, then one factor at a time by +step,
-  // in a random order.
-  std::mt19937_64 rng(base.seed);
-  std::vector<std::vector<double>> points;  // coded, [0, 1]
-  std::vector<std::size_t> moved;           // factor moved to reach point i (k: the base)
-  std::vector<int> trajectory_of;
-  for (int t = 0; t < r; ++t) {
-    std::vector<double> x(k);
-    for (double& xi : x) xi = static_cast<double>(rng() % 2) / (kLevels - 1);
-    std::vector<std::size_t> order(k);
-    std::iota(order.begin(), order.end(), 0);
-    std::shuffle(order.begin(), order.end(), rng);
-    points.push_back(x);
-    moved.push_back(k);
-    trajectory_of.push_back(t);
-    for (std::size_t f : order) {
-      x[f] += kStep;
-      points.push_back(x);
-      moved.push_back(f);
-      trajectory_of.push_back(t);
+  void write(config::OutputSet& out) const {
+    out.write("sensitivity.csv", csv());
+    out.write("sensitivity.json", json().dump(2) + "\n");
+    out.write("report.html", html());
+    out.commit();
+  }
+
+  void print(const std::string& out_dir) const;
+
+ private:
+  // Per trajectory a base point on the grid, then one factor at a time by +step, in a random
+  // order.
+  void design() {
+    std::mt19937_64 rng(base_.seed);
+    for (int t = 0; t < o_.trajectories; ++t) {
+      std::vector<double> x(k_);
+      for (double& xi : x) xi = static_cast<double>(rng() % 2) / (kLevels - 1);
+      std::vector<std::size_t> order(k_);
+      std::iota(order.begin(), order.end(), 0);
+      std::shuffle(order.begin(), order.end(), rng);
+      add_point(x, k_, t);
+      for (std::size_t f : order) {
+        x[f] += kStep;
+        add_point(x, f, t);
+      }
     }
   }
-  RunPlan plan = new_plan(scenario_path, apps::version());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    PlannedRun run;
-    run.distance_m = o.distance_m;
-    run.seed = base.seed + static_cast<std::uint64_t>(trajectory_of[i]);
-    for (std::size_t f = 0; f < k; ++f)
-      run.values.emplace_back(values[f].key,
-                              values[f].low + points[i][f] * (values[f].high - values[f].low));
-    plan.runs.push_back(run);
-    // With --optimum each point also runs the paper's design (one replicate) around it.
-    if (o.optimum)
-      for (const PlannedRun& d : design_runs(base, run)) plan.runs.push_back(d);
+
+  void add_point(const std::vector<double>& x, std::size_t moved, int trajectory) {
+    points_.push_back(x);
+    moved_.push_back(moved);
+    trajectory_of_.push_back(trajectory);
   }
-  const std::size_t per_point = o.optimum ? 1 + design_runs(base, PlannedRun{}).size() : 1;
-  std::fprintf(stderr,
-               "planter-sim sensitivity: %zu runs of %.0f m (%zu points: %d trajectories x (%zu "
-               "values + 1)), %d jobs\n",
-               plan.runs.size(), o.distance_m, points.size(), r, k, jobs);
-  const std::vector<Summary> all =
-      execute_plan(runs_folder(out_dir) + "/points", plan,
-                   executor_for(o.executor, o.jobs, o.force), "sensitivity");
-  const std::size_t responses = o.optimum ? kResponseCount : kPointResponses;
-  std::vector<Figures> y;
-  std::map<std::string, int> significant_at;  // term -> points where it is significant
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    Figures f = figures_of(all[i * per_point]);
-    if (o.optimum) {
-      const auto first = all.begin() + static_cast<std::ptrdiff_t>(i * per_point + 1);
-      const DesignOptimum best = design_optimum(
-          std::vector<Summary>(first, first + static_cast<std::ptrdiff_t>(per_point - 1)));
-      f[3] = best.contact_area_mm2;
-      f[4] = best.disc_speed_radps;
-      f[5] = best.depth_mm;
-      for (const std::string& t : best.significant_terms) ++significant_at[t];
+
+  // Each point's run; with --optimum each point also runs the paper's design (one replicate)
+  // around it.
+  void plan_runs() {
+    plan_ = new_plan(path_, apps::version());
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      PlannedRun run;
+      run.distance_m = o_.distance_m;
+      run.seed = base_.seed + static_cast<std::uint64_t>(trajectory_of_[i]);
+      for (std::size_t f = 0; f < k_; ++f)
+        run.values.emplace_back(
+            values_[f].key, values_[f].low + points_[i][f] * (values_[f].high - values_[f].low));
+      plan_.runs.push_back(run);
+      if (o_.optimum)
+        for (const PlannedRun& d : design_runs(base_, run)) plan_.runs.push_back(d);
     }
-    y.push_back(f);
+    per_point_ = o_.optimum ? 1 + design_runs(base_, PlannedRun{}).size() : 1;
+  }
+
+  void execute(const std::string& out_dir) {
+    const int jobs =
+        o_.jobs > 0 ? o_.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    std::fprintf(stderr,
+                 "planter-sim sensitivity: %zu runs of %.0f m (%zu points: %d trajectories x (%zu "
+                 "values + 1)), %d jobs\n",
+                 plan_.runs.size(), o_.distance_m, points_.size(), o_.trajectories, k_, jobs);
+    all_ = execute_plan(runs_folder(out_dir) + "/points", plan_,
+                        executor_for(o_.executor, o_.jobs, o_.force), "sensitivity");
+  }
+
+  // The figures at each point; with --optimum, the design's optimum around it and the terms of
+  // its quadratic that are significant there.
+  void read_figures() {
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      Figures f = figures_of(all_[i * per_point_]);
+      if (o_.optimum) {
+        const auto first = all_.begin() + static_cast<std::ptrdiff_t>(i * per_point_ + 1);
+        const DesignOptimum best = design_optimum(
+            std::vector<Summary>(first, first + static_cast<std::ptrdiff_t>(per_point_ - 1)));
+        f[3] = best.contact_area_mm2;
+        f[4] = best.disc_speed_radps;
+        f[5] = best.depth_mm;
+        for (const std::string& t : best.significant_terms) ++significant_at_[t];
+      }
+      y_.push_back(f);
+    }
   }
 
   // Elementary effects: the change of a response over the whole range, (y1 - y0) / step.
-  std::vector<std::array<Effect, kResponseCount>> effects(k);
-  std::vector<std::array<std::vector<double>, kResponseCount>> ee(k);
-  for (std::size_t i = 1; i < points.size(); ++i) {
-    if (moved[i] == k) continue;
-    for (std::size_t q = 0; q < responses; ++q) {
-      const double d = (y[i][q] - y[i - 1][q]) / kStep;
-      ee[moved[i]][q].push_back(d);
+  void elementary_effects() {
+    std::vector<std::array<std::vector<double>, kResponseCount>> ee(k_);
+    for (std::size_t i = 1; i < points_.size(); ++i) {
+      if (moved_[i] == k_) continue;
+      for (std::size_t q = 0; q < responses_; ++q)
+        ee[moved_[i]][q].push_back((y_[i][q] - y_[i - 1][q]) / kStep);
     }
-  }
-  for (std::size_t f = 0; f < k; ++f) {
-    for (std::size_t q = 0; q < responses; ++q) {
-      const std::vector<double>& v = ee[f][q];
-      Effect& e = effects[f][q];
-      for (double d : v) {
-        e.mu += d / static_cast<double>(v.size());
-        e.mu_star += std::abs(d) / static_cast<double>(v.size());
+    effects_.resize(k_);
+    for (std::size_t f = 0; f < k_; ++f)
+      for (std::size_t q = 0; q < responses_; ++q) {
+        const std::vector<double>& v = ee[f][q];
+        Effect& e = effects_[f][q];
+        for (double d : v) {
+          e.mu += d / static_cast<double>(v.size());
+          e.mu_star += std::abs(d) / static_cast<double>(v.size());
+        }
+        for (double d : v) e.sigma += (d - e.mu) * (d - e.mu);
+        e.sigma = v.size() > 1 ? std::sqrt(e.sigma / static_cast<double>(v.size() - 1)) : 0.0;
       }
-      for (double d : v) e.sigma += (d - e.mu) * (d - e.mu);
-      e.sigma = v.size() > 1 ? std::sqrt(e.sigma / static_cast<double>(v.size() - 1)) : 0.0;
-    }
-  }
-  // Ranks by mu* of each response (1: most influential).
-  std::vector<std::array<int, kResponseCount>> rank(k);
-  for (std::size_t q = 0; q < responses; ++q) {
-    std::vector<std::size_t> by(k);
-    std::iota(by.begin(), by.end(), 0);
-    std::sort(by.begin(), by.end(), [&](std::size_t a, std::size_t b) {
-      return effects[a][q].mu_star > effects[b][q].mu_star;
-    });
-    for (std::size_t i = 0; i < k; ++i) rank[by[i]][q] = static_cast<int>(i) + 1;
-  }
-  // The figures' spread over every point, across the plausible ranges (min, 5 %, median,
-  // 95 %, max), and whether each holds.
-  std::vector<std::array<double, 5>> spread(responses);
-  std::vector<bool> holds(responses);  // per figure
-  for (std::size_t q = 0; q < responses; ++q) {
-    std::vector<double> v;
-    for (const Figures& f : y) v.push_back(f[q]);
-    std::sort(v.begin(), v.end());
-    const auto at = [&](double p) {
-      return v[static_cast<std::size_t>(std::lround(p * static_cast<double>(v.size() - 1)))];
-    };
-    spread[q] = {v.front(), at(0.05), at(0.5), at(0.95), v.back()};
-    holds[q] = spread[q][3] - spread[q][1] <= holds_within(q);
   }
 
+  // Ranks by mu* of each response (1: most influential); the values in uprightness's order.
+  void rank_by_mu_star() {
+    rank_.resize(k_);
+    for (std::size_t q = 0; q < responses_; ++q) {
+      std::vector<std::size_t> by(k_);
+      std::iota(by.begin(), by.end(), 0);
+      std::sort(by.begin(), by.end(), [&](std::size_t a, std::size_t b) {
+        return effects_[a][q].mu_star > effects_[b][q].mu_star;
+      });
+      for (std::size_t i = 0; i < k_; ++i) rank_[by[i]][q] = static_cast<int>(i) + 1;
+    }
+    order_.resize(k_);
+    std::iota(order_.begin(), order_.end(), 0);
+    std::sort(order_.begin(), order_.end(),
+              [&](std::size_t a, std::size_t b) { return rank_[a][0] < rank_[b][0]; });
+  }
+
+  // The figures' spread over every point, across the plausible ranges (min, 5 %, median,
+  // 95 %, max), and whether each holds; with --optimum, the paper's verdict on each term.
+  void spread_across_ranges() {
+    for (std::size_t q = 0; q < responses_; ++q) {
+      std::vector<double> v;
+      for (const Figures& f : y_) v.push_back(f[q]);
+      std::sort(v.begin(), v.end());
+      const auto at = [&](double p) {
+        return v[static_cast<std::size_t>(std::lround(p * static_cast<double>(v.size() - 1)))];
+      };
+      spread_.push_back({v.front(), at(0.05), at(0.5), at(0.95), v.back()});
+      holds_.push_back(spread_[q][3] - spread_[q][1] <= holds_within(q));
+    }
+    if (!o_.optimum) return;
+    const auto& paper = paper_significant_terms();
+    for (const std::string t : kQuadraticTerms) {
+      const bool in_paper = std::find(paper.begin(), paper.end(), t) != paper.end();
+      (verdict_holds(t, in_paper) ? terms_hold_ : terms_fail_).push_back(t);
+    }
+  }
+
+  // How often a term of uprightness's quadratic is significant across the points: a term the
+  // paper lists holds when it is significant at 90 % of them, one it does not when at 10 % at
+  // most (the same rule as the figures'). One replicate per design point: 5 residual df.
+  double share_of_points(const std::string& term) const {
+    const auto it = significant_at_.find(term);
+    return static_cast<double>(it == significant_at_.end() ? 0 : it->second) /
+           static_cast<double>(points_.size());
+  }
+  bool verdict_holds(const std::string& term, bool in_paper) const {
+    return in_paper ? share_of_points(term) >= 0.9 : share_of_points(term) <= 0.1;
+  }
+
+  std::string csv() const;
+  nlohmann::json json() const;
+  std::string html() const;
+
+  const std::string path_;
+  const SensitivityOptions& o_;
+  const Scenario base_;
+  const std::span<const ModelValue> values_;
+  const std::size_t k_;
+  const std::size_t responses_;
+  std::vector<std::vector<double>> points_;  // coded, [0, 1]
+  std::vector<std::size_t> moved_;           // factor moved to reach point i (k: the base)
+  std::vector<int> trajectory_of_;
+  RunPlan plan_;
+  std::size_t per_point_ = 1;
+  std::vector<Summary> all_;
+  std::vector<Figures> y_;
+  std::map<std::string, int> significant_at_;  // term -> points where it is significant
+  std::vector<std::array<Effect, kResponseCount>> effects_;
+  std::vector<std::array<int, kResponseCount>> rank_;
+  std::vector<std::size_t> order_;  // by uprightness's rank
+  std::vector<std::array<double, 5>> spread_;
+  std::vector<bool> holds_;  // per figure
+  std::vector<std::string> terms_hold_, terms_fail_;
+};
+
+std::string SensitivityStudy::csv() const {
   std::ostringstream csv;
   csv << "run,trajectory,moved";
-  for (const ModelValue& v : values) csv << ',' << v.key;
+  for (const ModelValue& v : values_) csv << ',' << v.key;
   csv << ",uprightness_pct,damage_pct,turned_in_clamp_pct,seedlings_planted,seedlings_lodged,"
          "seedlings_fell_in_carry";
-  if (o.optimum) csv << ",optimum_contact_area_mm2,optimum_disc_speed_radps,optimum_depth_mm";
+  if (o_.optimum) csv << ",optimum_contact_area_mm2,optimum_disc_speed_radps,optimum_depth_mm";
   csv << '\n';
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    csv << i + 1 << ',' << trajectory_of[i] + 1 << ','
-        << (moved[i] == k ? "base" : values[moved[i]].key);
-    const Summary& run = all[i * per_point];
-    const Scenario at = planned_scenario(base, plan.runs[i * per_point]);
-    for (const ModelValue& v : values) csv << ',' << v.value(at.plant);
-    csv << ',' << y[i][0] << ',' << y[i][1] << ',' << y[i][2] << ',' << run.seedlings_planted << ','
-        << run.seedlings_lodged << ',' << run.seedlings_fell_in_carry;
-    if (o.optimum) csv << ',' << y[i][3] << ',' << y[i][4] << ',' << y[i][5];
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    csv << i + 1 << ',' << trajectory_of_[i] + 1 << ','
+        << (moved_[i] == k_ ? "base" : values_[moved_[i]].key);
+    const Summary& run = all_[i * per_point_];
+    const Scenario at = planned_scenario(base_, plan_.runs[i * per_point_]);
+    for (const ModelValue& v : values_) csv << ',' << v.value(at.plant);
+    csv << ',' << y_[i][0] << ',' << y_[i][1] << ',' << y_[i][2] << ',' << run.seedlings_planted
+        << ',' << run.seedlings_lodged << ',' << run.seedlings_fell_in_carry;
+    if (o_.optimum) csv << ',' << y_[i][3] << ',' << y_[i][4] << ',' << y_[i][5];
     csv << '\n';
   }
+  return csv.str();
+}
+
+nlohmann::json SensitivityStudy::json() const {
   nlohmann::json j;
-  j["scenario"] = base.name;
+  j["scenario"] = base_.name;
   j["method"] = "Morris elementary effects, 4 levels, step 2/3";
-  j["trajectories"] = r;
-  j["runs"] = plan.runs.size();
-  j["points"] = points.size();
-  j["distance_m_per_run"] = o.distance_m;
-  for (std::size_t f = 0; f < k; ++f) {
+  j["trajectories"] = o_.trajectories;
+  j["runs"] = plan_.runs.size();
+  j["points"] = points_.size();
+  j["distance_m_per_run"] = o_.distance_m;
+  for (std::size_t f = 0; f < k_; ++f) {
     nlohmann::json v;
-    v["key"] = values[f].key;
-    v["origin"] = origin_name(values[f].origin);
-    v["range"] = {values[f].low, values[f].high};
-    v["in_use"] = values[f].value(base.plant);
-    for (std::size_t q = 0; q < responses; ++q)
-      v[kResponses[q].name] = {{"mu_star", effects[f][q].mu_star},
-                               {"mu", effects[f][q].mu},
-                               {"sigma", effects[f][q].sigma},
-                               {"rank", rank[f][q]}};
+    v["key"] = values_[f].key;
+    v["origin"] = origin_name(values_[f].origin);
+    v["range"] = {values_[f].low, values_[f].high};
+    v["in_use"] = values_[f].value(base_.plant);
+    for (std::size_t q = 0; q < responses_; ++q)
+      v[kResponses[q].name] = {{"mu_star", effects_[f][q].mu_star},
+                               {"mu", effects_[f][q].mu},
+                               {"sigma", effects_[f][q].sigma},
+                               {"rank", rank_[f][q]}};
     j["values"].push_back(v);
   }
-  for (std::size_t q = 0; q < responses; ++q) {
-    const auto& s = spread[q];
+  for (std::size_t q = 0; q < responses_; ++q) {
+    const auto& s = spread_[q];
     j["spread"][kResponses[q].name] = {{"min", s[0]},
                                        {"p5", s[1]},
                                        {"median", s[2]},
                                        {"p95", s[3]},
                                        {"max", s[4]},
                                        {"holds_within", holds_within(q)},
-                                       {"holds", static_cast<bool>(holds[q])}};
+                                       {"holds", static_cast<bool>(holds_[q])}};
   }
-  // How often each term of uprightness's quadratic is significant across the points: a term
-  // the paper lists holds when it is significant at 90 % of them, one it does not when at 10 %
-  // at most (the same rule as the figures'). One replicate per design point: 5 residual df.
-  std::vector<std::string> terms_hold, terms_fail;
-  if (o.optimum) {
+  if (o_.optimum) {
+    const auto& paper = paper_significant_terms();
     for (const std::string t : kQuadraticTerms) {
-      const double share =
-          static_cast<double>(significant_at[t]) / static_cast<double>(points.size());
-      const auto& paper = paper_significant_terms();
       const bool in_paper = std::find(paper.begin(), paper.end(), t) != paper.end();
-      const bool verdict_holds = in_paper ? share >= 0.9 : share <= 0.1;
-      j["significant_terms"][t] = {
-          {"share_of_points", share}, {"in_paper", in_paper}, {"paper_holds", verdict_holds}};
-      (verdict_holds ? terms_hold : terms_fail).push_back(t);
+      j["significant_terms"][t] = {{"share_of_points", share_of_points(t)},
+                                   {"in_paper", in_paper},
+                                   {"paper_holds", verdict_holds(t, in_paper)}};
     }
-    j["paper_terms_holding"] = terms_hold;
-    j["paper_terms_not_holding"] = terms_fail;
+    j["paper_terms_holding"] = terms_hold_;
+    j["paper_terms_not_holding"] = terms_fail_;
   }
   j["paper"] = {{"uprightness_pct", kPaperCentreUprightness_pct},
                 {"damage_pct", kPaperCentreDamage_pct},
                 {"optimum_contact_area_mm2", kPaperOptimum[0]},
                 {"optimum_disc_speed_radps", kPaperOptimum[1]},
                 {"optimum_depth_mm", kPaperOptimum[2]}};
-  const std::string paper_optimum =
-      optimum_text(kPaperOptimum[0], kPaperOptimum[1], kPaperOptimum[2]);
+  return j;
+}
 
-  std::vector<std::size_t> order(k);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return rank[a][0] < rank[b][0]; });
+std::string SensitivityStudy::html() const {
   std::ostringstream html;
   html << "<!doctype html><html><head>" << report::kReportHead
-       << "<title>Sensitivity: " << report::html_escape(base.name) << "</title>"
+       << "<title>Sensitivity: " << report::html_escape(base_.name) << "</title>"
        << report::kTablePageStyle
        << "</head><body><h1>Which model "
           "values the conclusions rest on</h1><p>Morris's elementary effects: "
-       << r << " trajectories over " << k << " values, " << plan.runs.size() << " runs of "
-       << o.distance_m
+       << o_.trajectories << " trajectories over " << k_ << " values, " << plan_.runs.size()
+       << " runs of " << o_.distance_m
        << " m at the scenario's operating point. mu* is the mean absolute change of a figure when "
           "the value crosses its whole plausible range (in points); sigma its spread "
           "(interactions or non-linearity).</p><table><tr><th>value</th><th>origin</th><th>range"
           "</th>";
-  for (std::size_t q = 0; q < responses; ++q)
+  for (std::size_t q = 0; q < responses_; ++q)
     html << "<th>" << kResponses[q].name << " mu* [" << kResponses[q].unit
          << "]</th><th>sigma</th><th>rank</th>";
   html << "</tr>";
-  for (std::size_t f : order) {
-    html << "<tr><td style='text-align:left'>" << values[f].key << "</td><td>"
-         << origin_name(values[f].origin) << "</td><td>" << fmt("%.4g", values[f].low) << " - "
-         << fmt("%.4g", values[f].high) << "</td>";
-    for (std::size_t q = 0; q < responses; ++q)
-      html << "<td>" << fmt("%.3g", effects[f][q].mu_star) << "</td><td>"
-           << fmt("%.3g", effects[f][q].sigma) << "</td><td>" << rank[f][q] << "</td>";
+  for (std::size_t f : order_) {
+    html << "<tr><td style='text-align:left'>" << values_[f].key << "</td><td>"
+         << origin_name(values_[f].origin) << "</td><td>" << fmt("%.4g", values_[f].low) << " - "
+         << fmt("%.4g", values_[f].high) << "</td>";
+    for (std::size_t q = 0; q < responses_; ++q)
+      html << "<td>" << fmt("%.3g", effects_[f][q].mu_star) << "</td><td>"
+           << fmt("%.3g", effects_[f][q].sigma) << "</td><td>" << rank_[f][q] << "</td>";
     html << "</tr>";
   }
   html << "</table><h2>The figures across the plausible ranges</h2><ul>";
-  for (std::size_t q = 0; q < responses; ++q) {
-    const auto& s = spread[q];
+  for (std::size_t q = 0; q < responses_; ++q) {
+    const auto& s = spread_[q];
     html << "<li>" << kResponses[q].name << ": " << fmt("%.4g", s[1]) << " - " << fmt("%.4g", s[3])
          << " " << kResponses[q].unit << " (5-95 % of the points; median " << fmt("%.4g", s[2])
          << ")</li>";
   }
   html << "</ul><p>The paper: " << fmt("%.1f", kPaperCentreUprightness_pct) << " % upright and "
-       << fmt("%.0f", kPaperCentreDamage_pct) << " % damaged at its optimum of " << paper_optimum
+       << fmt("%.0f", kPaperCentreDamage_pct) << " % damaged at its optimum of "
+       << optimum_text(kPaperOptimum[0], kPaperOptimum[1], kPaperOptimum[2])
        << ", a comparison and not a target.</p><h2>The model's values</h2>"
-       << model_values_html(base.plant) << "</body></html>";
+       << model_values_html(base_.plant) << "</body></html>";
+  return html.str();
+}
 
-  out.write("sensitivity.csv", csv.str());
-  out.write("sensitivity.json", j.dump(2) + "\n");
-  out.write("report.html", html.str());
-  out.commit();
-
+void SensitivityStudy::print(const std::string& out_dir) const {
   std::printf("%zu points, %zu runs of %.0f m: Morris, %d trajectories over %zu values\n",
-              points.size(), plan.runs.size(), o.distance_m, r, k);
+              points_.size(), plan_.runs.size(), o_.distance_m, o_.trajectories, k_);
   std::printf("%-40s %-10s %8s %5s %8s %5s %8s %5s\n", "value (by uprightness mu*)", "origin",
               "upright", "rank", "damage", "rank", "turned", "rank");
-  for (std::size_t f : order)
-    std::printf("%-40s %-10s %8.2f %5d %8.2f %5d %8.2f %5d\n", values[f].key,
-                origin_name(values[f].origin), effects[f][0].mu_star, rank[f][0],
-                effects[f][1].mu_star, rank[f][1], effects[f][2].mu_star, rank[f][2]);
+  for (std::size_t f : order_)
+    std::printf("%-40s %-10s %8.2f %5d %8.2f %5d %8.2f %5d\n", values_[f].key,
+                origin_name(values_[f].origin), effects_[f][0].mu_star, rank_[f][0],
+                effects_[f][1].mu_star, rank_[f][1], effects_[f][2].mu_star, rank_[f][2]);
   std::printf("wrote %s/{sensitivity.csv,sensitivity.json,report.html}\n", out_dir.c_str());
-  for (std::size_t q = 0; q < responses; ++q)
+  for (std::size_t q = 0; q < responses_; ++q)
     std::printf("%-22s %s across the ranges: %.4g-%.4g %s (holds if within %.3g)\n",
-                kResponses[q].name, holds[q] ? "holds  " : "DOES NOT HOLD", spread[q][1],
-                spread[q][3], kResponses[q].unit, holds_within(q));
-  if (o.optimum) {
+                kResponses[q].name, holds_[q] ? "holds  " : "DOES NOT HOLD", spread_[q][1],
+                spread_[q][3], kResponses[q].unit, holds_within(q));
+  if (o_.optimum) {
     std::printf("terms of uprightness significant (paper's:");
     for (const std::string& t : paper_significant_terms()) std::printf(" %s", t.c_str());
     std::printf("), share of points:");
     for (const std::string t : kQuadraticTerms)
-      std::printf(" %s %.0f%%", t.c_str(),
-                  100.0 * significant_at[t] / static_cast<double>(points.size()));
-    std::printf("; the paper's verdict holds for %zu of %zu terms\n", terms_hold.size(),
+      std::printf(" %s %.0f%%", t.c_str(), 100.0 * share_of_points(t));
+    std::printf("; the paper's verdict holds for %zu of %zu terms\n", terms_hold_.size(),
                 std::size(kQuadraticTerms));
-    const auto &area = spread[3], &speed = spread[4], &depth = spread[5];
+    const auto &area = spread_[3], &speed = spread_[4], &depth = spread_[5];
     std::printf(
         "optimum across the plausible ranges (5-95 %% of points): %.0f-%.0f mm^2, %.3f-%.3f rad/s, "
         "%.0f-%.0f mm; paper: %s\n",
-        area[1], area[3], speed[1], speed[3], depth[1], depth[3], paper_optimum.c_str());
+        area[1], area[3], speed[1], speed[3], depth[1], depth[3],
+        optimum_text(kPaperOptimum[0], kPaperOptimum[1], kPaperOptimum[2]).c_str());
   }
   std::printf(
       "across the plausible ranges (5-95 %% of runs): uprightness %.1f-%.1f %%, damage %.2f-%.2f "
       "%%; paper: %.1f %% and %.0f %%\n",
-      spread[0][1], spread[0][3], spread[1][1], spread[1][3], kPaperCentreUprightness_pct,
+      spread_[0][1], spread_[0][3], spread_[1][1], spread_[1][3], kPaperCentreUprightness_pct,
       kPaperCentreDamage_pct);
+}
+
+}  // namespace
+
+int run_sensitivity(const std::string& scenario_path, const std::string& out_dir,
+                    const SensitivityOptions& o) {
+  SensitivityStudy study(scenario_path, o);
+  if (const std::string why = executor_refusal(o.executor); !why.empty())
+    throw std::runtime_error(why);
+  config::OutputSet out(out_dir, "planter-sim sensitivity", o.force);
+  study.run(out_dir);
+  study.write(out);
+  study.print(out_dir);
   return 0;
 }
 

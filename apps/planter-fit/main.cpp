@@ -139,6 +139,24 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
               wall_s, nominal_pass_s > 0 ? wall_s / nominal_pass_s : 0.0, nominal_pass_s);
 }
 
+// Progress on a terminal: one status line, rewritten at each step of a channel (the clamp's
+// runs for seconds) and as each channel ends.
+void show_progress(FitOptions& o) {
+  auto done_so_far = std::make_shared<std::pair<std::mutex, std::size_t>>();
+  o.on_channel_done = [done_so_far](std::size_t done, std::size_t total,
+                                    const std::string& channel) {
+    const std::lock_guard<std::mutex> lock(done_so_far->first);
+    done_so_far->second = done;
+    std::fprintf(stderr, "\rplanter-fit: %zu of %zu channels analysed (last: %s)\x1b[K%s", done,
+                 total, channel.c_str(), done == total ? "\n" : "");
+  };
+  o.on_step = [done_so_far](const std::string& channel, const std::string& step) {
+    const std::lock_guard<std::mutex> lock(done_so_far->first);
+    std::fprintf(stderr, "\rplanter-fit: %zu channels analysed; %s: %s\x1b[K", done_so_far->second,
+                 channel.c_str(), step.c_str());
+  };
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -169,23 +187,7 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     FitOptions o;
     o.jobs = jobs;
-    // Progress on a terminal only: logs and pipes get the summary alone.
-    // One status line, rewritten at each step of a channel (the clamp's runs for seconds).
-    auto done_so_far = std::make_shared<std::pair<std::mutex, std::size_t>>();
-    if (isatty(STDERR_FILENO)) {
-      o.on_channel_done = [done_so_far](std::size_t done, std::size_t total,
-                                        const std::string& channel) {
-        const std::lock_guard<std::mutex> lock(done_so_far->first);
-        done_so_far->second = done;
-        std::fprintf(stderr, "\rplanter-fit: %zu of %zu channels analysed (last: %s)\x1b[K%s", done,
-                     total, channel.c_str(), done == total ? "\n" : "");
-      };
-      o.on_step = [done_so_far](const std::string& channel, const std::string& step) {
-        const std::lock_guard<std::mutex> lock(done_so_far->first);
-        std::fprintf(stderr, "\rplanter-fit: %zu channels analysed; %s: %s\x1b[K",
-                     done_so_far->second, channel.c_str(), step.c_str());
-      };
-    }
+    if (isatty(STDERR_FILENO)) show_progress(o);  // logs and pipes get the summary alone
     // The first window (the whole of a shorter recording) is read and analysed; the rest of a
     // longer one is read a window at a time and the model tracked across it.
     RecordingReader reader(file);

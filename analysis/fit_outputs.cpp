@@ -310,10 +310,10 @@ std::string fit_model_toml(const FitReport& r) {
   return s.str();
 }
 
-std::string fit_report_html(const FitReport& r, const Recording& rec) {
-  std::ostringstream h;
-  h.precision(4);
-  report::ChartPage charts;
+namespace {
+
+// The page's head and what the recording held: rows, what was left out and why.
+void report_preamble(std::ostream& h, const FitReport& r) {
   h << "<!doctype html><html><head>" << report::kReportHead
     << "<title>planter-fit</title><style>"
        "body{font-family:sans-serif;max-width:900px;margin:20px auto}td,th{padding:2px 8px}"
@@ -343,7 +343,11 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
       h << " " << report::html_escape(g.column) << " = " << g.value << " at " << g.t_s << " s;";
     h << "</p>";
   }
-  // The verdicts first: per channel, what was found and how much better the held-out part got.
+}
+
+// The verdicts first: per channel, what was found and how much better the held-out part got;
+// then the rules a candidate is held to.
+void summary_table(std::ostream& h, const FitReport& r) {
   h << "<h2>Summary</h2><table><tr><th>channel</th><th>verdict</th><th>held-out RMS error: "
        "nominal &rarr; with the effects</th></tr>";
   for (const auto& c : r.channels) {
@@ -367,128 +371,168 @@ std::string fit_report_html(const FitReport& r, const Recording& rec) {
     << 100.0 * r.options.held_out_tie
     << " % of it tie on that, and the lowest BIC among them is named. Each channel's table "
        "below says which criterion each other candidate failed.</p>";
+}
+
+// What the channel names and says beside its verdict: effects, a process, notes, a change,
+// fast tones, ties.
+void channel_notes(std::ostream& h, const FitReport& r, const ChannelReport& c) {
+  for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
+    h << "<p><b>" << report::html_escape(effect_text(c, e)) << "</b> ("
+      << c.final_fit.effects[e].spec->signature << ")</p>";
+  if (c.disturbance)
+    h << "<p><b>" << report::html_escape(c.disturbance->describe())
+      << "</b> (an unmeasured process along the row, fitted from the residual: its one-step "
+         "predictions leave a held-out RMS of "
+      << c.disturbance->rms_held_out << ", where the process gives "
+      << c.disturbance->predicted_held_out << ")</p>";
+  for (const std::string& note : c.beside_disturbance)
+    h << "<p>" << report::html_escape(note) << "</p>";
+  if (!c.degenerate.empty()) h << "<p><b>" << report::html_escape(c.degenerate) << "</b></p>";
+  if (const std::string idle = not_exercised(c); !idle.empty())
+    h << "<p>Not exercised by this recording, so not fitted: " << report::html_escape(idle)
+      << ".</p>";
+  if (c.logged_step > 0.0)
+    h << "<p>" << c.channel->output() << " is recorded in steps of " << c.logged_step
+      << ": their rounding, " << c.resolution_rms
+      << " RMS, is the floor no model matches closer than.</p>";
+  if (r.day) {
+    const ChannelDay& d = r.day->channels[static_cast<std::size_t>(&c - r.channels.data())];
+    h << "<p><b>Across " << r.day->windows << " windows of " << r.day->window_s
+      << " s: " << report::html_escape(d.verdict) << "</b></p><table><tr><th>parameter</th>"
+      << "<th>verdict</th><th>first window</th><th>last window</th></tr>";
+    for (const Track& track : d.tracks)
+      if (!track.value.empty())
+        h << "<tr><td>" << track.name << "</td><td>" << track.verdict << "</td><td>"
+          << track.value.front() << "</td><td>" << track.value.back() << "</td></tr>";
+    h << "</table>";
+  }
+  if (c.change) {
+    h << "<p><b>a parameter changed at t = " << c.change->at_s << " &plusmn; " << c.change->at_sd_s
+      << " s</b>:";
+    for (const auto& m : c.change->changed)
+      h << (&m == &c.change->changed.front() ? " "
+            : c.change->tied                 ? ", or "
+                                             : ", ")
+        << m.name << " " << m.before << " &rarr; " << m.after << " "
+        << report::html_escape(concrete_unit(m.unit, *c.channel));
+    if (c.change->tied)
+      h << " (this recording cannot tell which: a sweep of " << c.channel->input()
+        << " over its range would)";
+    h << ".</p>";
+  }
+  for (const auto& f : c.fast_tones)
+    h << "<p><b>periodic disturbance (vibration) above the analysed " << r.analysed_up_to_hz
+      << " Hz</b>, found at the recording's own rate: " << f.tone.frequency_hz << " Hz"
+      << (f.order > 1 ? " (order " + std::to_string(f.order) + " of " +
+                            std::to_string(f.fundamental_hz) + " Hz)"
+                      : std::string())
+      << ", amplitude " << f.tone.amplitude << "; held-out RMS " << f.held_out_rms_before
+      << " &rarr; " << f.held_out_rms_after << ".</p>";
+  for (const auto& tie : c.ties)
+    h << "<p><b>" << tie.chosen << " or " << tie.alternative
+      << "</b>: this recording cannot separate them (&Delta;BIC " << tie.delta_bic
+      << "). To tell them apart, record " << report::html_escape(tie.experiment) << ".</p>";
+}
+
+// Each candidate tried, with the criterion it failed.
+void candidates_table(std::ostream& h, const FitReport& r, const ChannelReport& c) {
+  h << "<table><tr><th>candidate</th><th>&Delta;BIC</th><th>explained</th>"
+       "<th>best fold</th><th>held-out</th><th>kept?</th></tr>";
+  // A share far below -100 % is a candidate that made the fit much worse: say so, not -4.8e5 %.
+  auto share = [](double v) {
+    return v < -1.0 ? std::string("worse") : report::fixed(100.0 * v, 1) + " %";
+  };
+  auto rows = [&](const std::vector<Candidate>& cands, const std::string& beside) {
+    for (const auto& cand : cands) {
+      bool kept = false;
+      for (const auto& e : c.final_fit.effects) kept = kept || e.spec == cand.spec;
+      const std::string why = rejection(cand, r.options);
+      h << "<tr><td>" << (beside.empty() ? "" : report::html_escape(beside) + " with ")
+        << cand.effect << "</td><td>" << report::fixed(cand.delta_bic, 1) << "</td><td>"
+        << share(cand.explained) << "</td><td>" << share(cand.cv_improvement) << "</td><td>"
+        << share(cand.held_out_improvement) << "</td><td>"
+        << (kept          ? "<b>kept</b>"
+            : why.empty() ? "earns its place; another explains the same better or is simpler"
+                          : "no: " + report::html_escape(why))
+        << "</td></tr>";
+    }
+  };
+  rows(c.ranked, "");
+  // No effect earned alone, one explained part: the pairs beside it, each against the nominal.
+  rows(c.pairs, c.pairs_beside);
+  h << "</table>";
+}
+
+// Where the nominal residual is: its whiteness, its correlations, its worst window, regimes.
+void residual_location(std::ostream& h, const ChannelReport& c) {
+  h << "<p>Where the nominal residual is: whiteness violations "
+    << 100.0 * c.location.whiteness_violations << " % of lags; input correlation "
+    << c.location.input_correlation << "; worst window at " << c.location.worst_window_start_s
+    << " s (" << c.location.worst_window_ratio << "x the median); drift correlation "
+    << c.location.time_correlation << "; spectrum peak " << c.location.dominant_frequency_hz
+    << " Hz.";
+  for (const auto& g : c.location.regimes) h << " " << g.name << ": " << g.rms_ratio << "x;";
+  h << "</p>";
+}
+
+// The recording against the nominal and augmented predictions, and both residuals, on every
+// stride-th row.
+void channel_charts(std::ostream& h, const FitReport& r, const ChannelReport& c,
+                    const Recording& rec, report::ChartPage& charts, const std::vector<double>& t,
+                    std::size_t stride) {
+  const std::size_t n = rec.size();
+  const auto& y = rec.at(c.channel->output());
+  std::vector<double> ys, nom, aug, e0, e1;
+  for (std::size_t k = 0; k < n; k += stride) {
+    ys.push_back(y[k]);
+    nom.push_back(c.nominal.prediction[k]);
+    aug.push_back(c.final_fit.prediction[k]);
+    e0.push_back(c.nominal.prediction[k] - y[k]);
+    e1.push_back(c.final_fit.prediction[k] - y[k]);
+  }
+  const auto [lo, hi] = std::minmax_element(ys.begin(), ys.end());
+  double emax = 1e-12;
+  for (double v : e0) emax = std::max(emax, std::abs(v));
+  // Marks on the time axis: where the held-out part starts, and when a parameter changed.
+  std::vector<report::Marker> marks{{r.held_out_from_s, "#999", "held out from here"}};
+  if (c.change) marks.push_back({c.change->at_s, "#e80", "changed"});
+  const std::string unit = column_unit(c.channel->output());
+  h << charts.lines(
+           {c.channel->output(), unit, "time [s]", *lo, *hi, marks, {}, ""}, t,
+           {{&ys, "#222", "recording"}, {&nom, "#36c", "nominal"}, {&aug, "#c33", "augmented"}})
+    << charts.lines(
+           {"residual of " + c.channel->output(), unit, "time [s]", -emax, emax, marks, {}, ""}, t,
+           {{&e0, "#36c", "nominal"}, {&e1, "#c33", "augmented"}});
+}
+
+void channel_section(std::ostream& h, const FitReport& r, const ChannelReport& c,
+                     const Recording& rec, report::ChartPage& charts, const std::vector<double>& t,
+                     std::size_t stride) {
+  h << "<h2>" << c.channel->subsystem() << ": " << c.channel->output() << " &mdash; " << c.verdict
+    << "</h2><p>Held-out RMS error: nominal " << c.nominal.rms_held_out << ", augmented <b>"
+    << c.final_fit.rms_held_out << "</b>; measurement noise about " << c.noise_rms;
+  if (c.input_noise_rms > 0.0)
+    h << ", and " << c.input_noise_rms << " from the measured input's noise through the model";
+  h << ".</p>";
+  channel_notes(h, r, c);
+  candidates_table(h, r, c);
+  residual_location(h, c);
+  channel_charts(h, r, c, rec, charts, t, stride);
+}
+
+}  // namespace
+
+std::string fit_report_html(const FitReport& r, const Recording& rec) {
+  std::ostringstream h;
+  h.precision(4);
+  report::ChartPage charts;
+  report_preamble(h, r);
+  summary_table(h, r);
   const std::size_t n = rec.size();
   const std::size_t stride = std::max<std::size_t>(1, n / 3000);
   std::vector<double> t;
   for (std::size_t k = 0; k < n; k += stride) t.push_back(rec.t[k]);
-  for (const auto& c : r.channels) {
-    const auto& y = rec.at(c.channel->output());
-    std::vector<double> ys, nom, aug, e0, e1;
-    for (std::size_t k = 0; k < n; k += stride) {
-      ys.push_back(y[k]);
-      nom.push_back(c.nominal.prediction[k]);
-      aug.push_back(c.final_fit.prediction[k]);
-      e0.push_back(c.nominal.prediction[k] - y[k]);
-      e1.push_back(c.final_fit.prediction[k] - y[k]);
-    }
-    const auto [lo, hi] = std::minmax_element(ys.begin(), ys.end());
-    double emax = 1e-12;
-    for (double v : e0) emax = std::max(emax, std::abs(v));
-    h << "<h2>" << c.channel->subsystem() << ": " << c.channel->output() << " &mdash; " << c.verdict
-      << "</h2><p>Held-out RMS error: nominal " << c.nominal.rms_held_out << ", augmented <b>"
-      << c.final_fit.rms_held_out << "</b>; measurement noise about " << c.noise_rms;
-    if (c.input_noise_rms > 0.0)
-      h << ", and " << c.input_noise_rms << " from the measured input's noise through the model";
-    h << ".</p>";
-    for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
-      h << "<p><b>" << report::html_escape(effect_text(c, e)) << "</b> ("
-        << c.final_fit.effects[e].spec->signature << ")</p>";
-    if (c.disturbance)
-      h << "<p><b>" << report::html_escape(c.disturbance->describe())
-        << "</b> (an unmeasured process along the row, fitted from the residual: its one-step "
-           "predictions leave a held-out RMS of "
-        << c.disturbance->rms_held_out << ", where the process gives "
-        << c.disturbance->predicted_held_out << ")</p>";
-    for (const std::string& note : c.beside_disturbance)
-      h << "<p>" << report::html_escape(note) << "</p>";
-    if (!c.degenerate.empty()) h << "<p><b>" << report::html_escape(c.degenerate) << "</b></p>";
-    if (const std::string idle = not_exercised(c); !idle.empty())
-      h << "<p>Not exercised by this recording, so not fitted: " << report::html_escape(idle)
-        << ".</p>";
-    if (c.logged_step > 0.0)
-      h << "<p>" << c.channel->output() << " is recorded in steps of " << c.logged_step
-        << ": their rounding, " << c.resolution_rms
-        << " RMS, is the floor no model matches closer than.</p>";
-    if (r.day) {
-      const ChannelDay& d = r.day->channels[static_cast<std::size_t>(&c - r.channels.data())];
-      h << "<p><b>Across " << r.day->windows << " windows of " << r.day->window_s
-        << " s: " << report::html_escape(d.verdict) << "</b></p><table><tr><th>parameter</th>"
-        << "<th>verdict</th><th>first window</th><th>last window</th></tr>";
-      for (const Track& track : d.tracks)
-        if (!track.value.empty())
-          h << "<tr><td>" << track.name << "</td><td>" << track.verdict << "</td><td>"
-            << track.value.front() << "</td><td>" << track.value.back() << "</td></tr>";
-      h << "</table>";
-    }
-    if (c.change) {
-      h << "<p><b>a parameter changed at t = " << c.change->at_s << " &plusmn; "
-        << c.change->at_sd_s << " s</b>:";
-      for (const auto& m : c.change->changed)
-        h << (&m == &c.change->changed.front() ? " "
-              : c.change->tied                 ? ", or "
-                                               : ", ")
-          << m.name << " " << m.before << " &rarr; " << m.after << " "
-          << report::html_escape(concrete_unit(m.unit, *c.channel));
-      if (c.change->tied)
-        h << " (this recording cannot tell which: a sweep of " << c.channel->input()
-          << " over its range would)";
-      h << ".</p>";
-    }
-    for (const auto& f : c.fast_tones)
-      h << "<p><b>periodic disturbance (vibration) above the analysed " << r.analysed_up_to_hz
-        << " Hz</b>, found at the recording's own rate: " << f.tone.frequency_hz << " Hz"
-        << (f.order > 1 ? " (order " + std::to_string(f.order) + " of " +
-                              std::to_string(f.fundamental_hz) + " Hz)"
-                        : std::string())
-        << ", amplitude " << f.tone.amplitude << "; held-out RMS " << f.held_out_rms_before
-        << " &rarr; " << f.held_out_rms_after << ".</p>";
-    for (const auto& tie : c.ties)
-      h << "<p><b>" << tie.chosen << " or " << tie.alternative
-        << "</b>: this recording cannot separate them (&Delta;BIC " << tie.delta_bic
-        << "). To tell them apart, record " << report::html_escape(tie.experiment) << ".</p>";
-    h << "<table><tr><th>candidate</th><th>&Delta;BIC</th><th>explained</th>"
-         "<th>best fold</th><th>held-out</th><th>kept?</th></tr>";
-    // A share far below -100 % is a candidate that made the fit much worse: say so, not -4.8e5 %.
-    auto share = [](double v) {
-      return v < -1.0 ? std::string("worse") : report::fixed(100.0 * v, 1) + " %";
-    };
-    auto rows = [&](const std::vector<Candidate>& cands, const std::string& beside) {
-      for (const auto& cand : cands) {
-        bool kept = false;
-        for (const auto& e : c.final_fit.effects) kept = kept || e.spec == cand.spec;
-        const std::string why = rejection(cand, r.options);
-        h << "<tr><td>" << (beside.empty() ? "" : report::html_escape(beside) + " with ")
-          << cand.effect << "</td><td>" << report::fixed(cand.delta_bic, 1) << "</td><td>"
-          << share(cand.explained) << "</td><td>" << share(cand.cv_improvement) << "</td><td>"
-          << share(cand.held_out_improvement) << "</td><td>"
-          << (kept          ? "<b>kept</b>"
-              : why.empty() ? "earns its place; another explains the same better or is simpler"
-                            : "no: " + report::html_escape(why))
-          << "</td></tr>";
-      }
-    };
-    rows(c.ranked, "");
-    // No effect earned alone, one explained part: the pairs beside it, each against the nominal.
-    rows(c.pairs, c.pairs_beside);
-    h << "</table><p>Where the nominal residual is: whiteness violations "
-      << 100.0 * c.location.whiteness_violations << " % of lags; input correlation "
-      << c.location.input_correlation << "; worst window at " << c.location.worst_window_start_s
-      << " s (" << c.location.worst_window_ratio << "x the median); drift correlation "
-      << c.location.time_correlation << "; spectrum peak " << c.location.dominant_frequency_hz
-      << " Hz.";
-    for (const auto& g : c.location.regimes) h << " " << g.name << ": " << g.rms_ratio << "x;";
-    // Marks on the time axis: where the held-out part starts, and when a parameter changed.
-    std::vector<report::Marker> marks{{r.held_out_from_s, "#999", "held out from here"}};
-    if (c.change) marks.push_back({c.change->at_s, "#e80", "changed"});
-    const std::string unit = column_unit(c.channel->output());
-    h << "</p>"
-      << charts.lines(
-             {c.channel->output(), unit, "time [s]", *lo, *hi, marks, {}, ""}, t,
-             {{&ys, "#222", "recording"}, {&nom, "#36c", "nominal"}, {&aug, "#c33", "augmented"}})
-      << charts.lines(
-             {"residual of " + c.channel->output(), unit, "time [s]", -emax, emax, marks, {}, ""},
-             t, {{&e0, "#36c", "nominal"}, {&e1, "#c33", "augmented"}});
-  }
+  for (const auto& c : r.channels) channel_section(h, r, c, rec, charts, t, stride);
   h << "</body></html>\n";
   return h.str();
 }

@@ -141,6 +141,128 @@ std::string effect_text(const ChannelReport& report, std::size_t e) {
   return out;
 }
 
+namespace {
+
+// A parameter that changed once: when, and each value before and after.
+nlohmann::json change_json(const ChangePoint& change, const ChannelModel& channel) {
+  nlohmann::json moved = nlohmann::json::array();
+  for (const auto& m : change.changed)
+    moved.push_back({{"name", m.name},
+                     {"unit", concrete_unit(m.unit, channel)},
+                     {"before", m.before},
+                     {"before_sd", m.before_sd},
+                     {"after", m.after},
+                     {"after_sd", m.after_sd}});
+  return {{"at_s", change.at_s},
+          {"at_sd_s", change.at_sd_s},
+          {"delta_bic", change.delta_bic},
+          {"tied", change.tied},
+          {"parameters", moved}};
+}
+
+// A long recording's model tracked window by window: each parameter's verdict and values.
+nlohmann::json day_json(const ChannelDay& d, const ChannelModel& channel) {
+  nlohmann::json tracks = nlohmann::json::array();
+  for (const Track& t : d.tracks) {
+    nlohmann::json tj{{"name", t.name},       {"unit", concrete_unit(t.unit, channel)},
+                      {"verdict", t.verdict}, {"t_s", t.t_s},
+                      {"value", t.value},     {"sd", t.sd}};
+    if (t.verdict == "drifting") tj["slope_per_h"] = t.slope_per_h;
+    if (t.verdict == "changed") {
+      tj["at_s"] = t.at_s;
+      tj["at_sd_s"] = t.at_sd_s;
+      tj["before"] = t.before;
+      tj["after"] = t.after;
+    }
+    tracks.push_back(tj);
+  }
+  return {{"verdict", d.verdict}, {"tracks", tracks}};
+}
+
+// The ties, and each candidate tried with its figures (and the pairs beside a first effect).
+void candidates_json(const ChannelReport& c, nlohmann::json& ch) {
+  ch["ties"] = nlohmann::json::array();
+  for (const auto& tie : c.ties)
+    ch["ties"].push_back({{"chosen", tie.chosen},
+                          {"alternative", tie.alternative},
+                          {"delta_bic", tie.delta_bic},
+                          {"experiment", tie.experiment}});
+  auto figures = [](const Candidate& cand) {
+    return nlohmann::json{{"effect", cand.effect},
+                          {"delta_bic", cand.delta_bic},
+                          {"held_out_improvement", cand.held_out_improvement},
+                          {"cv_improvement", cand.cv_improvement},
+                          {"explained", cand.explained}};
+  };
+  for (const auto& cand : c.ranked) ch["ranked"].push_back(figures(cand));
+  // Second effects tried beside a first that explained only part (each judged, with it,
+  // against the nominal).
+  if (!c.pairs.empty()) {
+    ch["pairs_beside"] = c.pairs_beside;
+    for (const auto& cand : c.pairs) ch["pairs"].push_back(figures(cand));
+  }
+}
+
+nlohmann::json location_json(const Location& l) {
+  nlohmann::json loc{{"whiteness_violations", l.whiteness_violations},
+                     {"input_correlation", l.input_correlation},
+                     {"worst_window_start_s", l.worst_window_start_s},
+                     {"worst_window_ratio", l.worst_window_ratio},
+                     {"time_correlation", l.time_correlation},
+                     {"dominant_frequency_hz", l.dominant_frequency_hz},
+                     {"dominant_amplitude", l.dominant_amplitude}};
+  for (const auto& g : l.regimes)
+    loc["regimes"].push_back({{"regime", g.name}, {"rms_ratio", g.rms_ratio}, {"share", g.share}});
+  return loc;
+}
+
+nlohmann::json channel_json(const FitReport& r, const ChannelReport& c) {
+  nlohmann::json ch;
+  ch["subsystem"] = c.channel->subsystem();
+  ch["output"] = c.channel->output();
+  ch["output_unit"] = column_unit(c.channel->output());
+  ch["verdict"] = c.verdict;
+  if (!c.refined.empty()) ch["refined_at_full_rate"] = c.refined;
+  ch["at_range_edge"] = c.at_range_edge;
+  ch["nominal"] =
+      params_json(c.channel->nominal_params(), c.nominal.nominal, c.nominal.nominal_sd, *c.channel);
+  ch["noise_rms"] = c.noise_rms;
+  ch["resolution_rms"] = c.resolution_rms;
+  if (c.logged_step > 0.0) ch["recorded_in_steps_of"] = c.logged_step;
+  ch["input_noise_rms"] = c.input_noise_rms;
+  ch["held_out_prediction_sd"] = c.final_fit.held_out_prediction_sd;
+  if (!c.undetermined.empty()) ch["undetermined"] = c.undetermined;
+  if (!c.degenerate.empty()) ch["degenerate"] = c.degenerate;
+  if (c.disturbance) ch["disturbance"] = disturbance_json(*c.disturbance);
+  if (!c.beside_disturbance.empty()) ch["beside_disturbance"] = c.beside_disturbance;
+  ch["held_out_rms"] = {{"nominal", c.nominal.rms_held_out},
+                        {"augmented", c.final_fit.rms_held_out},
+                        {"one_step_ahead", held_out_after(c)}};
+  if (c.one_step_nominal > 0.0) ch["held_out_rms"]["one_step_ahead_nominal"] = c.one_step_nominal;
+  ch["calibration_rms"] = {{"nominal", c.nominal.rms_calibration},
+                           {"augmented", c.final_fit.rms_calibration}};
+  ch["effects"] = effects_json(c);
+  for (const auto& f : c.fast_tones)
+    ch["effects"].push_back(fast_tone_json(f, *c.channel, r.analysed_up_to_hz));
+  ch["augmented_nominal"] = params_json(c.channel->nominal_params(), c.final_fit.nominal,
+                                        c.final_fit.nominal_sd, *c.channel);
+  // A parameter the rows never exercised is not fitted: no SD, and said (issue 52).
+  for (std::size_t k = 0; k < c.final_fit.nominal_exercised.size(); ++k) {
+    if (c.final_fit.nominal_exercised[k] || k >= ch["augmented_nominal"].size()) continue;
+    ch["augmented_nominal"][k]["exercised"] = false;
+    ch["augmented_nominal"][k].erase("sd");
+  }
+  if (c.change) ch["change"] = change_json(*c.change, *c.channel);
+  if (r.day)
+    ch["across_the_recording"] =
+        day_json(r.day->channels[static_cast<std::size_t>(&c - r.channels.data())], *c.channel);
+  candidates_json(c, ch);
+  ch["location"] = location_json(c.location);
+  return ch;
+}
+
+}  // namespace
+
 std::string fit_json(const FitReport& r, double wall_s) {
   nlohmann::json j;
   j["recording"] = r.file;
@@ -170,107 +292,7 @@ std::string fit_json(const FitReport& r, double wall_s) {
   for (const auto& c : r.channels) {
     any = any || !c.chosen.empty() || !c.fast_tones.empty();
     unexplained = unexplained || c.unexplained;
-    nlohmann::json ch;
-    ch["subsystem"] = c.channel->subsystem();
-    ch["output"] = c.channel->output();
-    ch["output_unit"] = column_unit(c.channel->output());
-    ch["verdict"] = c.verdict;
-    if (!c.refined.empty()) ch["refined_at_full_rate"] = c.refined;
-    ch["at_range_edge"] = c.at_range_edge;
-    ch["nominal"] = params_json(c.channel->nominal_params(), c.nominal.nominal,
-                                c.nominal.nominal_sd, *c.channel);
-    ch["noise_rms"] = c.noise_rms;
-    ch["resolution_rms"] = c.resolution_rms;
-    if (c.logged_step > 0.0) ch["recorded_in_steps_of"] = c.logged_step;
-    ch["input_noise_rms"] = c.input_noise_rms;
-    ch["held_out_prediction_sd"] = c.final_fit.held_out_prediction_sd;
-    if (!c.undetermined.empty()) ch["undetermined"] = c.undetermined;
-    if (!c.degenerate.empty()) ch["degenerate"] = c.degenerate;
-    if (c.disturbance) ch["disturbance"] = disturbance_json(*c.disturbance);
-    if (!c.beside_disturbance.empty()) ch["beside_disturbance"] = c.beside_disturbance;
-    ch["held_out_rms"] = {{"nominal", c.nominal.rms_held_out},
-                          {"augmented", c.final_fit.rms_held_out},
-                          {"one_step_ahead", held_out_after(c)}};
-    if (c.one_step_nominal > 0.0) ch["held_out_rms"]["one_step_ahead_nominal"] = c.one_step_nominal;
-    ch["calibration_rms"] = {{"nominal", c.nominal.rms_calibration},
-                             {"augmented", c.final_fit.rms_calibration}};
-    ch["effects"] = effects_json(c);
-    for (const auto& f : c.fast_tones)
-      ch["effects"].push_back(fast_tone_json(f, *c.channel, r.analysed_up_to_hz));
-    ch["augmented_nominal"] = params_json(c.channel->nominal_params(), c.final_fit.nominal,
-                                          c.final_fit.nominal_sd, *c.channel);
-    // A parameter the rows never exercised is not fitted: no SD, and said (issue 52).
-    for (std::size_t k = 0; k < c.final_fit.nominal_exercised.size(); ++k) {
-      if (c.final_fit.nominal_exercised[k] || k >= ch["augmented_nominal"].size()) continue;
-      ch["augmented_nominal"][k]["exercised"] = false;
-      ch["augmented_nominal"][k].erase("sd");
-    }
-    if (c.change) {
-      nlohmann::json moved = nlohmann::json::array();
-      for (const auto& m : c.change->changed)
-        moved.push_back({{"name", m.name},
-                         {"unit", concrete_unit(m.unit, *c.channel)},
-                         {"before", m.before},
-                         {"before_sd", m.before_sd},
-                         {"after", m.after},
-                         {"after_sd", m.after_sd}});
-      ch["change"] = {{"at_s", c.change->at_s},
-                      {"at_sd_s", c.change->at_sd_s},
-                      {"delta_bic", c.change->delta_bic},
-                      {"tied", c.change->tied},
-                      {"parameters", moved}};
-    }
-    if (r.day) {
-      const ChannelDay& d = r.day->channels[static_cast<std::size_t>(&c - r.channels.data())];
-      nlohmann::json tracks = nlohmann::json::array();
-      for (const Track& t : d.tracks) {
-        nlohmann::json tj{{"name", t.name},       {"unit", concrete_unit(t.unit, *c.channel)},
-                          {"verdict", t.verdict}, {"t_s", t.t_s},
-                          {"value", t.value},     {"sd", t.sd}};
-        if (t.verdict == "drifting") tj["slope_per_h"] = t.slope_per_h;
-        if (t.verdict == "changed") {
-          tj["at_s"] = t.at_s;
-          tj["at_sd_s"] = t.at_sd_s;
-          tj["before"] = t.before;
-          tj["after"] = t.after;
-        }
-        tracks.push_back(tj);
-      }
-      ch["across_the_recording"] = {{"verdict", d.verdict}, {"tracks", tracks}};
-    }
-    ch["ties"] = nlohmann::json::array();
-    for (const auto& tie : c.ties)
-      ch["ties"].push_back({{"chosen", tie.chosen},
-                            {"alternative", tie.alternative},
-                            {"delta_bic", tie.delta_bic},
-                            {"experiment", tie.experiment}});
-    auto figures = [](const Candidate& cand) {
-      return nlohmann::json{{"effect", cand.effect},
-                            {"delta_bic", cand.delta_bic},
-                            {"held_out_improvement", cand.held_out_improvement},
-                            {"cv_improvement", cand.cv_improvement},
-                            {"explained", cand.explained}};
-    };
-    for (const auto& cand : c.ranked) ch["ranked"].push_back(figures(cand));
-    // Second effects tried beside a first that explained only part (each judged, with it,
-    // against the nominal).
-    if (!c.pairs.empty()) {
-      ch["pairs_beside"] = c.pairs_beside;
-      for (const auto& cand : c.pairs) ch["pairs"].push_back(figures(cand));
-    }
-    const Location& l = c.location;
-    nlohmann::json loc{{"whiteness_violations", l.whiteness_violations},
-                       {"input_correlation", l.input_correlation},
-                       {"worst_window_start_s", l.worst_window_start_s},
-                       {"worst_window_ratio", l.worst_window_ratio},
-                       {"time_correlation", l.time_correlation},
-                       {"dominant_frequency_hz", l.dominant_frequency_hz},
-                       {"dominant_amplitude", l.dominant_amplitude}};
-    for (const auto& g : l.regimes)
-      loc["regimes"].push_back(
-          {{"regime", g.name}, {"rms_ratio", g.rms_ratio}, {"share", g.share}});
-    ch["location"] = loc;
-    j["channels"].push_back(ch);
+    j["channels"].push_back(channel_json(r, c));
   }
   j["verdict"] =
       any ? (unexplained ? "effects found; unexplained residual remains" : "effects found")

@@ -53,23 +53,35 @@ using namespace planter::sim;
 namespace {
 
 #ifdef PLANTER_WITH_SWEEP
-// A study over many runs of one scenario (sensitivity, montecarlo): the options they share.
-CLI::App* add_study(CLI::App& app, const std::string& name, const std::string& description,
-                    std::string& scenario, std::string& out, bool& force, double& distance_m,
-                    int& jobs, ExecutorOptions& ex) {
+// A study over many runs of one scenario (sensitivity, montecarlo, robustness): its options,
+// with the scenario and the output folder, held for the subcommand's run.
+template <class Options>
+struct Study {
+  std::string scenario, out = "out";
+  Options options;
+  CLI::App* cmd = nullptr;
+};
+
+// The options every study shares, on a new subcommand.
+template <class Options>
+std::shared_ptr<Study<Options>> add_study(CLI::App& app, const std::string& name,
+                                          const std::string& description) {
+  auto o = std::make_shared<Study<Options>>();
+  Options& so = o->options;
   auto* cmd = app.add_subcommand(name, description);
-  cmd->add_option("scenario", scenario, "base scenario file (TOML)")->required();
-  cmd->add_option("--out", out, "output directory")->capture_default_str();
-  cmd->add_flag("--force", force,
+  cmd->add_option("scenario", o->scenario, "base scenario file (TOML)")->required();
+  cmd->add_option("--out", o->out, "output directory")->capture_default_str();
+  cmd->add_flag("--force", so.force,
                 "replace --out even if it holds something other than an analysis");
-  cmd->add_option("--distance", distance_m, "metres per run")
+  cmd->add_option("--distance", so.distance_m, "metres per run")
       ->capture_default_str()
       ->check(planter::config::finite_range(0.5, 1000.0));
-  cmd->add_option("--jobs", jobs, "runs at a time (0: one per core)")
+  cmd->add_option("--jobs", so.jobs, "runs at a time (0: one per core)")
       ->capture_default_str()
       ->check(planter::config::finite_range(0, 256));
-  planter::apps::add_executor_options(*cmd, ex);
-  return cmd;
+  planter::apps::add_executor_options(*cmd, so.executor);
+  o->cmd = cmd;
+  return o;
 }
 #endif
 
@@ -333,66 +345,44 @@ Command add_sweep(CLI::App& app) {
 }
 
 Command add_sensitivity(CLI::App& app) {
-  struct Opts {
-    std::string scenario, out = "out";
-    SensitivityOptions study;
-  };
-  auto o = std::make_shared<Opts>();
-  SensitivityOptions& so = o->study;
-  auto* sensitivity = add_study(
+  auto o = add_study<SensitivityOptions>(
       app, "sensitivity",
-      "which model values the figures rest on: Morris elementary effects over their ranges",
-      o->scenario, o->out, so.force, so.distance_m, so.jobs, so.executor);
-  sensitivity->add_option("--trajectories", so.trajectories, "Morris's r")
+      "which model values the figures rest on: Morris elementary effects over their ranges");
+  o->cmd->add_option("--trajectories", o->options.trajectories, "Morris's r")
       ->capture_default_str()
       ->check(planter::config::finite_range(2, 100));
-  sensitivity->add_flag(
-      "--optimum", so.optimum,
-      "also run the paper's design (15 runs) at each point: the optimum's spread");
-  return {sensitivity, [o] { return run_sensitivity(o->scenario, o->out, o->study); }};
+  o->cmd->add_flag("--optimum", o->options.optimum,
+                   "also run the paper's design (15 runs) at each point: the optimum's spread");
+  return {o->cmd, [o] { return run_sensitivity(o->scenario, o->out, o->options); }};
 }
 
 Command add_monte_carlo(CLI::App& app) {
-  struct Opts {
-    std::string scenario, out = "out";
-    MonteCarloOptions study;
-  };
-  auto o = std::make_shared<Opts>();
-  MonteCarloOptions& mo = o->study;
-  auto* monte_carlo = add_study(
+  auto o = add_study<MonteCarloOptions>(
       app, "montecarlo",
       "what the figures may be given what is not known: every model value drawn across its "
-      "range (Latin hypercube), a seed a run",
-      o->scenario, o->out, mo.force, mo.distance_m, mo.jobs, mo.executor);
-  monte_carlo->add_option("--runs", mo.runs, "runs (seasons) to draw")
+      "range (Latin hypercube), a seed a run");
+  o->cmd->add_option("--runs", o->options.runs, "runs (seasons) to draw")
       ->capture_default_str()
       ->check(planter::config::finite_range(2, 100000));
-  monte_carlo->add_flag("--grip", mo.grip,
-                        "also run each draw at every constant clamp force of the sweep's "
-                        "trade-off: does gripping each stem halve the damage?");
-  monte_carlo->add_option("--stems-mm", mo.stems_mm,
-                          "stems of this diameter range in every run, MIN-MAX (e.g. 5-15)");
-  return {monte_carlo, [o] { return run_monte_carlo(o->scenario, o->out, o->study); }};
+  o->cmd->add_flag("--grip", o->options.grip,
+                   "also run each draw at every constant clamp force of the sweep's "
+                   "trade-off: does gripping each stem halve the damage?");
+  o->cmd->add_option("--stems-mm", o->options.stems_mm,
+                     "stems of this diameter range in every run, MIN-MAX (e.g. 5-15)");
+  return {o->cmd, [o] { return run_monte_carlo(o->scenario, o->out, o->options); }};
 }
 
 Command add_robustness(CLI::App& app) {
-  struct Opts {
-    std::string scenario, out = "out";
-    RobustnessOptions study;
-  };
-  auto o = std::make_shared<Opts>();
-  RobustnessOptions& ro = o->study;
-  auto* robustness = add_study(
+  auto o = add_study<RobustnessOptions>(
       app, "robustness",
       "the controller under disturbance: each loop held, alarmed or silent, case by case, "
-      "beside the paper's drive",
-      o->scenario, o->out, ro.force, ro.distance_m, ro.jobs, ro.executor);
-  robustness
-      ->add_option("--combinations", ro.combinations,
+      "beside the paper's drive");
+  o->cmd
+      ->add_option("--combinations", o->options.combinations,
                    "random combinations of disturbances (Latin hypercube)")
       ->capture_default_str()
       ->check(planter::config::finite_range(0, 10000));
-  return {robustness, [o] { return run_robustness(o->scenario, o->out, o->study); }};
+  return {o->cmd, [o] { return run_robustness(o->scenario, o->out, o->options); }};
 }
 #endif
 

@@ -82,18 +82,22 @@ def run(command, cwd, window):
     main, sub = pty.openpty()
     # man's pager would wait for a key: the page is printed as it is.
     env = dict(os.environ, MANPAGER="cat", PAGER="cat")
+    # Ctrl-C as on a terminal: a background job of a script (CI's) starts with SIGINT ignored,
+    # and an ignored signal stays ignored across exec.
     proc = subprocess.Popen(shlex.split(command), cwd=cwd, stdin=subprocess.DEVNULL,
-                            stdout=sub, stderr=sub, start_new_session=True, env=env)
+                            stdout=sub, stderr=sub, start_new_session=True, env=env,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     os.close(sub)
     start = time.monotonic()
     first = None
     last_out, silence = 0.0, 0.0  # the longest stretch without output, once it has printed
     text = b""
-    stopped = False
+    stopped, stopped_at = False, 0.0
     while True:
         now = time.monotonic() - start
         limit = (first + window) if first is not None else SILENT_S
         if now >= limit:
+            stopped_at = now  # what the walk saw; the wait for the command to end is not silence
             os.killpg(proc.pid, signal.SIGINT)
             stopped = True
             break
@@ -119,8 +123,9 @@ def run(command, cwd, window):
     last = lines[-1].strip() if lines else ""
     end = time.monotonic() - start
     if stopped:
-        ended = "stopped (Ctrl-C) after %.1f s, still running" % end
-        silence = max(silence, end - last_out)
+        ended = "stopped (Ctrl-C) after %.1f s, still running; ended %.1f s later" % (
+            stopped_at, end - stopped_at)
+        silence = max(silence, stopped_at - last_out)
     else:
         ended = "ended in %.1f s, exit %d" % (end, code)
     ended += "; longest silence %.1f s" % silence

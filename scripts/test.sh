@@ -54,7 +54,7 @@ scripts/package-test.sh "$(ls -t "$root"/build/planter_*_"$(dpkg --print-archite
 stage "cross builds for the boards (aarch64, armhf), unit tests under qemu-user, packages"
 scripts/cross-test.sh
 stage "fuzzing (libFuzzer, bounded): CAN frames, command and log lines, board files"
-scripts/fuzz.sh 30 "$root/build-fuzz"
+scripts/fuzz.sh 20 "$root/build-fuzz"
 stage "host-in-the-loop on a real kernel (qemu VM: vcan0, gpio-sim)"
 # The emulated machine (TCG, no KVM) stalls when the shared host is busy: lost encoder edges,
 # late loop wake-ups. A failed run is printed in full and the stage runs once more; the

@@ -76,7 +76,16 @@ touch b.candump.stop; pkill -x candump; wait $REC
 # 4. kill -9 while recording: the file must end on a complete row; a restart moves it aside.
 rm -f c.* c-*
 "$PLANTERD" --board "$BOARD" --record c.csv --flush-ms 200 --log-period 0 2> c-planterd.log & PD=$!
-sleep 4
+# Killed while rows are being written: a starved emulated guest can take over 4 s to write the
+# first (a slow host's CI: 0 rows after 4 s, twice). At most 20 s for two rows, then 2 s more.
+i=0
+while [ $i -lt 100 ]; do
+  n=$(grep -vc '^#' c.csv 2>/dev/null)
+  [ "${n:-0}" -ge 3 ] && break
+  sleep 0.2
+  i=$((i + 1))
+done
+sleep 2
 kill -9 $PD
 date +%s.%N > c-kill-wall  # after the kill: the loss it gives can only be overstated, never < 0
 wait $PD 2>/dev/null

@@ -3,14 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 #include "analysis/residual_stats.h"
 #include "firmware/io/signal_table.h"
 
 namespace planter::analysis {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // One second-order section, direct form II transposed, with its state.
 struct Biquad {
@@ -45,7 +44,7 @@ void run_cascade(Biquad first, Biquad second, std::vector<double>& x, bool forwa
 
 // Low-pass section with quality q, by the bilinear transform with pre-warping.
 Biquad lowpass(double cutoff_hz, double rate_hz, double q) {
-  const double k = std::tan(kPi * cutoff_hz / rate_hz);
+  const double k = std::tan(std::numbers::pi * cutoff_hz / rate_hz);
   const double norm = 1.0 / (1.0 + k / q + k * k);
   const double b0 = k * k * norm;
   return {b0, 2.0 * b0, b0, 2.0 * (k * k - 1.0) * norm, (1.0 - k / q + k * k) * norm};
@@ -74,7 +73,8 @@ double anti_alias_gain(const Recording& r, double f_hz) {
   if (r.decimation_stride <= 1 || rate <= 0.0) return 1.0;
   const double cutoff = anti_alias_cutoff_hz(rate / stride);
   const double f = std::min(std::abs(f_hz), 0.4999 * rate);
-  const double ratio = std::tan(kPi * f / rate) / std::tan(kPi * cutoff / rate);
+  const double ratio =
+      std::tan(std::numbers::pi * f / rate) / std::tan(std::numbers::pi * cutoff / rate);
   return 1.0 / (1.0 + std::pow(ratio, 8));
 }
 

@@ -11,8 +11,6 @@
 namespace planter::analysis {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
 // The process's shape in the fit's own coordinates: log wavelength, log damping, log q (the
 // process's variance over the noise's, the gain normalised to an RMS of 1).
 using Shape = std::array<double, 3>;
@@ -110,13 +108,14 @@ Filtered run_filter(const Series& x, const std::vector<Eigen::Matrix2d>& phi, do
   Filtered out;
   if (n == 0) return out;
   out.r = std::max(sum_nu2 / static_cast<double>(n), 1e-300);
-  out.neg2ll = static_cast<double>(n) * (std::log(kTwoPi * out.r) + 1.0) + sum_log_s;
+  out.neg2ll =
+      static_cast<double>(n) * (std::log(2.0 * std::numbers::pi * out.r) + 1.0) + sum_log_s;
   out.mean = state(2);
   return out;
 }
 
 Filtered evaluate(const Series& x, const Shape& z, std::size_t to = 0, Trace* trace = nullptr) {
-  const double omega = kTwoPi / std::exp(z[0]);
+  const double omega = 2.0 * std::numbers::pi / std::exp(z[0]);
   return run_filter(x, transitions(x, omega, std::exp(z[1])), omega, std::exp(z[2]),
                     to ? to : x.end, trace);
 }
@@ -132,7 +131,7 @@ Shape grid_search(const Series& x, double lambda_lo, double lambda_hi) {
     const double ln_lambda =
         std::log(lambda_lo) + std::log(lambda_hi / lambda_lo) * i / (kLambdas - 1);
     for (const double zeta : {0.1, 0.3, 1.0, 3.0}) {
-      const double omega = kTwoPi / std::exp(ln_lambda);
+      const double omega = 2.0 * std::numbers::pi / std::exp(ln_lambda);
       const std::vector<Eigen::Matrix2d> phi = transitions(x, omega, zeta);
       for (int j = 0; j < kQs; ++j) {
         const double ln_q = std::log(1e-2) + std::log(10.0) * j;
@@ -363,7 +362,7 @@ std::optional<DisturbanceFit> fit_disturbance(const DisturbanceSpec& spec,
     upto.keep_states = true;
     const Filtered cal = evaluate(x, z, calibration_end, &upto);
     out.mean = cal.mean / g_rms;
-    const Smoothed sm = smooth(upto, transitions(x, kTwoPi / lambda, zeta));
+    const Smoothed sm = smooth(upto, transitions(x, 2.0 * std::numbers::pi / lambda, zeta));
     double ms = 0.0, var = 0.0, rows = 0.0;
     for (std::size_t k = x.skip; k < calibration_end; ++k)
       ms += sm.d[k] * sm.d[k], var += sm.var[k], rows += 1.0;
@@ -410,7 +409,7 @@ void standardised_innovations(const DisturbanceFit& d, std::vector<double>& e) {
     std::vector<Eigen::Matrix2d> phi;
   };
   thread_local Cache cache;
-  const double omega = kTwoPi / d.shape.lambda_m;
+  const double omega = 2.0 * std::numbers::pi / d.shape.lambda_m;
   if (cache.ds != x.ds || cache.lambda != d.shape.lambda_m || cache.zeta != d.shape.zeta) {
     cache.ds = x.ds, cache.lambda = d.shape.lambda_m, cache.zeta = d.shape.zeta;
     cache.phi = transitions(x, omega, d.shape.zeta);

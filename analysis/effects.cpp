@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 #include "analysis/decimation.h"
@@ -34,8 +35,6 @@ void shift_in_time(const Recording& r, double shift_s, std::vector<double>& u) {
 }
 
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
 
 // Where the play's follower starts in its gap, as a share of half the gap (see play()).
 const ParamSpec kPlayStart{"start", "1 (-1 low end, +1 high end)", 0.0, -1.0, 1.0};
@@ -242,7 +241,7 @@ void drift(const OutputContext& c, const std::vector<double>& p, std::vector<dou
 void periodic(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {
   const double amplitude = p[0] * anti_alias_gain(c.r, p[1]);
   for (std::size_t k = 0; k < y.size(); ++k)
-    y[k] += amplitude * std::sin(kTwoPi * p[1] * c.r.t[k] + p[2]);
+    y[k] += amplitude * std::sin(2.0 * std::numbers::pi * p[1] * c.r.t[k] + p[2]);
 }
 
 // A hard limit on the output (a load cell's range, an amplifier's rail): the reading stops at

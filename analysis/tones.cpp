@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <numbers>
 #include <unsupported/Eigen/FFT>
 
 #include "analysis/residual_stats.h"
@@ -10,12 +11,11 @@
 namespace planter::analysis {
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
-
 void subtract(const std::vector<double>& t, const Tone& tone, std::vector<double>& e) {
   // The tone matches -residual: adding it to the prediction removes it from the residual.
   for (std::size_t k = 0; k < e.size(); ++k)
-    e[k] += tone.amplitude * std::sin(kTwoPi * tone.frequency_hz * t[k] + tone.phase_rad);
+    e[k] += tone.amplitude *
+            std::sin(2.0 * std::numbers::pi * tone.frequency_hz * t[k] + tone.phase_rad);
 }
 
 }  // namespace
@@ -24,7 +24,7 @@ Tone project_tone(const std::vector<double>& t, const std::vector<double>& resid
                   double frequency_hz) {
   double a = 0, b = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    const double w = kTwoPi * frequency_hz * t[k];
+    const double w = 2.0 * std::numbers::pi * frequency_hz * t[k];
     a -= residual[k] * std::sin(w);
     b -= residual[k] * std::cos(w);
   }
@@ -72,8 +72,8 @@ std::vector<FastTone> find_fast_tones(const std::vector<double>& t,
       while (j + 2 < end && t[j + 1] < at) ++j;
       const double share = std::clamp((at - t[j]) / (t[j + 1] - t[j]), 0.0, 1.0);
       const double v = e[j] + share * (e[j + 1] - e[j]);
-      const double w =
-          0.5 - 0.5 * std::cos(kTwoPi * static_cast<double>(k) / static_cast<double>(end - 1));
+      const double w = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(k) /
+                                            static_cast<double>(end - 1));
       x[k] = (v - mean) * w;
       window_power += w * w;
     }
@@ -118,7 +118,8 @@ std::vector<FastTone> find_fast_tones(const std::vector<double>& t,
     const double n = static_cast<double>(end);
     const double a2 = std::max(ft.tone.amplitude * ft.tone.amplitude, 1e-300);
     ft.amplitude_sd = std::sqrt(2.0 * noise_var / n);
-    ft.frequency_sd_hz = std::sqrt(24.0 * noise_var / (a2 * n * (n * n - 1.0))) / (kTwoPi * step);
+    ft.frequency_sd_hz =
+        std::sqrt(24.0 * noise_var / (a2 * n * (n * n - 1.0))) / (2.0 * std::numbers::pi * step);
     ft.phase_sd_rad = std::sqrt(8.0 * noise_var / (a2 * n));
     ft.held_out_rms_before = rms_between(e, end, e.size());
     subtract(t, ft.tone, e);

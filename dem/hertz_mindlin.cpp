@@ -1,13 +1,12 @@
 #include "dem/hertz_mindlin.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "dem/contact_lane.h"
 
 namespace planter::dem {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double inverse_sum(double a_inv, double b_inv) {
   const double s = a_inv + b_inv;
@@ -33,7 +32,7 @@ PairProperties pair_properties(const ContactMaterial& mat_i, const ContactMateri
   p.r_star = inverse_sum(std::isinf(r_i) ? 0.0 : 1.0 / r_i, std::isinf(r_j) ? 0.0 : 1.0 / r_j);
   p.m_star = inverse_sum(std::isinf(m_i) ? 0.0 : 1.0 / m_i, std::isinf(m_j) ? 0.0 : 1.0 / m_j);
   const double le = std::log(e);
-  p.beta = e >= 1.0 ? 0.0 : le / std::sqrt(le * le + kPi * kPi);
+  p.beta = e >= 1.0 ? 0.0 : le / std::sqrt(le * le + std::numbers::pi * std::numbers::pi);
   p.shear_to_normal_root = p.e_star > 0.0 ? std::sqrt(4.0 * p.g_star / p.e_star) : 0.0;
   return p;
 }

@@ -1,22 +1,17 @@
 #include "dem/parallel_bond.h"
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "dem/bond_kernel.h"
 #include "dem/particle_motion.h"
 
 namespace planter::dem {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
-
 BondGeometry bond_geometry(double r) {
   const double r2 = r * r;  // products, not pow: this runs for every bond every step
-  const double j = kPi * r2 * r2 / 2.0;
-  return {kPi * r2, j, j / 2.0};
+  const double j = std::numbers::pi * r2 * r2 / 2.0;
+  return {std::numbers::pi * r2, j, j / 2.0};
 }
 
 double bond_tensile_stress(const Bond& b, const BondParameters& p) {

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace planter::dem {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 // Cross-sections along the axis, one every particle diameter.
 int section_count(const SeedlingGeometry& g) {
@@ -21,8 +21,8 @@ double ring_radius_m(const SeedlingGeometry& g, int layer) {
 }
 
 int ring_count(const SeedlingGeometry& g, double ring_m) {
-  return std::max(3,
-                  static_cast<int>(std::lround(2.0 * kPi * ring_m / (2.0 * g.particle_radius_m))));
+  return std::max(3, static_cast<int>(std::lround(2.0 * std::numbers::pi * ring_m /
+                                                  (2.0 * g.particle_radius_m))));
 }
 }  // namespace
 
@@ -50,7 +50,7 @@ SeedlingBuild build_seedling(DemWorld& world, const SeedlingGeometry& g) {
       const double ring_m = ring_radius_m(g, layer);
       if (ring_m <= 0.0) break;
       const int count = ring_count(g, ring_m);
-      const double step = 2.0 * kPi / count;
+      const double step = 2.0 * std::numbers::pi / count;
       const double turn = (s % 2 == 0 ? 0.0 : 0.5 * step) + layer * 0.5 * step;
       for (int k = 0; k < count; ++k) {
         const double a = turn + k * step;

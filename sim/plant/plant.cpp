@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string_view>
 
 #include "firmware/io/signal_table.h"
 
 namespace planter::sim {
 namespace {
-constexpr double kTwoPi = 6.283185307179586;
 
 // A simulated drive speaks the board's units: the signal table says each object's scale.
 double raw_of(const ControllerConfig& board, const SignalDecl& s, double si) {
@@ -73,7 +73,7 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   const double soil_slip_pct =
       cfg_.soil.slip_mean_pct +
       cfg_.soil.slip_variation_pct *
-          std::sin(kTwoPi * ground_.x_m() / cfg_.soil.slip_variation_wavelength_m);
+          std::sin(2.0 * std::numbers::pi * ground_.x_m() / cfg_.soil.slip_variation_wavelength_m);
   const double slip_pct = soil_slip_pct + fx.slip_per_kN * draft * 1e-3;
   wheel_.roll(ground_.x_m() - x_before, slip_pct * 0.01, t_ns, dt_ns, edges);
   if (dev.gnss != nullptr) gnss_.step(t_ns + dt_ns, ground_.x_m(), ground_.v_mps(), *dev.gnss);
@@ -126,7 +126,8 @@ void Plant::step(std::int64_t t_ns, std::int64_t dt_ns, PlantDevices& dev,
   }
   const double clamp_force = std::max(0.0, elastic - relaxation_N_ - relaxation2_N_);
   std::normal_distribution<double> noise(0.0, 1.0);
-  const double vibration = fx.vibration_hz > 0.0 ? std::sin(kTwoPi * fx.vibration_hz * t) : 0.0;
+  const double vibration =
+      fx.vibration_hz > 0.0 ? std::sin(2.0 * std::numbers::pi * fx.vibration_hz * t) : 0.0;
   const double measured = (clamp_force + fixture_load_N_) * (1.0 + 0.01 * fx.force_gain_pct) +
                           cfg_.drive.force_noise_N * noise(noise_rng_) + fx.force_offset_N +
                           fx.force_drift_N_per_min * t / 60.0 + fx.vibration_force_N * vibration;

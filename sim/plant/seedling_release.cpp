@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 #include "config/clamp_ceiling.h"
 
 namespace planter::sim {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadPerDeg = kPi / 180.0;
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 constexpr double kG = 9.81;
 // Steps per radian of disc travel: the held stage spans up to about 60 deg, the release about 40.
 constexpr double kStepsPerRad = 240.0;
@@ -19,7 +19,8 @@ constexpr double kFallStep_s = 0.002;
 constexpr double kLongestWait_s = 60.0;
 
 double seedling_mass_kg(const PlantConfig& config, double length_m, double diameter_m) {
-  return config.seedlings.density_kg_per_m3 * kPi / 4.0 * diameter_m * diameter_m * length_m;
+  return config.seedlings.density_kg_per_m3 * std::numbers::pi / 4.0 * diameter_m * diameter_m *
+         length_m;
 }
 }  // namespace
 
@@ -147,7 +148,7 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
   const double root_y = -buried;
   const double drag_N = mc.lip_friction * mc.residual_grip_share * clamp_N;
   const double phi_release = phi;
-  for (double t = 0.0; t < 2.0 * kPi / omega; t += dt) {
+  for (double t = 0.0; t < 2.0 * std::numbers::pi / omega; t += dt) {
     const double hub_x = v * t;
     const double ux = std::sin(phi), uy = std::cos(phi);
     // Where the rod enters the disc's circle: |root + s u - hub| = R.
@@ -178,7 +179,7 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
       v > 1e-4 ? std::min(kLongestWait_s, mc.covering_wheel_behind_mm * 1e-3 / v) : kLongestWait_s;
   const double phi_standing = phi;
   double rate = 0.0;  // rad/s
-  for (double t = 0.0; t < cover_s && std::abs(phi) < 0.5 * kPi; t += kFallStep_s) {
+  for (double t = 0.0; t < cover_s && std::abs(phi) < 0.5 * std::numbers::pi; t += kFallStep_s) {
     const double tipping = weight_arm_Nm * std::sin(phi);
     if (rate == 0.0 && std::abs(tipping) <= loose_Nm) break;  // it stands
     const double direction = rate != 0.0 ? std::copysign(1.0, rate) : std::copysign(1.0, phi);
@@ -188,7 +189,8 @@ ReleaseOutcome release_seedling(const PlantConfig& config, const ReleaseInput& i
   }
   out.fall_deg = (phi - phi_standing) / kRadPerDeg;
   const double covered_Nm = firmed.holding_moment_Nm(diameter, buried);
-  if (std::abs(phi) >= 0.5 * kPi || weight_arm_Nm * std::abs(std::sin(phi)) > covered_Nm) {
+  if (std::abs(phi) >= 0.5 * std::numbers::pi ||
+      weight_arm_Nm * std::abs(std::sin(phi)) > covered_Nm) {
     out.lodged = true;
     phi = std::copysign(90.0 * kRadPerDeg, phi);
   }

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "console/guarded_server.h"
+#include "console/json_number.h"
 
 namespace planter::console {
 
@@ -26,8 +27,6 @@ constexpr const char* kContentSecurityPolicy =
     "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; "
     "connect-src 'self'; img-src data:; base-uri 'none'; form-action 'none'; "
     "frame-ancestors 'none'";
-
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
 
 // Why a request's framing is refused (RFC 9112: Sec. 3.2, one Host; Sec. 6.3, a message with
 // both Transfer-Encoding and Content-Length, or Content-Lengths that disagree, cannot be framed
@@ -113,13 +112,13 @@ std::string ConsoleServer::history_json() {
                  depth = nlohmann::json::array(), depth_target = nlohmann::json::array();
   for (const LiveSample& s : history_) {
     t.push_back(s.t_s);
-    v.push_back(number(s.v_mps));
-    sigma_seen.push_back(number(s.sigma_seen));
-    sigma_true.push_back(number(s.sigma_true));
-    force.push_back(number(s.clamp_force_N));
-    force_target.push_back(number(s.clamp_force_target_N));
-    depth.push_back(number(s.depth_mm));
-    depth_target.push_back(number(s.depth_target_mm));
+    v.push_back(json_number(s.v_mps));
+    sigma_seen.push_back(json_number(s.sigma_seen));
+    sigma_true.push_back(json_number(s.sigma_true));
+    force.push_back(json_number(s.clamp_force_N));
+    force_target.push_back(json_number(s.clamp_force_target_N));
+    depth.push_back(json_number(s.depth_mm));
+    depth_target.push_back(json_number(s.depth_target_mm));
   }
   return nlohmann::json{{"t_s", t},
                         {std::string(signal_key("v_wheel")), v},

@@ -3,9 +3,10 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "console/json_number.h"
+
 namespace planter::console {
 namespace {
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; }
 
 // Faults and warnings in the operator's words, with what to do.
 nlohmann::json fault_list(std::uint32_t faults) {
@@ -54,33 +55,35 @@ std::string to_json(const LiveSample& s, const std::string& recording) {
       {"state", supervisor_state_name(s.state)},
       {"faults", fault_list(s.faults)},
       {"warnings", warning_list(s.warnings)},
-      {std::string(signal_key("v_wheel")), number(s.v_mps)},
-      {std::string(signal_key("sigma")), number(s.sigma_seen)},
-      {kTrueSigmaKey, number(s.sigma_true)},
-      {std::string(signal_key("omega")), number(s.omega_radps)},
-      {std::string(signal_key("clamp_force")), number(s.clamp_force_N)},
-      {std::string(signal_key("clamp_force_cmd")), number(s.clamp_force_target_N)},
-      {std::string(signal_key("depth_mm")), number(s.depth_mm)},
-      {std::string(signal_key("depth_target_mm")), number(s.depth_target_mm)},
+      {std::string(signal_key("v_wheel")), json_number(s.v_mps)},
+      {std::string(signal_key("sigma")), json_number(s.sigma_seen)},
+      {kTrueSigmaKey, json_number(s.sigma_true)},
+      {std::string(signal_key("omega")), json_number(s.omega_radps)},
+      {std::string(signal_key("clamp_force")), json_number(s.clamp_force_N)},
+      {std::string(signal_key("clamp_force_cmd")), json_number(s.clamp_force_target_N)},
+      {std::string(signal_key("depth_mm")), json_number(s.depth_mm)},
+      {std::string(signal_key("depth_target_mm")), json_number(s.depth_target_mm)},
       {"planting",
        {{std::string(signal_key("seedlings")), p.seedlings},
         {std::string(signal_key("seedlings_per_m")), p.per_m},
         {"spacings", p.spacings},
-        {std::string(signal_key("spacing_mean_mm")), spaced ? number(p.spacing_mean_mm) : nullptr},
-        {std::string(signal_key("spacing_cv")), spaced ? number(p.spacing_cv) : nullptr},
+        {std::string(signal_key("spacing_mean_mm")),
+         spaced ? json_number(p.spacing_mean_mm) : nullptr},
+        {std::string(signal_key("spacing_cv")), spaced ? json_number(p.spacing_cv) : nullptr},
         {std::string(signal_key("skips")), p.skips},
         {std::string(signal_key("multiples")), p.multiples},
-        {std::string(signal_key("singulation_pct")), spaced ? number(p.singulation_pct) : nullptr},
+        {std::string(signal_key("singulation_pct")),
+         spaced ? json_number(p.singulation_pct) : nullptr},
         {"empty_clamps_in_row", p.empty_clamps_in_row},
         {std::string(signal_key("damage_seen")), p.damage_seen}}},
       {"gnss", s.gnss_fitted
                    ? nlohmann::json{{"use", gnss_use_name(s.gnss_use)},
                                     {"in_use", s.gnss_use == GnssUse::kUsing},
-                                    {std::string(signal_key("slip_est")), number(s.slip_est)},
-                                    {std::string(signal_key("v_gnss")), number(s.v_gnss_mps)},
+                                    {std::string(signal_key("slip_est")), json_number(s.slip_est)},
+                                    {std::string(signal_key("v_gnss")), json_number(s.v_gnss_mps)},
                                     {"mode", s.gnss_mode},
                                     {"satellites", s.satellites},
-                                    {"hdop", number(s.hdop)}}
+                                    {"hdop", json_number(s.hdop)}}
                    : nlohmann::json()},
       {"recording", recording.empty() ? nlohmann::json() : nlohmann::json(recording)}};
   return j.dump();

@@ -49,4 +49,10 @@ std::string fixed(double v, int decimals) {
   return buf;
 }
 
+std::string formatted(const char* printf_format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, printf_format, v);
+  return buf;
+}
+
 }  // namespace planter::report

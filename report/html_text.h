@@ -28,5 +28,7 @@ inline constexpr const char* kTablePageStyle =
 
 // A figure for a reader: v with the given number of decimals ("91.21").
 std::string fixed(double v, int decimals);
+// A figure in a printf format of one double ("%.3g" gives "0.0123"), for a page's text.
+std::string formatted(const char* printf_format, double v);
 
 }  // namespace planter::report

@@ -65,12 +65,6 @@ struct Effect {
   double mu_star = 0, mu = 0, sigma = 0;  // of the elementary effects, per the whole range
 };
 
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
-
 // One Morris study: the design, its runs, what they show and the outputs, one step a method.
 class SensitivityStudy {
  public:
@@ -362,22 +356,25 @@ std::string SensitivityStudy::html() const {
   html << "</tr>";
   for (std::size_t f : order_) {
     html << "<tr><td style='text-align:left'>" << values_[f].key << "</td><td>"
-         << origin_name(values_[f].origin) << "</td><td>" << fmt("%.4g", values_[f].low) << " - "
-         << fmt("%.4g", values_[f].high) << "</td>";
+         << origin_name(values_[f].origin) << "</td><td>"
+         << report::formatted("%.4g", values_[f].low) << " - "
+         << report::formatted("%.4g", values_[f].high) << "</td>";
     for (std::size_t q = 0; q < responses_; ++q)
-      html << "<td>" << fmt("%.3g", effects_[f][q].mu_star) << "</td><td>"
-           << fmt("%.3g", effects_[f][q].sigma) << "</td><td>" << rank_[f][q] << "</td>";
+      html << "<td>" << report::formatted("%.3g", effects_[f][q].mu_star) << "</td><td>"
+           << report::formatted("%.3g", effects_[f][q].sigma) << "</td><td>" << rank_[f][q]
+           << "</td>";
     html << "</tr>";
   }
   html << "</table><h2>The figures across the plausible ranges</h2><ul>";
   for (std::size_t q = 0; q < responses_; ++q) {
     const auto& s = spread_[q];
-    html << "<li>" << kResponses[q].name << ": " << fmt("%.4g", s[1]) << " - " << fmt("%.4g", s[3])
-         << " " << kResponses[q].unit << " (5-95 % of the points; median " << fmt("%.4g", s[2])
-         << ")</li>";
+    html << "<li>" << kResponses[q].name << ": " << report::formatted("%.4g", s[1]) << " - "
+         << report::formatted("%.4g", s[3]) << " " << kResponses[q].unit
+         << " (5-95 % of the points; median " << report::formatted("%.4g", s[2]) << ")</li>";
   }
-  html << "</ul><p>The paper: " << fmt("%.1f", kPaperCentreUprightness_pct) << " % upright and "
-       << fmt("%.0f", kPaperCentreDamage_pct) << " % damaged at its optimum of "
+  html << "</ul><p>The paper: " << report::formatted("%.1f", kPaperCentreUprightness_pct)
+       << " % upright and " << report::formatted("%.0f", kPaperCentreDamage_pct)
+       << " % damaged at its optimum of "
        << optimum_text(kPaperOptimum[0], kPaperOptimum[1], kPaperOptimum[2])
        << ", a comparison and not a target.</p><h2>The model's values</h2>"
        << model_values_html(base_.plant) << "</body></html>";

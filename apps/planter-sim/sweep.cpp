@@ -103,12 +103,6 @@ std::vector<Run> run_all(const Scenario& base, const std::string& scenario_path,
   return out;
 }
 
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
-
 nlohmann::json anova_json(const doe::Anova& a, const doe::LackOfFit& l) {
   nlohmann::json j = doe::anova_json(a);
   if (l.available) j["lack_of_fit"] = doe::lack_of_fit_json(l);
@@ -120,8 +114,9 @@ std::string anova_html(const std::string& title, const std::string& unit, const 
   std::ostringstream h;
   h << "<h3>" << title << " [" << unit << "]</h3>" << doe::anova_table_html(a) << "<p>Lack of fit ";
   if (l.available)
-    h << "F " << fmt("%.3g", l.f_value) << " on " << l.df << " and " << l.pure_error_df << " df, p "
-      << fmt("%.3g", l.p_value) << (l.p_value < 0.05 ? " (significant)" : "");
+    h << "F " << report::formatted("%.3g", l.f_value) << " on " << l.df << " and "
+      << l.pure_error_df << " df, p " << report::formatted("%.3g", l.p_value)
+      << (l.p_value < 0.05 ? " (significant)" : "");
   else
     h << "not testable (no replicates)";
   h << ". Bold: p &lt; 0.05.</p>";
@@ -164,7 +159,7 @@ std::string surface_map(const std::string& title, const std::string& unit, const
     << "' viewBox='0 0 " << width << ' ' << height << "' font-family='sans-serif' font-size='13'>"
     << "<text x='4' y='16'>" << report::html_escape(title) << " [" << unit << "]</text>"
     << "<text x='4' y='34'>" << kFactors[3 - fx - fy].name << " at "
-    << fmt("%.4g", kFactors[3 - fx - fy].value(fixed(3 - fx - fy))) << " "
+    << report::formatted("%.4g", kFactors[3 - fx - fy].value(fixed(3 - fx - fy))) << " "
     << kFactors[3 - fx - fy].unit << "</text>";
   const double cell = kSize / kCells;
   for (int j = 0; j < kCells; ++j) {
@@ -181,9 +176,9 @@ std::string surface_map(const std::string& title, const std::string& unit, const
     // The ends' labels stay inside the map's width; the middle one is centred.
     const char* anchor = c < 0 ? "start" : c > 0 ? "end" : "middle";
     s << "<text x='" << px(c) << "' y='" << below + 16 << "' text-anchor='" << anchor << "'>"
-      << fmt("%.4g", kFactors[fx].value(c)) << "</text><text x='" << kLeft - 4 << "' y='"
-      << std::clamp(py(c) + 5, kTop + 10, below) << "' text-anchor='end'>"
-      << fmt("%.4g", kFactors[fy].value(c)) << "</text>";
+      << report::formatted("%.4g", kFactors[fx].value(c)) << "</text><text x='" << kLeft - 4
+      << "' y='" << std::clamp(py(c) + 5, kTop + 10, below) << "' text-anchor='end'>"
+      << report::formatted("%.4g", kFactors[fy].value(c)) << "</text>";
   }
   s << "<text x='" << px(0.0) << "' y='" << below + 34 << "' text-anchor='middle'>"
     << kFactors[fx].name << " [" << kFactors[fx].unit << "]</text>"
@@ -200,13 +195,14 @@ std::string surface_map(const std::string& title, const std::string& unit, const
   }
   for (int k = 0; k <= 4; ++k) {
     s << "<text x='" << lx + 15 << "' y='" << kTop + kSize - k * kSize / 4 + 5 << "'>"
-      << fmt("%.4g", lo + (hi - lo) * k / 4.0) << " " << unit << "</text>";
+      << report::formatted("%.4g", lo + (hi - lo) * k / 4.0) << " " << unit << "</text>";
   }
   s << "<text x='4' y='" << below + 56 << "'>x paper's optimum (projected)</text>"
     << "<text x='230' y='" << below + 56 << "' fill='red'>o this sweep's</text>"
     << "<text x='4' y='" << below + 76 << "'>the quadratic, clipped to "
-    << (std::isfinite(physical_max) ? fmt("%.4g", physical_min) + "-" + fmt("%.4g", physical_max)
-                                    : "at least " + fmt("%.4g", physical_min))
+    << (std::isfinite(physical_max) ? report::formatted("%.4g", physical_min) + "-" +
+                                          report::formatted("%.4g", physical_max)
+                                    : "at least " + report::formatted("%.4g", physical_min))
     << " " << unit << "</text><text x='4' y='" << below + 94
     << "'>where it extrapolates past what can be</text></svg>";
   return s.str();
@@ -258,8 +254,9 @@ DesignOptimum design_optimum(const std::vector<Summary>& results) {
 const std::vector<std::string>& paper_significant_terms() { return kPaperSignificant; }
 
 std::string optimum_text(double area_mm2, double disc_speed_radps, double depth_mm) {
-  return fmt("%.0f", area_mm2) + " mm^2, " + fmt("%.3f", disc_speed_radps) + " rad/s, " +
-         fmt("%.0f", depth_mm) + " mm";
+  return report::formatted("%.0f", area_mm2) + " mm^2, " +
+         report::formatted("%.3f", disc_speed_radps) + " rad/s, " +
+         report::formatted("%.0f", depth_mm) + " mm";
 }
 
 double design_span(int factor) { return 2.0 * kFactors[factor].half_range; }
@@ -409,9 +406,9 @@ std::string interior_max(const SweepFindings& f, int k) {
   if (curvature >= 0.0) return "no: the surface curves up or is flat";
   const double x = -slope0 / curvature;
   if (x <= -1.0 || x >= 1.0)
-    return "no: the maximum lies outside the design, at " + fmt("%.4g", kFactors[k].value(x)) +
-           " " + kFactors[k].unit;
-  return "yes, at " + fmt("%.4g", kFactors[k].value(x)) + " " + kFactors[k].unit;
+    return "no: the maximum lies outside the design, at " +
+           report::formatted("%.4g", kFactors[k].value(x)) + " " + kFactors[k].unit;
+  return "yes, at " + report::formatted("%.4g", kFactors[k].value(x)) + " " + kFactors[k].unit;
 }
 
 // sweep.csv: every run.
@@ -476,16 +473,18 @@ std::string sweep_html(const Scenario& base, const SweepFindings& f, const Sweep
        << " runs of " << o.distance_m << " m on " << f.points << " design points (" << kCentrePoints
        << " centre points), at least " << o.replicates
        << " replicates each, more where the damage rate's standard error was above "
-       << o.damage_precision_pts << " points (worst reached: " << fmt("%.2f", f.worst_se)
+       << o.damage_precision_pts
+       << " points (worst reached: " << report::formatted("%.2f", f.worst_se)
        << ").</p><h2>Optimum (desirability: uprightness up, peak radial force down)</h2><p>"
        << optimum_text(f.opt[0], f.opt[1], f.opt[2]) << " (desirability "
-       << fmt("%.3f", f.best.desirability)
+       << report::formatted("%.3f", f.best.desirability)
        << "); the paper's: " << optimum_text(kPaperOptimum[0], kPaperOptimum[1], kPaperOptimum[2])
        << ". Terms of uprightness whose significance differs from the paper's: "
        << report::html_escape(f.differ_text) << ". Centre point: uprightness "
-       << fmt("%.2f", f.centre_up) << " % (paper " << fmt("%.1f", kPaperCentreUprightness_pct)
-       << " predicted), damage " << fmt("%.2f", f.centre_dmg) << " % (paper "
-       << fmt("%.0f", kPaperCentreDamage_pct) << ").</p>"
+       << report::formatted("%.2f", f.centre_up) << " % (paper "
+       << report::formatted("%.1f", kPaperCentreUprightness_pct) << " predicted), damage "
+       << report::formatted("%.2f", f.centre_dmg) << " % (paper "
+       << report::formatted("%.0f", kPaperCentreDamage_pct) << ").</p>"
        << surface_map("uprightness", "%", f.a_up, 1, 2, f.best.coded, f.paper, f.best.coded, 0.0,
                       100.0)
        << surface_map("uprightness", "%", f.a_up, 0, 1, f.best.coded, f.paper, f.best.coded, 0.0,
@@ -503,8 +502,8 @@ std::string sweep_html(const Scenario& base, const SweepFindings& f, const Sweep
   for (std::size_t i = 0; i < f.force_curve.size(); ++i) {
     const Summary& s = f.force_curve[i];
     html << "<tr><td>" << force_row_N(f, i) << (i < kConstantRows ? "" : ", each stem's ceiling")
-         << "</td><td>" << fmt("%.2f", s.uprightness_pct) << "</td><td>"
-         << fmt("%.2f", s.damage_pct) << "</td><td>" << s.truth_skips << "</td><td>"
+         << "</td><td>" << report::formatted("%.2f", s.uprightness_pct) << "</td><td>"
+         << report::formatted("%.2f", s.damage_pct) << "</td><td>" << s.truth_skips << "</td><td>"
          << s.seedlings_fell_in_carry << "</td><td>" << s.seedlings_turned_in_clamp << "</td><td>"
          << s.seedlings_slid_in_clamp << "</td><td>" << s.seedlings_planted << "</td></tr>";
   }
@@ -521,7 +520,7 @@ void print_anova(const char* name, const doe::Anova& a, const doe::LackOfFit& l)
   std::printf(
       "%s: R^2 %.4f, adjusted %.4f, model p %.3g, lack of fit %s\n  significant (p < 0.05):", name,
       a.r2, a.r2_adjusted, a.model_p,
-      l.available ? fmt("p %.3g", l.p_value).c_str() : "not testable");
+      l.available ? report::formatted("p %.3g", l.p_value).c_str() : "not testable");
   for (const auto& t : a.terms)
     if (t.p_value < 0.05) std::printf(" %s", t.name.c_str());
   std::printf("\n");

@@ -48,8 +48,6 @@ class OperatorCommands : public ::testing::Test {
   std::int64_t t_ns_ = 0;
 };
 
-}  // namespace
-
 TEST_F(OperatorCommands, ARunFromReadyIsTakenAndAStopIsAlwaysTaken) {
   ASSERT_EQ(controller_.state(), SupervisorState::kReady);
   EXPECT_EQ(send(CommandKind::kRun), CommandOutcome::kAccepted);
@@ -146,3 +144,5 @@ TEST_F(OperatorCommands, ARunWhileTheNodesBootIsRefused) {
   ASSERT_EQ(fresh.state(), SupervisorState::kCommissioning);
   EXPECT_EQ(fresh.command({CommandKind::kRun, 0.0}), CommandOutcome::kRefusedNotReady);
 }
+
+}  // namespace

@@ -9,7 +9,7 @@
 using namespace planter;
 
 namespace {
-PlantingMonitorConfig config() {
+PlantingMonitorConfig monitor_config() {
   PlantingMonitorConfig c;
   c.sensor_fitted = true;
   c.target_spacing_mm = 30.0;
@@ -30,7 +30,7 @@ void tick(PlantingMonitor& m, double distance_m, const std::vector<double>& at_m
 }  // namespace
 
 TEST(PlantingMonitor, ClassifiesEachSpacingAgainstTheTarget) {
-  PlantingMonitor m(config());
+  PlantingMonitor m(monitor_config());
   // Spacings 30, 46 (skip: over 45), 15 (multiple: at most 15), 44 (single), 30.
   const std::vector<double> at = {0.000, 0.030, 0.076, 0.091, 0.135, 0.165};
   for (double a : at) tick(m, a, {a});
@@ -48,7 +48,7 @@ TEST(PlantingMonitor, ClassifiesEachSpacingAgainstTheTarget) {
 }
 
 TEST(PlantingMonitor, SaysNothingOfSpacingBeforeTheSecondSeedling) {
-  PlantingMonitor m(config());
+  PlantingMonitor m(monitor_config());
   tick(m, 0.0, {});
   tick(m, 0.010, {0.010});
   EXPECT_EQ(m.figures().seedlings, 1.0);
@@ -57,7 +57,7 @@ TEST(PlantingMonitor, SaysNothingOfSpacingBeforeTheSecondSeedling) {
 }
 
 TEST(PlantingMonitor, AStopWithPlantingOffBreaksTheChain) {
-  PlantingMonitor m(config());
+  PlantingMonitor m(monitor_config());
   tick(m, 0.00, {0.00});
   tick(m, 0.03, {0.03});
   tick(m, 0.50, {}, false);  // planting off: the machine moves on with the disc stopped
@@ -68,7 +68,7 @@ TEST(PlantingMonitor, AStopWithPlantingOffBreaksTheChain) {
 }
 
 TEST(PlantingMonitor, WarnsOfAnEmptyBeltAfterTheConfiguredEmptyClampsAndClearsOnASeedling) {
-  PlantingMonitor m(config());
+  PlantingMonitor m(monitor_config());
   tick(m, 0.000, {0.000});
   tick(m, 0.104, {});  // 104 mm: 3.47 pitches, 2 clamps passed empty
   EXPECT_EQ(m.figures().empty_clamps_in_row, 2.0);
@@ -84,7 +84,7 @@ TEST(PlantingMonitor, WarnsOfAnEmptyBeltAfterTheConfiguredEmptyClampsAndClearsOn
 }
 
 TEST(PlantingMonitor, CountsOnlyTheLastMetreInThePopulation) {
-  PlantingMonitor m(config());
+  PlantingMonitor m(monitor_config());
   for (int i = 0; i <= 100; ++i) tick(m, 0.03 * i, {0.03 * i});  // 3 m at 30 mm
   EXPECT_EQ(m.figures().seedlings, 101.0);
   EXPECT_EQ(m.figures().per_m, 34.0);  // 2.01 to 3.00 m

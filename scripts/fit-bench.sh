@@ -17,11 +17,11 @@ sim=$build/apps/planter-sim/planter-sim
 fit=$build/apps/planter-fit/planter-fit
 rows=60000  # 10 minutes at 100 Hz: one copy, and planter-fit's window
 # CPU per 10-minute recording on one core, as a distribution (issue 52, goal under 30 s): over
-# a sample of the blind proof's recordings (every sixth: the whole CI run must stay well inside
-# its 90 minutes on a slow host) and the field run as a field log, when the proof has run
-# (scripts/test.sh runs it just before). scripts/fit-cpu.sh BUILD PROOF 1 takes them all.
+# every recording of the blind proof, as the proof timed its fits (scripts/test.sh runs it just
+# before; a recording it did not time is fitted again, every sixth), and the field run as a
+# field log, when the proof has run.
 if [ -d "$build/fit-proof" ]; then
-  echo "== CPU per recording, one core"
+  echo "== CPU per recording, one core (the proof's own fits, two at a time)"
   "$root/scripts/fit-cpu.sh" "$build" "$build/fit-proof" 6
 fi
 for run in relaxed stiffer; do

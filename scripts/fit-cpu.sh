@@ -6,8 +6,10 @@
 # user + system CPU of each, scaled to 10 minutes of recording. Prints one line per recording,
 # then the distribution, and last the count within 30 s.
 # Usage: scripts/fit-cpu.sh BUILD_DIR PROOF_OUT_DIR [EVERY]
-# EVERY=K takes every K-th of the proof's recordings (1: all; CI takes a sample). Two run at a
-# time, each on one core (--jobs 1): a process's CPU time is its own.
+# A recording whose fit the proof timed (OUT/NAME-fit.cpu, written by scripts/fit-proof.sh) is
+# read, not fitted again: the proof ran it with --jobs 1, two at a time, and a process's CPU time
+# is its own. The others (a proof left by an older script) are fitted here, two at a time; of
+# those, EVERY=K takes every K-th (1: all).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:?usage: fit-cpu.sh BUILD_DIR PROOF_OUT_DIR}
@@ -22,17 +24,33 @@ trap 'rm -rf "$work"' EXIT
 every=${3:-1}
 recordings=("$work/field-log.csv")
 i=0
+# timed_by_proof RECORDING: the file holding the proof's own timing of its fit, if there is one.
+timed_by_proof() {
+  local name=${1#"$proof"/}
+  name=${name%/recording.csv}
+  echo "$proof/${name%-field-log.csv}-fit.cpu"
+}
 for r in "$proof"/*/recording.csv "$proof"/*-field-log.csv; do
   [ -f "$r" ] || continue
-  [ $((i % every)) -eq 0 ] && recordings+=("$r")
-  i=$((i + 1))
+  if [ -s "$(timed_by_proof "$r")" ]; then
+    recordings+=("$r")
+  else
+    [ $((i % every)) -eq 0 ] && recordings+=("$r")
+    i=$((i + 1))
+  fi
 done
 [ ${#recordings[@]} -gt 1 ] || { echo "fit-cpu: no recordings under $proof (run scripts/fit-proof.sh first)" >&2; exit 2; }
 one() {  # one INDEX RECORDING: its line into $work/INDEX.line
-  local n=$1 r=$2 user sys minutes
-  /usr/bin/time -f "%U %S" -o "$work/$n.time" "$fit" "$r" --out "$work/fit-$n" --jobs 1 --force \
-    >/dev/null || { echo "fit-cpu: planter-fit failed on $r" >&2; return 1; }
-  read -r user sys <"$work/$n.time"
+  local n=$1 r=$2 user sys minutes timed
+  timed=$(timed_by_proof "$r")
+  if [ "$r" != "$work/field-log.csv" ] && [ -s "$timed" ]; then
+    # The last line: time(1) puts "Command exited with non-zero status" before it on a failure.
+    read -r user sys < <(tail -n 1 "$timed")
+  else
+    /usr/bin/time -f "%U %S" -o "$work/$n.time" "$fit" "$r" --out "$work/fit-$n" --jobs 1 --force \
+      >/dev/null || { echo "fit-cpu: planter-fit failed on $r" >&2; return 1; }
+    read -r user sys <"$work/$n.time"
+  fi
   minutes=$(/usr/bin/python3 -c 'import sys
 t = [float(l.split(",")[0]) for l in open(sys.argv[1]) if l[:1].isdigit()]
 print((t[-1] - t[0]) / 60.0)' "$r")

@@ -34,6 +34,12 @@ judge() {  # judge NAME EXPECT: prints the case's line from its fit.json
   /usr/bin/python3 "$root/scripts/fit_proof_check.py" "$out/$1-fit/fit.json" "$1" "$2" \
     "$out/$1.coverage" "$out/$1/recording.csv"
 }
+# planter-fit on one core, its user and system CPU kept in OUT/NAME-fit.cpu: scripts/fit-cpu.sh
+# reads them rather than fitting each recording again (the proof is the sample of recordings).
+fit_case() {  # fit_case NAME RECORDING
+  /usr/bin/time -f "%U %S" -o "$out/$1-fit.cpu" \
+    "$fit" "$2" --out "$out/$1-fit" --json --jobs 1 >"$out/$1-fit.stdout" 2>&1
+}
 sim_case() {  # sim_case NAME NOISE EXPECT [--base-sed SED_EXPR] [--drop COLUMN] [effects lines...]
   local name=$1 noise=$2 expect=$3 base_sed="" drop=""
   shift 3
@@ -60,8 +66,7 @@ sim_case() {  # sim_case NAME NOISE EXPECT [--base-sed SED_EXPR] [--drop COLUMN]
     recording=$out/$name-field-log.csv
     /usr/bin/python3 "$root/scripts/drop-columns.py" "$out/$name/recording.csv" "$recording" "${dropped[@]}"
   fi
-  "$fit" "$recording" --out "$out/$name-fit" --json --jobs 1 \
-    >"$out/$name-fit.stdout" 2>&1
+  fit_case "$name" "$recording"
   judge "$name" "$expect"
 }
 run_case() { spawn sim_case "$@"; }
@@ -147,8 +152,7 @@ outside_case() {  # outside_case NAME EXPECT [outside_machine.py options...]
     echo "FAIL $name: the outside generator failed"
     return
   }
-  "$fit" "$out/$name/recording.csv" --out "$out/$name-fit" --json --jobs 1 \
-    >"$out/$name-fit.stdout" 2>&1
+  fit_case "$name" "$out/$name/recording.csv"
   judge "$name" "$expect"
 }
 run_outside() { spawn outside_case "$@"; }

@@ -80,7 +80,7 @@ for p in "${presets[@]}"; do
   echo "== cross build for board $p ($a, ${triple[$p]})"
   mapfile -t console_opts < <(console_sysroot "$p" "$a")
   cmake -S . -B "build-$p" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPLANTER_BOARD="$p" \
-    -DPLANTER_BUILD_BENCH=OFF "${console_opts[@]}" >/dev/null
+    -DPLANTER_BUILD_BENCH=OFF -DCMAKE_UNITY_BUILD=ON "${console_opts[@]}" >/dev/null
   cmake --build "build-$p" -j "$(nproc)" --target planterd planter-can planter_unit_tests \
     planter_can_tests planterd_service_tests planter_dem_tests fuzz_can_frame fuzz_text_inputs fuzz_board_file fuzz_nmea \
     planterd-man planter-can-man

@@ -8,7 +8,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-60}
 build=${2:-$root/build-fuzz}
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DPLANTER_FUZZ=ON -DPLANTER_BUILD_TESTS=OFF -DPLANTER_BUILD_BENCH=OFF >/dev/null
+  -DPLANTER_FUZZ=ON -DPLANTER_BUILD_TESTS=OFF -DPLANTER_BUILD_BENCH=OFF -DCMAKE_UNITY_BUILD=ON >/dev/null
 targets=(can_frame text_inputs board_file recording device_frames config_files console_request
          console_connection nmea sbatch_script)
 cmake --build "$build" -j "$(nproc)" --target "${targets[@]/#/fuzz_}"

@@ -17,7 +17,12 @@ scripts/setup.sh "$root/build" -DPLANTER_ALL_TEST_BINARIES=OFF
 stage "clang-format"
 scripts/check-format.sh
 stage "sanitizer build (address, undefined)"
-scripts/setup.sh "$root/build-asan" -DCMAKE_BUILD_TYPE=Debug -DPLANTER_SANITIZE=ON -DPLANTER_BUILD_BENCH=OFF
+# The builds made once and thrown away (this one, the boards', the fuzzers') are unity builds:
+# each target's sources compiled in batches, the headers (Eigen, GoogleTest, json) parsed once a
+# batch; about 1.7 times less compiler time here (measured per target on 2026-11-29). The
+# release build stays one file a unit, as a changer rebuilds it.
+scripts/setup.sh "$root/build-asan" -DCMAKE_BUILD_TYPE=Debug -DPLANTER_SANITIZE=ON -DPLANTER_BUILD_BENCH=OFF \
+  -DCMAKE_UNITY_BUILD=ON
 stage "tests under sanitizers"
 # Leaks are reported (LeakSanitizer). Every test runs here but those labelled release_only
 # (browsers, the Slurm cluster, the sweeps: release binaries by design), which the release

@@ -1,6 +1,7 @@
 #include "dem/calibration.h"
 
 #include <algorithm>
+#include <array>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -185,28 +186,28 @@ std::vector<Factor> screening_factors() {
   };
 }
 
-CalibrationReport calibrate(const CalibrationOptions& o,
-                            const std::function<void(const std::string&)>& progress) {
-  const plan::FolderLock lock(
-      o.out_dir, "another planter-dem calibration is writing this folder now (give --out another)");
-  CalibrationReport r;
-  r.factors = screening_factors();
-  const int nf = static_cast<int>(r.factors.size());
-  RunPool pool(o, r, progress);
-  std::vector<std::string> names;
-  for (const auto& f : r.factors) names.push_back(f.name.substr(0, 2));
+namespace {
 
-  // 1. Plackett-Burman screening.
+using Coded = std::vector<double>;  // a point in the screening factors' coded units
+
+// 1. Plackett-Burman screening, and its main effects.
+bool screen(const CalibrationOptions& o, CalibrationReport& r, RunPool& pool,
+            const std::vector<std::string>& names) {
+  const int nf = static_cast<int>(r.factors.size());
   const Eigen::MatrixXd pb = plackett_burman_12(nf);
   for (Eigen::Index row = 0; row < pb.rows(); ++row) {
-    std::vector<double> c(static_cast<std::size_t>(nf));
+    Coded c(static_cast<std::size_t>(nf));
     for (int k = 0; k < nf; ++k) c[static_cast<std::size_t>(k)] = pb(row, k);
     r.screening.push_back(make_run(o, r.factors, c));
   }
-  if (!pool.run(r.screening, "screening")) return r;
+  if (!pool.run(r.screening, "screening")) return false;
   r.screening_anova = fit_main_effects(pb, responses(r.screening), names);
+  return true;
+}
 
-  // The significant factors, strongest first; Box-Behnken needs three.
+// The significant factors, strongest first; Box-Behnken needs three.
+void choose_three(const CalibrationOptions& o, CalibrationReport& r) {
+  const int nf = static_cast<int>(r.factors.size());
   std::vector<int> order(static_cast<std::size_t>(nf));
   for (int k = 0; k < nf; ++k) order[static_cast<std::size_t>(k)] = k;
   const auto& terms = r.screening_anova.terms;
@@ -225,25 +226,36 @@ CalibrationReport calibrate(const CalibrationOptions& o,
                     (significant >= 3 ? "; the three strongest go on"
                                       : "; the three largest effects go on, the rest from "
                                         "the next largest");
+}
 
-  // 2. Steepest ascent (or descent) from the centre towards the target.
+// 2. The direction of steepest ascent (or descent) from the centre towards the target, the
+// steepest chosen factor at 1.
+Coded ascent_direction(const CalibrationOptions& o, const CalibrationReport& r) {
+  const auto& terms = r.screening_anova.terms;
   const double towards = r.screening_anova.intercept > o.target_N ? -1.0 : 1.0;
   double b_max = 0.0;
   for (int k : r.chosen)
     b_max = std::max(b_max, std::abs(terms[static_cast<std::size_t>(k)].coefficient));
-  std::vector<double> direction(static_cast<std::size_t>(nf), 0.0);
+  Coded direction(r.factors.size(), 0.0);
   for (int k : r.chosen) {
     direction[static_cast<std::size_t>(k)] =
         b_max > 0 ? towards * terms[static_cast<std::size_t>(k)].coefficient / b_max : 0.0;
   }
-  auto path_point = [&](double step) {
-    std::vector<double> c(static_cast<std::size_t>(nf), 0.0);
-    for (int k = 0; k < nf; ++k)
-      c[static_cast<std::size_t>(k)] = step * kAscentStep * direction[static_cast<std::size_t>(k)];
-    return c;
-  };
-  for (int s = 0; s < kAscentSteps; ++s) r.ascent.push_back(make_run(o, r.factors, path_point(s)));
-  if (!pool.run(r.ascent, "steepest ascent")) return r;
+  return direction;
+}
+
+Coded path_point(const Coded& direction, double step) {
+  Coded c(direction.size(), 0.0);
+  for (std::size_t k = 0; k < direction.size(); ++k) c[k] = step * kAscentStep * direction[k];
+  return c;
+}
+
+// The steps along the path, and the one nearest the target.
+bool ascend(const CalibrationOptions& o, CalibrationReport& r, RunPool& pool,
+            const Coded& direction) {
+  for (int s = 0; s < kAscentSteps; ++s)
+    r.ascent.push_back(make_run(o, r.factors, path_point(direction, s)));
+  if (!pool.run(r.ascent, "steepest ascent")) return false;
   double best_err = 1e300;
   for (int s = 0; s < kAscentSteps; ++s) {
     const double err =
@@ -253,93 +265,136 @@ CalibrationReport calibrate(const CalibrationOptions& o,
       r.best_step = s;
     }
   }
+  return true;
+}
 
-  // 3. Box-Behnken around the best step. The paper put the neighbouring steps at -1 and +1;
-  // here the response turns sharply where bonds start to fail (a collapse), so the levels are
-  // half a step away, where a quadratic can follow it. A factor the path hardly moves gets a
-  // quarter of its screening range instead.
-  const std::vector<double> centre = path_point(r.best_step);
-  std::vector<double> half(3);
-  for (int m = 0; m < 3; ++m) {
-    const auto k = static_cast<std::size_t>(r.chosen[static_cast<std::size_t>(m)]);
-    const double h = std::abs(kAscentStep * direction[k]);
-    half[static_cast<std::size_t>(m)] = h >= 0.1 ? 0.5 * h : 0.25;
-    const Factor& f = r.factors[k];
-    r.bb_low.push_back(f.value(centre[k] - half[static_cast<std::size_t>(m)]));
-    r.bb_centre.push_back(f.value(centre[k]));
-    r.bb_high.push_back(f.value(centre[k] + half[static_cast<std::size_t>(m)]));
-  }
-  auto bb_to_screening = [&](const Eigen::Vector3d& x) {
-    std::vector<double> c = centre;
-    for (int m = 0; m < 3; ++m) {
-      const auto k = static_cast<std::size_t>(r.chosen[static_cast<std::size_t>(m)]);
-      c[k] += x(m) * half[static_cast<std::size_t>(m)];
-    }
+// 3. Box-Behnken around the best step. The paper put the neighbouring steps at -1 and +1;
+// here the response turns sharply where bonds start to fail (a collapse), so the levels are
+// half a step away, where a quadratic can follow it. A factor the path hardly moves gets a
+// quarter of its screening range instead.
+struct BoxBehnkenFrame {
+  Coded centre;                // the best step, in screening units
+  std::array<double, 3> half;  // each chosen factor's +-1, in screening units
+  std::array<std::size_t, 3> chosen;
+  Coded to_screening(const Eigen::Vector3d& x) const {
+    Coded c = centre;
+    for (std::size_t m = 0; m < 3; ++m) c[chosen[m]] += x(static_cast<Eigen::Index>(m)) * half[m];
     return c;
-  };
+  }
+};
+
+BoxBehnkenFrame frame_around_best(CalibrationReport& r, const Coded& direction) {
+  BoxBehnkenFrame frame{path_point(direction, r.best_step), {}, {}};
+  for (std::size_t m = 0; m < 3; ++m) {
+    const auto k = static_cast<std::size_t>(r.chosen[m]);
+    const double h = std::abs(kAscentStep * direction[k]);
+    frame.chosen[m] = k;
+    frame.half[m] = h >= 0.1 ? 0.5 * h : 0.25;
+    const Factor& f = r.factors[k];
+    r.bb_low.push_back(f.value(frame.centre[k] - frame.half[m]));
+    r.bb_centre.push_back(f.value(frame.centre[k]));
+    r.bb_high.push_back(f.value(frame.centre[k] + frame.half[m]));
+  }
+  return frame;
+}
+
+bool box_behnken(const CalibrationOptions& o, CalibrationReport& r, RunPool& pool,
+                 const std::vector<std::string>& names, const BoxBehnkenFrame& frame) {
   // One centre point: the simulation is deterministic, replicates would be identical.
   const Eigen::MatrixXd bb = box_behnken_3(1);
   for (Eigen::Index row = 0; row < bb.rows(); ++row) {
-    r.box_behnken.push_back(make_run(o, r.factors, bb_to_screening(bb.row(row).transpose())));
+    r.box_behnken.push_back(make_run(o, r.factors, frame.to_screening(bb.row(row).transpose())));
   }
-  if (!pool.run(r.box_behnken, "box-behnken")) return r;
+  if (!pool.run(r.box_behnken, "box-behnken")) return false;
   std::vector<std::string> bb_names;
   for (int k : r.chosen) bb_names.push_back(names[static_cast<std::size_t>(k)]);
   r.surface = fit_quadratic_3(bb, responses(r.box_behnken), bb_names);
+  return true;
+}
 
-  // 4. The optimum of the surface, and a run there to check it.
-  r.optimum_coded = solve_quadratic_3_for(r.surface, o.target_N);
-  r.predicted_N = predict_quadratic_3(r.surface, r.optimum_coded);
-  std::vector<DesignRun> verify{make_run(o, r.factors, bb_to_screening(r.optimum_coded))};
-  if (!pool.run(verify, "verification")) return r;
-  r.verification = verify.front();
-  r.calibrated = r.verification;
+// How far a run misses the targets: <= 1 is within 2 % of the force and 3 % of the displacement.
+double miss(const CalibrationOptions& o, const CompressionResult& res) {
+  const double f = std::abs(res.peak_force_N / o.target_N - 1.0);
+  const double d = o.target_displacement_mm > 0
+                       ? std::abs(res.peak_displacement_m * 1e3 / o.target_displacement_mm - 1.0)
+                       : 0.0;
+  return std::max(f / 0.02, d / 0.03);
+}
 
-  // 5. Refinement (beyond the paper; the Box-Behnken optimum can miss when the response
-  // turns sharply at the collapse): scale S and sigma_c together to move the force, and
-  // their ratio to move the peak, until within 2 % (and 3 % of the displacement).
-  auto miss = [&](const CompressionResult& res) {
-    const double f = std::abs(res.peak_force_N / o.target_N - 1.0);
-    const double d = o.target_displacement_mm > 0
-                         ? std::abs(res.peak_displacement_m * 1e3 / o.target_displacement_mm - 1.0)
-                         : 0.0;
-    return std::max(f / 0.02, d / 0.03);  // <= 1: good enough
-  };
+// One refinement step from a run: S and sigma_c scaled together move the force, their ratio
+// the peak's displacement.
+DesignRun refinement_step(const CalibrationOptions& o, const DesignRun& from) {
+  DesignRun next = from;
+  next.reused = false;
+  BondParameters& b = next.setup.bonds;
+  double ratio_scale = 1.0;
+  if (o.target_displacement_mm > 0) {
+    const double dp = from.result.peak_displacement_m * 1e3;
+    ratio_scale = from.result.first_peak_found
+                      ? std::clamp(o.target_displacement_mm / dp, 0.33, 3.0)
+                      : 0.7;  // no collapse yet: weaker bonds
+  }
+  double force_scale = from.result.peak_force_N > 0
+                           ? std::clamp(o.target_N / from.result.peak_force_N, 0.25, 4.0)
+                           : 1.0;
+  // Damped steps (0.7 of the full one in log terms): near the collapse the peak jumps.
+  force_scale = std::pow(force_scale, 0.7);
+  ratio_scale = std::pow(ratio_scale, 0.7);
+  b.normal_stiffness_N_m3 *= force_scale;
+  b.shear_stiffness_N_m3 *= force_scale;
+  b.tensile_strength_Pa *= force_scale * ratio_scale;
+  b.shear_strength_Pa *= force_scale * ratio_scale;
+  return next;
+}
+
+// 5. Refinement (beyond the paper; the Box-Behnken optimum can miss when the response turns
+// sharply at the collapse): steps until within the targets, each from the last run, the best
+// kept.
+bool refine(const CalibrationOptions& o, CalibrationReport& r, RunPool& pool) {
   DesignRun latest = r.verification;
-  for (int it = 0; it < o.refinement_runs && miss(r.calibrated.result) > 1.0; ++it) {
-    const DesignRun& from = latest;  // each step from the last run; the best is kept
-    DesignRun next = from;
-    next.reused = false;
-    BondParameters& b = next.setup.bonds;
-    double ratio_scale = 1.0;
-    if (o.target_displacement_mm > 0) {
-      const double dp = from.result.peak_displacement_m * 1e3;
-      ratio_scale = from.result.first_peak_found
-                        ? std::clamp(o.target_displacement_mm / dp, 0.33, 3.0)
-                        : 0.7;  // no collapse yet: weaker bonds
-    }
-    double force_scale = from.result.peak_force_N > 0
-                             ? std::clamp(o.target_N / from.result.peak_force_N, 0.25, 4.0)
-                             : 1.0;
-    // Damped steps (0.7 of the full one in log terms): near the collapse the peak jumps.
-    force_scale = std::pow(force_scale, 0.7);
-    ratio_scale = std::pow(ratio_scale, 0.7);
-    b.normal_stiffness_N_m3 *= force_scale;
-    b.shear_stiffness_N_m3 *= force_scale;
-    b.tensile_strength_Pa *= force_scale * ratio_scale;
-    b.shear_strength_Pa *= force_scale * ratio_scale;
+  for (int it = 0; it < o.refinement_runs && miss(o, r.calibrated.result) > 1.0; ++it) {
+    DesignRun next = refinement_step(o, latest);
     // A step out of a parameter file's allowed range could neither run from its file nor be
     // the calibrated file: the refinement stops there and says so.
-    if (const std::string why = outside_allowed_range(b); !why.empty()) {
+    if (const std::string why = outside_allowed_range(next.setup.bonds); !why.empty()) {
       r.refinement_stopped = "the next step would set " + why;
       break;
     }
     std::vector<DesignRun> one{next};
-    if (!pool.run(one, "refinement")) return r;
+    if (!pool.run(one, "refinement")) return false;
     r.refinement.push_back(one.front());
     latest = one.front();
-    if (miss(latest.result) < miss(r.calibrated.result)) r.calibrated = latest;
+    if (miss(o, latest.result) < miss(o, r.calibrated.result)) r.calibrated = latest;
   }
+  return true;
+}
+
+}  // namespace
+
+CalibrationReport calibrate(const CalibrationOptions& o,
+                            const std::function<void(const std::string&)>& progress) {
+  const plan::FolderLock lock(
+      o.out_dir, "another planter-dem calibration is writing this folder now (give --out another)");
+  CalibrationReport r;
+  r.factors = screening_factors();
+  RunPool pool(o, r, progress);
+  std::vector<std::string> names;
+  for (const auto& f : r.factors) names.push_back(f.name.substr(0, 2));
+  if (!screen(o, r, pool, names)) return r;
+  choose_three(o, r);
+  const Coded direction = ascent_direction(o, r);
+  if (!ascend(o, r, pool, direction)) return r;
+  const BoxBehnkenFrame frame = frame_around_best(r, direction);
+  if (!box_behnken(o, r, pool, names, frame)) return r;
+
+  // 4. The optimum of the surface, and a run there to check it.
+  r.optimum_coded = solve_quadratic_3_for(r.surface, o.target_N);
+  r.predicted_N = predict_quadratic_3(r.surface, r.optimum_coded);
+  std::vector<DesignRun> verify{make_run(o, r.factors, frame.to_screening(r.optimum_coded))};
+  if (!pool.run(verify, "verification")) return r;
+  r.verification = verify.front();
+  r.calibrated = r.verification;
+  if (!refine(o, r, pool)) return r;
   r.complete = true;
   return r;
 }

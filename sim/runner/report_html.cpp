@@ -13,50 +13,32 @@ namespace planter::sim {
 namespace {
 
 using report::ChartSpec;
+using report::html_escape;
 using report::Line;
 using report::Marker;
 
-}  // namespace
+// What the planted seedlings show: each one's tilt and peak force, and the gaps between them
+// along the row.
+struct Planted {
+  std::vector<double> tilts_deg, spacing_mm, peaks_N;
+};
 
-std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries& r,
-                        const SeedlingProcess& seedlings, const std::string& map_html) {
-  using report::html_escape;
-  std::ostringstream out;
-  std::vector<double> tilts, spacing, peaks;
-  double last_x = -1;
+Planted planted_of(const SeedlingProcess& seedlings) {
+  Planted p;
   std::vector<double> xs;
   for (const Seedling& sd : seedlings.seedlings()) {
     if (!sd.planted) continue;
-    tilts.push_back(sd.tilt_deg);
-    peaks.push_back(sd.peak_force_N);
+    p.tilts_deg.push_back(sd.tilt_deg);
+    p.peaks_N.push_back(sd.peak_force_N);
     xs.push_back(sd.x_m);
   }
   std::sort(xs.begin(), xs.end());
-  for (double x : xs) {
-    if (last_x >= 0) spacing.push_back((x - last_x) * 1000);
-    last_x = x;
-  }
-  // The planting monitor's own rule and ratios, as its figures and the summary count them.
-  const PlantingMonitorConfig& monitor = sc.board.controller.monitor;
-  const double spacing_target_mm = monitor.target_spacing_mm;
-  report::ChartPage charts;
-  int skips = 0, multiples = 0;
-  for (const double g : spacing) {
-    if (monitor.is_skip(g)) ++skips;
-    if (monitor.is_multiple(g)) ++multiples;
-  }
-  const SeedlingConfig& seeds = sc.plant.seedlings;
-  // The strength is the measured peaks' (or the scenario's), never the DEM's (issue 27).
-  const double strength_N = seeds.strength_mean();
-  out << "<!doctype html><html><head>" << report::kReportHead
-      << "<title>planter-sim: " << html_escape(s.scenario) << "</title>"
-      << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td{padding:2px 10px}"
-      << "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style>"
-      << report::ChartPage::head() << "</head><body>"
-      << "<h1>Simulated run: " << html_escape(s.scenario) << "</h1><p>Scenario <code>"
-      << report::html_path(sc.file) << "</code>, board <code>" << html_escape(sc.board.name)
-      << "</code>, seed " << sc.seed << ".</p><h2>Figures</h2><table>";
-  // Each figure rounded for a reader; green or red where it has a goal.
+  for (std::size_t k = 1; k < xs.size(); ++k) p.spacing_mm.push_back((xs[k] - xs[k - 1]) * 1000);
+  return p;
+}
+
+// The figures table: each figure rounded for a reader; green or red where it has a goal.
+void figures_table(std::ostream& out, const Summary& s) {
   enum class Goal { none, met, missed };
   auto goal = [](bool met) { return met ? Goal::met : Goal::missed; };
   auto row = [&](const char* name, double v, int decimals, const char* unit, const char* against,
@@ -73,6 +55,7 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
         << "</td><td>" << against << "</td></tr>";
   };
   const double ceiling = s.clamp_ceiling_N;
+  out << "<h2>Figures</h2><table>";
   row("uprightness", s.uprightness_pct, 2, "%",
       "paper: 94.8 % predicted, 93.86 % field (a comparison, not a target: the model's values "
       "and their sources are under Model assumptions)",
@@ -105,8 +88,15 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
   row("real-time factor", s.realtime_factor, 0, "x", "", Goal::none);
   out << "</table><p>Seedlings per 3 m plot: ";
   for (int c : s.plot_counts) out << c << ' ';
+  out << "</p>";
+}
+
+// The machine's signals over time: ground speed, sigma, disc speed, clamp force, depth.
+void signal_plots(std::ostream& out, report::ChartPage& charts, const Summary& s,
+                  const ReportSeries& r) {
   const std::string t = "time [s]";
-  out << "</p><h2>Plots</h2>"
+  const double ceiling = s.clamp_ceiling_N;
+  out << "<h2>Plots</h2>"
       << charts.lines({"Ground speed", "m/s", t, 0, 0.1, {}, {}, ""}, r.t,
                       {{&r.v_ground, "#000", "true"}, {&r.v_wheel, "#d60", "soil wheel"}})
       << charts.lines({"Sigma = R omega / v",
@@ -123,8 +113,23 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
       << charts.lines({"Clamp force", "N", t, 0, 140, {}, {{ceiling, "#c00", "ceiling"}}, ""}, r.t,
                       {{&r.clamp_force, "#06c", "true"}, {&r.clamp_force_cmd, "#d60", "set-point"}})
       << charts.lines({"Furrow depth", "mm", t, 0, 170, {}, {}, ""}, r.t,
-                      {{&r.depth, "#06c", "true"}, {&r.depth_cmd, "#d60", "command"}})
-      << "<h2>Seedling outcomes</h2>"
+                      {{&r.depth, "#06c", "true"}, {&r.depth_cmd, "#d60", "command"}});
+}
+
+// The seedlings' outcomes: tilt, spacing against the planting monitor's own rule and ratios
+// (as its figures and the summary count them), and the peak force in the nip.
+void outcome_histograms(std::ostream& out, report::ChartPage& charts, const Scenario& sc,
+                        const Summary& s, const Planted& p) {
+  const PlantingMonitorConfig& monitor = sc.board.controller.monitor;
+  const double spacing_target_mm = monitor.target_spacing_mm;
+  int skips = 0, multiples = 0;
+  for (const double g : p.spacing_mm) {
+    if (monitor.is_skip(g)) ++skips;
+    if (monitor.is_multiple(g)) ++multiples;
+  }
+  // The strength is the measured peaks' (or the scenario's), never the DEM's (issue 27).
+  const double strength_N = sc.plant.seedlings.strength_mean();
+  out << "<h2>Seedling outcomes</h2>"
       << charts.histogram({"Tilt after covering; lodged seedlings (+-90) in the end bins",
                            "",
                            "tilt from vertical, + top forward [deg]",
@@ -133,7 +138,7 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
                            {{0.0, "#999", "upright"}},
                            {},
                            ""},
-                          tilts, -30, 30, 60)
+                          p.tilts_deg, -30, 30, 60)
       << charts.histogram(
              {"Spacing between planted seedlings",
               "",
@@ -148,17 +153,36 @@ std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries
               {},
               std::to_string(skips) + " skips and " + std::to_string(multiples) +
                   " multiples against a target of " + report::fixed(spacing_target_mm, 1) + " mm."},
-             spacing, 0, 80, 80)
+             p.spacing_mm, 0, 80, 80)
       << charts.histogram(
              {"Peak radial force in the roller nip",
               "",
               "force [N]",
               0,
               0,
-              {{strength_N, "#c00", "mean strength"}, {ceiling, "#d60", "clamp ceiling"}},
+              {{strength_N, "#c00", "mean strength"}, {s.clamp_ceiling_N, "#d60", "clamp ceiling"}},
               {},
               ""},
-             peaks, 40, 200, 80);
+             p.peaks_N, 40, 200, 80);
+}
+
+}  // namespace
+
+std::string report_html(const Scenario& sc, const Summary& s, const ReportSeries& r,
+                        const SeedlingProcess& seedlings, const std::string& map_html) {
+  std::ostringstream out;
+  report::ChartPage charts;
+  out << "<!doctype html><html><head>" << report::kReportHead
+      << "<title>planter-sim: " << html_escape(s.scenario) << "</title>"
+      << "<style>body{font-family:sans-serif;max-width:900px;margin:20px auto}td{padding:2px 10px}"
+      << "table{border-collapse:collapse}tr:nth-child(even){background:#f4f4f4}</style>"
+      << report::ChartPage::head() << "</head><body>"
+      << "<h1>Simulated run: " << html_escape(s.scenario) << "</h1><p>Scenario <code>"
+      << report::html_path(sc.file) << "</code>, board <code>" << html_escape(sc.board.name)
+      << "</code>, seed " << sc.seed << ".</p>";
+  figures_table(out, s);
+  signal_plots(out, charts, s, r);
+  outcome_histograms(out, charts, sc, s, planted_of(seedlings));
   if (!map_html.empty()) out << "<h2>The row as planted, by GNSS</h2>" << map_html;
   out << "<h2>Model assumptions</h2><p>Written from the configuration that ran.</p><ul>";
   for (const std::string& a : s.assumptions) out << "<li>" << html_escape(a) << "</li>";

@@ -449,60 +449,124 @@ int parse_options(int argc, char** argv, Options& opt) {
   return -1;
 }
 
-int main(int argc, char** argv) {
-  Options opt;
-  if (const int code = parse_options(argc, argv, opt); code >= 0) return code;
+namespace {
 
+// What planterd opens before its loop: the board, its hardware and the crash-safe recording.
+struct Opened {
   config::BoardConfig board;
   std::unique_ptr<daemon::BoardHardware> hw;
   std::unique_ptr<daemon::CrashSafeRecording> recording;
-  // Row times count from here; start_wall in the metadata places them on the wall clock.
-  const std::int64_t start_ns = monotonic_now_ns();
+};
+
+// The wall clock at the start, as the recording's metadata line that places row times on it.
+std::string start_wall_line() {
   timespec start_wall{};
   clock_gettime(CLOCK_REALTIME, &start_wall);
-  char start_wall_text[64];
-  std::snprintf(start_wall_text, sizeof start_wall_text, "start_wall: %lld.%06ld",
+  char text[64];
+  std::snprintf(text, sizeof text, "start_wall: %lld.%06ld",
                 static_cast<long long>(start_wall.tv_sec), start_wall.tv_nsec / 1000);
+  return text;
+}
+
+// Opens them, or returns the exit code of a failure said on stderr (-1: opened).
+int open_board(const Options& opt, Opened& o) {
+  const std::string start_wall = start_wall_line();
   try {
-    board = config::load_board(opt.board);
-    for (const auto& w : board.warnings) std::fprintf(stderr, "planterd: warning: %s\n", w.c_str());
-    hw = std::make_unique<daemon::BoardHardware>(board);
+    o.board = config::load_board(opt.board);
+    for (const auto& w : o.board.warnings)
+      std::fprintf(stderr, "planterd: warning: %s\n", w.c_str());
+    o.hw = std::make_unique<daemon::BoardHardware>(o.board);
     if (!opt.record.empty()) {
-      recording = std::make_unique<daemon::CrashSafeRecording>(
+      o.recording = std::make_unique<daemon::CrashSafeRecording>(
           opt.record,
-          std::vector<std::string>{"board: " + board.name, "source: planterd",
-                                   "units: PRODUCT.md v1", sync_period_line(board),
-                                   "flush_ms: " + std::to_string(opt.flush_ms), start_wall_text});
-      if (!recording->moved_aside_to().empty())
+          std::vector<std::string>{"board: " + o.board.name, "source: planterd",
+                                   "units: PRODUCT.md v1", sync_period_line(o.board),
+                                   "flush_ms: " + std::to_string(opt.flush_ms), start_wall});
+      if (!o.recording->moved_aside_to().empty())
         std::fprintf(stderr, "planterd: previous recording moved to %s\n",
-                     recording->moved_aside_to().c_str());
+                     o.recording->moved_aside_to().c_str());
     }
   } catch (const config::ConfigError& e) {
     return fail(2, e.what());
   } catch (const hal::linux_backend::HalError& e) {
-    return fail(2, std::string(board.file) + ": " + e.what());
+    return fail(2, std::string(o.board.file) + ": " + e.what());
   } catch (const std::exception& e) {
     return fail(2, e.what());
   }
   std::fprintf(stderr, "planterd: %s\n",
-               config::clamp_ceiling_derivation(board.clamp_ceiling,
-                                                board.controller.clamp.stem.reference_diameter_mm)
+               config::clamp_ceiling_derivation(o.board.clamp_ceiling,
+                                                o.board.controller.clamp.stem.reference_diameter_mm)
                    .c_str());
+  return -1;
+}
 
-  // Signals are taken by the main thread only (sigtimedwait), never by the loop thread.
+// Signals are taken by the main thread only (sigtimedwait), never by the loop thread.
+sigset_t block_signals() {
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGTERM);
   sigaddset(&signals, SIGINT);
   sigaddset(&signals, SIGUSR1);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  return signals;
+}
+
+hal::linux_backend::RtLoopConfig rt_loop_config(const config::BoardConfig& board) {
+  hal::linux_backend::RtLoopConfig rt;
+  rt.period_ns = board.controller.can.sync_period_ns;
+  rt.priority = board.realtime.priority;
+  rt.cpu = board.realtime.cpu;
+  rt.require_realtime = board.realtime.require;
+  return rt;
+}
+
+// The last lines: the encoder-edge latency, and the state, loop and bus figures at the stop.
+void print_stop_summary(const ControlCycle& controller, const hal::linux_backend::RtLoop& loop,
+                        daemon::BoardHardware& hw, const Shared& shared,
+                        const daemon::CrashSafeRecording* recording) {
+  const auto& lat = loop.latency();
+  const auto& edge = hw.edge_latency().histogram();
+  std::fprintf(stderr,
+               "planterd: encoder edge to CAN command: %llu edges, p50 %.0f us p99 %.0f us max "
+               "%.0f us\n",
+               static_cast<unsigned long long>(edge.count()), edge.percentile_us(50),
+               edge.percentile_us(99), edge.max_us());
+  const hal::CanBusCounters can = hw.can().counters();
+  std::fprintf(
+      stderr,
+      "planterd: stopped in %s after %llu ticks; wake-up latency p50 %.0f us p99 %.0f "
+      "us max %.0f us; overruns %llu; CAN link downs %u reopens %u, error frames %u, "
+      "tx dropped %u, rx overflow %u; unknown frames %u; rows dropped %llu; link-loss resets "
+      "%u\n",
+      supervisor_state_name(controller.state()), static_cast<unsigned long long>(loop.ticks()),
+      lat.percentile_us(50), lat.percentile_us(99), lat.max_us(),
+      static_cast<unsigned long long>(loop.overruns()), hw.can().link_down_count(),
+      hw.can().reopen_count(), can.error_frames, can.tx_dropped, can.rx_overflow,
+      controller.telemetry().unknown_frames,
+      static_cast<unsigned long long>(shared.rows_dropped.load() +
+                                      (recording ? recording->rows_unformatted() : 0)),
+      shared.link_resets.load());
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options opt;
+  if (const int code = parse_options(argc, argv, opt); code >= 0) return code;
+  // Row times count from here; start_wall in the metadata places them on the wall clock.
+  const std::int64_t start_ns = monotonic_now_ns();
+  Opened opened;
+  if (const int code = open_board(opt, opened); code >= 0) return code;
+  const config::BoardConfig& board = opened.board;
+  daemon::BoardHardware& hw = *opened.hw;
+  daemon::CrashSafeRecording* recording = opened.recording.get();
+  const sigset_t signals = block_signals();
 
   hal::linux_backend::TickTrace trace;  // per-tick phase times, dumped on an overrun
-  hw->controller_hal().tick_probe = &trace;
+  hw.controller_hal().tick_probe = &trace;
   ControllerConfig controller_config = board.controller;
   controller_config.link_recovery.enabled = opt.resume_after_link_loss;
   controller_config.link_recovery.resume_running = opt.run;
-  ControlCycle controller(controller_config, hw->controller_hal());
+  ControlCycle controller(controller_config, hw.controller_hal());
   console::SpscQueue<Row> rows(4096);
   Shared shared;
   if (!opt.commissioned_stamp.empty()) {
@@ -519,11 +583,7 @@ int main(int argc, char** argv) {
       return fail(2, e.what());
     }
   }
-  hal::linux_backend::RtLoopConfig rt_config;
-  rt_config.period_ns = board.controller.can.sync_period_ns;
-  rt_config.priority = board.realtime.priority;
-  rt_config.cpu = board.realtime.cpu;
-  rt_config.require_realtime = board.realtime.require;
+  const hal::linux_backend::RtLoopConfig rt_config = rt_loop_config(board);
   hal::linux_backend::RtLoop loop(rt_config);
   std::string rt_refused;
   std::atomic<bool> setup_done{false};
@@ -539,7 +599,7 @@ int main(int argc, char** argv) {
       return;
     }
     setup_done = true;
-    LoopTick tick(opt, controller, shared, recording ? &rows : nullptr, trace, *hw, start_ns,
+    LoopTick tick(opt, controller, shared, recording ? &rows : nullptr, trace, hw, start_ns,
                   board.controller.supervisor.overrun_threshold_ns, rt_config.period_ns,
                   operator_console ? &commands : nullptr,
                   operator_console ? &console_rows : nullptr);
@@ -565,9 +625,9 @@ int main(int argc, char** argv) {
   std::unique_ptr<daemon::AsPlantedLog> as_planted;
   if (recording && board.gnss.receiver != "none")
     as_planted = std::make_unique<daemon::AsPlantedLog>(board);
-  MainThread main_thread(opt, shared, service, recording.get(),
+  MainThread main_thread(opt, shared, service, recording,
                          operator_console ? operator_console->recording() : nullptr,
-                         as_planted.get(), rows, trace, *hw);
+                         as_planted.get(), rows, trace, hw);
   while (!shared.finished) {
     main_thread.wake(signals);
     if (operator_console) operator_console->publish(console_rows);
@@ -576,27 +636,6 @@ int main(int argc, char** argv) {
   const bool recording_ok = main_thread.drain();
   const bool map_ok = !as_planted || write_as_planted(*as_planted, opt.record);
   operator_console.reset();  // after the last rows: its recording takes them too
-  const auto& lat = loop.latency();
-  const auto& edge = hw->edge_latency().histogram();
-  std::fprintf(stderr,
-               "planterd: encoder edge to CAN command: %llu edges, p50 %.0f us p99 %.0f us max "
-               "%.0f us\n",
-               static_cast<unsigned long long>(edge.count()), edge.percentile_us(50),
-               edge.percentile_us(99), edge.max_us());
-  const hal::CanBusCounters can = hw->can().counters();
-  std::fprintf(
-      stderr,
-      "planterd: stopped in %s after %llu ticks; wake-up latency p50 %.0f us p99 %.0f "
-      "us max %.0f us; overruns %llu; CAN link downs %u reopens %u, error frames %u, "
-      "tx dropped %u, rx overflow %u; unknown frames %u; rows dropped %llu; link-loss resets "
-      "%u\n",
-      supervisor_state_name(controller.state()), static_cast<unsigned long long>(loop.ticks()),
-      lat.percentile_us(50), lat.percentile_us(99), lat.max_us(),
-      static_cast<unsigned long long>(loop.overruns()), hw->can().link_down_count(),
-      hw->can().reopen_count(), can.error_frames, can.tx_dropped, can.rx_overflow,
-      controller.telemetry().unknown_frames,
-      static_cast<unsigned long long>(shared.rows_dropped.load() +
-                                      (recording ? recording->rows_unformatted() : 0)),
-      shared.link_resets.load());
+  print_stop_summary(controller, loop, hw, shared, recording);
   return recording_ok && map_ok ? 0 : 1;
 }

@@ -333,18 +333,21 @@ void widen_delay_by_row(ChannelFit& fit, const Recording& rows_read) {
       fit.effect_sd[e][0] = std::max(fit.effect_sd[e][0], row_s);
 }
 
-ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& split,
-                       const std::vector<double>& nominal_start, std::vector<Effect> effects,
-                       const ResidualFilter* filter, bool hold_located) {
+namespace {
+
+// A parameter that is searched on a grid (non-smooth): which effect's which value, and the
+// values searched.
+struct GridParam {
+  std::size_t effect, index;
+  std::vector<double> values;
+};
+
+// The grid values for the non-smooth parameters, scaled to the data.
+std::vector<GridParam> grid_of(const ChannelModel& ch, const Recording& r,
+                               const std::vector<Effect>& effects, bool hold_located) {
   const std::vector<double>& y = r.at(ch.output());
-  std::vector<double> nominal = nominal_start;
-  // Grid values for the non-smooth parameters, scaled to the data.
   const double in_span = r.has(ch.input()) ? signal_span(r.at(ch.input())) : 1.0;
   const double out_span = signal_span(y);
-  struct GridParam {
-    std::size_t effect, index;
-    std::vector<double> values;
-  };
   std::vector<GridParam> grid;
   bool fresh_grid = hold_located;  // a grid parameter not yet located, or held by the caller
   for (const Effect& fx : effects)
@@ -372,99 +375,109 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
       grid.push_back(g);
     }
   }
-  // A first solve without the effects' help sets the Huber scale from the nominal residual.
-  std::vector<double> pred;
-  ch.simulate(r, nominal, {}, pred);
-  const std::vector<double> zero(y.size(), 0.0);
-  const double huber = 3.0 * robust_scale(error_of(pred, y, filter), zero, split.calibration_end);
+  return grid;
+}
 
-  double best_rss = std::numeric_limits<double>::infinity();
-  std::vector<double> best_nominal = nominal;
-  std::vector<Effect> best_effects = effects;
-  // The smooth parameters solved from the nominal's start beside effects `fx` (their grid
-  // values set), the best kept; returns the calibration RSS.
-  auto solve_keeping_best = [&](std::vector<Effect> fx) {
-    std::vector<double> nom = nominal_start;
-    const double rss = solve(ch, r, split, nom, fx, huber, nullptr, nullptr, filter);
-    if (rss < best_rss) {
-      best_rss = rss;
-      best_nominal = std::move(nom);
-      best_effects = std::move(fx);
+// The search over the grid parameters' values: each value tried has the smooth parameters
+// solved from the nominal's start beside it, and the best (lowest calibration RSS) is kept.
+class GridSearch {
+ public:
+  GridSearch(const ChannelModel& ch, const Recording& r, const Split& split,
+             const std::vector<double>& nominal_start, const std::vector<Effect>& effects,
+             double huber, const ResidualFilter* filter)
+      : ch_(ch),
+        r_(r),
+        split_(split),
+        nominal_start_(nominal_start),
+        effects_(effects),
+        huber_(huber),
+        filter_(filter),
+        best_nominal_(nominal_start),
+        best_effects_(effects) {}
+
+  // Effects fx (their grid values set) tried; returns the calibration RSS.
+  double try_effects(std::vector<Effect> fx) {
+    std::vector<double> nom = nominal_start_;
+    const double rss = solve(ch_, r_, split_, nom, fx, huber_, nullptr, nullptr, filter_);
+    if (rss < best_rss_) {
+      best_rss_ = rss;
+      best_nominal_ = std::move(nom);
+      best_effects_ = std::move(fx);
     }
     return rss;
-  };
-  // Grid over every combination (at most two grid parameters in practice).
-  std::vector<std::size_t> idx(grid.size(), 0);
-  while (true) {
-    std::vector<Effect> fx = effects;
-    for (std::size_t g = 0; g < grid.size(); ++g)
-      fx[grid[g].effect].values[grid[g].index] = grid[g].values[idx[g]];
-    solve_keeping_best(std::move(fx));
-    std::size_t g = 0;
-    while (g < grid.size() && ++idx[g] == grid[g].values.size()) idx[g++] = 0;
-    if (g == grid.size()) break;
   }
+
+  // Every combination of the grids' values (at most two grid parameters in practice).
+  void every_combination(const std::vector<GridParam>& grid) {
+    std::vector<std::size_t> idx(grid.size(), 0);
+    while (true) {
+      std::vector<Effect> fx = effects_;
+      for (std::size_t g = 0; g < grid.size(); ++g)
+        fx[grid[g].effect].values[grid[g].index] = grid[g].values[idx[g]];
+      try_effects(std::move(fx));
+      std::size_t g = 0;
+      while (g < grid.size() && ++idx[g] == grid[g].values.size()) idx[g++] = 0;
+      if (g == grid.size()) break;
+    }
+  }
+
   // A single grid parameter best at its grid's top goes on upwards, a grid step at a time (at
   // most 32 more), to its own bound: the top is where the data's spans guessed the physics
   // would end, not where it must. A speed loop's friction held the disc 0.154 rad/s short of a
   // command spanning 0.498 (31 %), beyond a band's grid of 30 %; left at the top, the fit's
   // other parameters bent around it and a second effect took the credit for moving it on.
-  if (grid.size() == 1 && grid[0].values.size() > 1) {
-    GridParam& g = grid[0];
-    const ParamSpec& p = effects[g.effect].spec->params[g.index];
+  void extend_past_top(GridParam& g) {
+    const ParamSpec& p = effects_[g.effect].spec->params[g.index];
     const double step = g.values[1] - g.values[0];
     const double limit = p.upper > p.lower ? p.upper : std::numeric_limits<double>::infinity();
     for (int more = 0; more < 32 && step > 0.0; ++more) {
       const double top = g.values.back();
-      if (best_effects[g.effect].values[g.index] != top || top + step > limit) break;
-      std::vector<Effect> fx = effects;
+      if (best_effects_[g.effect].values[g.index] != top || top + step > limit) break;
+      std::vector<Effect> fx = effects_;
       fx[g.effect].values[g.index] = top + step;
       g.values.push_back(top + step);
-      solve_keeping_best(std::move(fx));
+      try_effects(std::move(fx));
     }
   }
+
   // A single grid parameter is refined below its grid: the step is halved three times around
   // the best value (a delay of 80 ms on a 31 ms grid), then placed between its last neighbours
   // by the parabola through their calibration RSS (successive parabolic interpolation, Brent,
   // "Algorithms for Minimization without Derivatives", 1973, ch. 5). The parabola only moves
   // the value: a dead zone's width left on its grid leaves a constant on the moving rows that
-  // a gain error would otherwise take up. The +- stays the last step: the fit cannot place it
-  // closer than the grid it searched (a narrower interval, tried, held the truth less often).
-  double resolution = 0.0;
-  if (grid.size() == 1 && grid[0].values.size() > 1) {
-    const GridParam& g = grid[0];
-    const ParamSpec& p = effects[g.effect].spec->params[g.index];
+  // a gain error would otherwise take up. Returns the +-, the last step: the fit cannot place
+  // it closer than the grid it searched (a narrower interval, tried, held the truth less often).
+  double refine_below_grid(const GridParam& g) {
+    const ParamSpec& p = effects_[g.effect].spec->params[g.index];
     const double top = *std::max_element(g.values.begin(), g.values.end());
     auto value_of = [&](const std::vector<Effect>& fx) { return fx[g.effect].values[g.index]; };
-    // The calibration RSS with the grid parameter at v (the smooth ones solved); the best kept.
     // A value already solved is not solved again (the last halving's neighbours).
     std::vector<std::pair<double, double>> solved;
     auto try_value = [&](double v) {
       for (const auto& [at, rss] : solved) {
         if (at == v) return rss;
       }
-      std::vector<Effect> fx = best_effects;
+      std::vector<Effect> fx = best_effects_;
       fx[g.effect].values[g.index] = v;
-      const double rss = solve_keeping_best(std::move(fx));
+      const double rss = try_effects(std::move(fx));
       solved.emplace_back(v, rss);
       return rss;
     };
     double step = std::abs(g.values[1] - g.values[0]);
     for (int round = 0; round < 3; ++round) {
       step *= 0.5;
-      const double centre = value_of(best_effects);
+      const double centre = value_of(best_effects_);
       for (double v : {centre - step, centre + step}) {
         if (v > p.lower && v <= top) try_value(v);
       }
     }
-    resolution = step;
-    const double centre = value_of(best_effects);
+    const double centre = value_of(best_effects_);
     const double lo = centre - step;
-    const double hi_v = centre + step;
-    if (lo > p.lower && hi_v <= top) {
-      const double rss_c = best_rss;
+    const double hi = centre + step;
+    if (lo > p.lower && hi <= top) {
+      const double rss_c = best_rss_;
       const double rss_lo = try_value(lo);
-      const double rss_hi = try_value(hi_v);
+      const double rss_hi = try_value(hi);
       const double curvature = rss_lo - 2.0 * rss_c + rss_hi;
       // Only a minimum inside the bracket (centre the lowest of the three) is interpolated.
       if (curvature > 0.0 && rss_c <= rss_lo && rss_c <= rss_hi) {
@@ -472,10 +485,48 @@ ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& 
         if (std::abs(v - centre) > 1e-6 * step) try_value(v);
       }
     }
+    return step;
+  }
+
+  const std::vector<double>& best_nominal() const { return best_nominal_; }
+  const std::vector<Effect>& best_effects() const { return best_effects_; }
+
+ private:
+  const ChannelModel& ch_;
+  const Recording& r_;
+  const Split& split_;
+  const std::vector<double>& nominal_start_;
+  const std::vector<Effect>& effects_;
+  double huber_;
+  const ResidualFilter* filter_;
+  double best_rss_ = std::numeric_limits<double>::infinity();
+  std::vector<double> best_nominal_;
+  std::vector<Effect> best_effects_;
+};
+
+}  // namespace
+
+ChannelFit fit_channel(const ChannelModel& ch, const Recording& r, const Split& split,
+                       const std::vector<double>& nominal_start, std::vector<Effect> effects,
+                       const ResidualFilter* filter, bool hold_located) {
+  const std::vector<double>& y = r.at(ch.output());
+  std::vector<GridParam> grid = grid_of(ch, r, effects, hold_located);
+  // A first solve without the effects' help sets the Huber scale from the nominal residual.
+  std::vector<double> pred;
+  ch.simulate(r, nominal_start, {}, pred);
+  const std::vector<double> zero(y.size(), 0.0);
+  const double huber = 3.0 * robust_scale(error_of(pred, y, filter), zero, split.calibration_end);
+
+  GridSearch search(ch, r, split, nominal_start, effects, huber, filter);
+  search.every_combination(grid);
+  double resolution = 0.0;
+  if (grid.size() == 1 && grid[0].values.size() > 1) {
+    search.extend_past_top(grid[0]);
+    resolution = search.refine_below_grid(grid[0]);
   }
   ChannelFit fit;
-  fit.nominal = best_nominal;
-  fit.effects = best_effects;
+  fit.nominal = search.best_nominal();
+  fit.effects = search.best_effects();
   std::vector<double> sd;
   const double rss = solve(ch, r, split, fit.nominal, fit.effects, huber, &sd, &fit, filter);
   finish(ch, r, split, sd, resolution, fit);

@@ -29,6 +29,17 @@ class SdoServer {
   [[nodiscard]] std::uint32_t writes() const { return writes_; }
 
  private:
+  // A request's fields: command byte, index, sub-index, and the whole payload.
+  struct Request {
+    std::uint8_t cmd;
+    std::uint16_t index;
+    std::uint8_t sub;
+    const std::array<std::uint8_t, 8>& data;
+  };
+  void initiate_upload(const Request& q, hal::CanBus& bus);
+  void upload_segment(const Request& q, hal::CanBus& bus);
+  void initiate_download(const Request& q, hal::CanBus& bus);
+  void download_segment(const Request& q, hal::CanBus& bus);
   void reply(const std::array<std::uint8_t, 8>& payload, hal::CanBus& bus);
   void abort(std::uint16_t index, std::uint8_t sub, std::uint32_t code, hal::CanBus& bus);
   // The entry, or nullptr after aborting with "no such object" or "no such sub-index".

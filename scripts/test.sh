@@ -19,7 +19,7 @@ scripts/check-format.sh
 stage "sanitizer build (address, undefined)"
 # The builds made once and thrown away (this one, the boards', the fuzzers') are unity builds:
 # each target's sources compiled in batches, the headers (Eigen, GoogleTest, json) parsed once a
-# batch; about 1.7 times less compiler time here (measured per target on 2026-11-29). The
+# batch: from clean here, 1.5 times less CPU and 1.3 times less wall (2026-11-29). The
 # release build stays one file a unit, as a changer rebuilds it.
 scripts/setup.sh "$root/build-asan" -DCMAKE_BUILD_TYPE=Debug -DPLANTER_SANITIZE=ON -DPLANTER_BUILD_BENCH=OFF \
   -DCMAKE_UNITY_BUILD=ON

@@ -288,6 +288,120 @@ int run_replay(ToolContext& ctx, const std::string& path, const TrafficOptions& 
   return refused == 0 ? kExitOk : kExitFailed;
 }
 
+namespace {
+
+// The recording's columns that travel on the bus (signal table), in recording order, and the
+// values a log's PDOs carry for them under the board's maps and scalings.
+class BusColumns {
+ public:
+  explicit BusColumns(const config::BoardConfig& board) : decoder_(&board.controller) {
+    for (const SignalDecl& s : kSignals) {
+      if (s.recorded && s.on_bus()) columns_.push_back(&s);
+    }
+  }
+  [[nodiscard]] std::size_t size() const { return columns_.size(); }
+  [[nodiscard]] const SignalDecl& column(std::size_t i) const { return *columns_[i]; }
+  [[nodiscard]] DecodedFrame decode(const hal::CanFrame& f) const { return decoder_.decode(f); }
+  // take(column, value) for each value of a well-formed PDO that a column records.
+  template <class Take>
+  void for_each_value(const DecodedFrame& d, Take&& take) const {
+    if ((d.service != Service::kTpdo && d.service != Service::kRpdo) || d.malformed) return;
+    const NodeConfig* node = decoder_.node_config(d.node);
+    if (node == nullptr) return;
+    for (const auto& v : d.values) {
+      for (std::size_t i = 0; i < columns_.size(); ++i) {
+        const SignalDecl& c = *columns_[i];
+        const bool rpdo = c.source == SignalSource::kController;
+        if (c.role == node->role && c.index == v.index && c.sub == v.sub &&
+            rpdo == (d.service == Service::kRpdo))
+          take(i, v.value);
+      }
+    }
+  }
+
+ private:
+  std::vector<const SignalDecl*> columns_;
+  FrameDecoder decoder_;
+};
+
+// Which columns the log carries. Columns whose objects never appear in it are left out
+// (docs/recording-format.md: columns may be absent). PDOs shorter (or longer) than the board
+// maps them carry no value: counted and named, so a log of them does not pass as a recording
+// of fewer columns (issue 53, item 6); false when no measured value could be decoded.
+bool columns_present(const BusColumns& bus, const std::vector<LogRecord>& records,
+                     const std::string& log_path, std::ostream& err, std::vector<bool>& present) {
+  present.assign(bus.size(), false);
+  std::size_t bad_pdos = 0;
+  std::string first_bad;
+  for (const auto& r : records) {
+    if (!r.frame.is_standard_data()) continue;
+    const DecodedFrame d = bus.decode(r.frame);
+    bus.for_each_value(d, [&](std::size_t i, double) { present[i] = true; });
+    if ((d.service == Service::kTpdo || d.service == Service::kRpdo) && d.malformed) {
+      if (bad_pdos++ == 0) first_bad = (d.node_name.empty() ? "" : d.node_name + " ") + d.text;
+    }
+  }
+  if (bad_pdos == 0) return true;
+  bool any_measured = false;
+  for (std::size_t i = 0; i < bus.size(); ++i)
+    any_measured = any_measured || (present[i] && bus.column(i).source == SignalSource::kNode);
+  err << "planter-can: decode: " << log_path << ": " << bad_pdos
+      << " PDOs do not match the board's maps (the first: " << first_bad
+      << "); their values are not in the CSV\n";
+  if (!any_measured) {
+    err << "planter-can: decode: no PDO of the log could be decoded with this board's maps: is "
+           "it this machine's log, and this board?\n";
+  }
+  return any_measured;
+}
+
+struct DecodedRows {
+  std::size_t rows = 0;
+  std::size_t syncs_same_time = 0;  // SYNCs at the time of the row before: no row of their own
+};
+
+// One row per SYNC: the values the controller had for that cycle. Rows start once every
+// present column has a value, so no cell is empty; the time strictly increases.
+DecodedRows write_rows(const BusColumns& bus, const std::vector<LogRecord>& records,
+                       const std::vector<bool>& present, std::ostream& csv) {
+  std::vector<double> values(bus.size(), 0.0);
+  std::vector<bool> seen(bus.size(), false);
+  const std::int64_t t0 = records.front().time_ns;
+  DecodedRows n;
+  std::int64_t last_row_ns = 0;
+  for (const auto& r : records) {
+    if (!r.frame.is_standard_data()) continue;
+    if (r.frame.cob_id() != canopen::kSyncCobId) {
+      bus.for_each_value(bus.decode(r.frame), [&](std::size_t i, double v) {
+        values[i] = v;
+        seen[i] = true;
+      });
+      continue;
+    }
+    if (n.rows > 0 && r.time_ns <= last_row_ns) {
+      ++n.syncs_same_time;
+      continue;
+    }
+    bool complete = true;
+    for (std::size_t i = 0; i < bus.size(); ++i) complete = complete && (seen[i] || !present[i]);
+    if (!complete) continue;
+    char b[48];
+    std::snprintf(b, sizeof b, "%.6f", static_cast<double>(r.time_ns - t0) * 1e-9);
+    csv << b;
+    for (std::size_t i = 0; i < bus.size(); ++i) {
+      if (!present[i]) continue;
+      std::snprintf(b, sizeof b, ",%.6g", values[i]);
+      csv << b;
+    }
+    csv << "\n";
+    ++n.rows;
+    last_row_ns = r.time_ns;
+  }
+  return n;
+}
+
+}  // namespace
+
 int run_decode(const config::BoardConfig* board, const std::string& log_path,
                const std::string& out_path, std::ostream& out, std::ostream& err) {
   if (board == nullptr) {
@@ -296,20 +410,6 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
   }
   std::vector<LogRecord> records;
   if (!read_log(log_path, records, err)) return kExitBadInput;
-  // The recording columns that travel on the bus (signal table), in recording order.
-  std::vector<const SignalDecl*> columns;
-  for (const SignalDecl& s : kSignals) {
-    if (s.recorded && s.on_bus()) columns.push_back(&s);
-  }
-  const std::size_t kCount = columns.size();
-  const FrameDecoder decoder(&board->controller);
-  std::vector<double> values(kCount, 0.0);
-  std::vector<bool> seen(kCount, false);
-  // Built in memory and written whole at the end (temporary + rename): a bad log leaves an
-  // existing CSV as it was, and a full disk leaves no half file.
-  std::ostringstream file;
-  std::ostream& csv = out_path.empty() ? out : file;
-  // One row per SYNC: the values the controller had for that cycle.
   std::size_t syncs = 0;
   for (const auto& r : records)
     syncs += r.frame.is_standard_data() && r.frame.cob_id() == canopen::kSyncCobId;
@@ -317,88 +417,23 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
     err << "planter-can: decode: " << log_path << " has no SYNC frames to sample the signals on\n";
     return kExitFailed;
   }
-  // Columns whose objects never appear in the log are left out (docs/recording-format.md: columns
-  // may be absent); rows start once every present column has a value, so no cell is empty.
-  auto for_each_value = [&](const DecodedFrame& d, auto&& take) {
-    if ((d.service != Service::kTpdo && d.service != Service::kRpdo) || d.malformed) return;
-    const NodeConfig* node = decoder.node_config(d.node);
-    if (node == nullptr) return;
-    for (const auto& v : d.values) {
-      for (std::size_t i = 0; i < kCount; ++i) {
-        const SignalDecl& c = *columns[i];
-        const bool rpdo = c.source == SignalSource::kController;
-        if (c.role == node->role && c.index == v.index && c.sub == v.sub &&
-            rpdo == (d.service == Service::kRpdo))
-          take(i, v.value);
-      }
-    }
-  };
-  std::vector<bool> present(kCount, false);
-  // PDOs shorter (or longer) than the board maps them carry no value: counted and named, so a
-  // log of them does not pass as a recording of fewer columns (issue 53, item 6).
-  std::size_t bad_pdos = 0;
-  std::string first_bad;
-  for (const auto& r : records) {
-    if (!r.frame.is_standard_data()) continue;
-    const DecodedFrame d = decoder.decode(r.frame);
-    for_each_value(d, [&](std::size_t i, double) { present[i] = true; });
-    if ((d.service == Service::kTpdo || d.service == Service::kRpdo) && d.malformed) {
-      if (bad_pdos++ == 0) first_bad = (d.node_name.empty() ? "" : d.node_name + " ") + d.text;
-    }
-  }
-  if (bad_pdos > 0) {
-    bool any_measured = false;
-    for (std::size_t i = 0; i < kCount; ++i)
-      any_measured = any_measured || (present[i] && columns[i]->source == SignalSource::kNode);
-    err << "planter-can: decode: " << log_path << ": " << bad_pdos
-        << " PDOs do not match the board's maps (the first: " << first_bad
-        << "); their values are not in the CSV\n";
-    if (!any_measured) {
-      err << "planter-can: decode: no PDO of the log could be decoded with this board's maps: is "
-             "it this machine's log, and this board?\n";
-      return kExitFailed;
-    }
-  }
+  const BusColumns bus(*board);
+  std::vector<bool> present;
+  if (!columns_present(bus, records, log_path, err, present)) return kExitFailed;
+  // Built in memory and written whole at the end (temporary + rename): a bad log leaves an
+  // existing CSV as it was, and a full disk leaves no half file.
+  std::ostringstream file;
+  std::ostream& csv = out_path.empty() ? out : file;
   csv << "# source: " << log_path << "\n# board: " << board->name << "\nt";
-  for (std::size_t i = 0; i < kCount; ++i) {
-    if (present[i]) csv << "," << columns[i]->column;
+  for (std::size_t i = 0; i < bus.size(); ++i) {
+    if (present[i]) csv << "," << bus.column(i).column;
   }
   csv << "\n";
-  const std::int64_t t0 = records.front().time_ns;
-  std::size_t rows = 0, syncs_same_time = 0;
-  std::int64_t last_row_ns = 0;
-  for (const auto& r : records) {
-    if (!r.frame.is_standard_data()) continue;
-    if (r.frame.cob_id() != canopen::kSyncCobId) {
-      for_each_value(decoder.decode(r.frame), [&](std::size_t i, double v) {
-        values[i] = v;
-        seen[i] = true;
-      });
-      continue;
-    }
-    if (rows > 0 && r.time_ns <= last_row_ns) {  // the CSV's time strictly increases
-      ++syncs_same_time;
-      continue;
-    }
-    bool complete = true;
-    for (std::size_t i = 0; i < kCount; ++i) complete = complete && (seen[i] || !present[i]);
-    if (!complete) continue;
-    char b[48];
-    std::snprintf(b, sizeof b, "%.6f", static_cast<double>(r.time_ns - t0) * 1e-9);
-    csv << b;
-    for (std::size_t i = 0; i < kCount; ++i) {
-      if (!present[i]) continue;
-      std::snprintf(b, sizeof b, ",%.6g", values[i]);
-      csv << b;
-    }
-    csv << "\n";
-    ++rows;
-    last_row_ns = r.time_ns;
-  }
+  const DecodedRows n = write_rows(bus, records, present, csv);
   // A log whose SYNCs share their times (a log without timestamps, or stamped by a clock that
   // stood) would collapse into a few rows: refused, not written short.
-  if (syncs_same_time > 0 && syncs_same_time * 10 > syncs) {
-    err << "planter-can: decode: " << log_path << ": " << syncs_same_time << " of " << syncs
+  if (n.syncs_same_time > 0 && n.syncs_same_time * 10 > syncs) {
+    err << "planter-can: decode: " << log_path << ": " << n.syncs_same_time << " of " << syncs
         << " SYNC frames have the time of the one before: the log's timestamps do not advance "
            "(a candump -L log with its times is needed)\n";
     return kExitFailed;
@@ -408,7 +443,7 @@ int run_decode(const config::BoardConfig* board, const std::string& log_path,
       err << "planter-can: decode: " << out_path << ": " << why << "\n";
       return kExitFailed;
     }
-    out << rows << " rows (one per SYNC) from " << records.size() << " frames written to "
+    out << n.rows << " rows (one per SYNC) from " << records.size() << " frames written to "
         << out_path << "\n";
   }
   return kExitOk;

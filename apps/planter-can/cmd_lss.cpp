@@ -80,54 +80,112 @@ std::optional<std::array<std::uint32_t, 4>> lss_fastscan(ToolLink& link, std::in
   return id;
 }
 
-int run_lss(ToolContext& ctx, const LssOptions& opt) {
+namespace {
+
+using Identity = std::array<std::uint32_t, 4>;
+
+// inquire: the node-ID of the node with the given identity.
+int inquire(ToolContext& ctx, const LssOptions& opt, nlohmann::json& j) {
   ToolLink& link = ctx.link;
-  nlohmann::json j{{"action", opt.action}};
-  if (opt.action == "inquire") {
-    if (!opt.identity) {
-      ctx.err << "planter-can: lss inquire needs --identity VENDOR PRODUCT REVISION SERIAL\n";
-      return kExitBadInput;
-    }
-    if (!switch_selective(link, *opt.identity, opt.timeout_ns)) {
-      ctx.err << "planter-can: lss: no node with " << identity_text(*opt.identity) << " answered\n";
-      return kExitFailed;
-    }
-    send_lss(link, cs::kInquireNodeId);
-    const auto r = await_lss(link, cs::kInquireNodeId, opt.timeout_ns);
-    send_lss(link, cs::kSwitchGlobal, 0);
-    if (!r) {
-      ctx.err << "planter-can: lss: the node did not answer the node-ID inquiry\n";
-      return kExitFailed;
-    }
-    j["node_id"] = r->data[1];
-    if (ctx.json) {
-      ctx.out << j.dump(2) << "\n";
-    } else {
-      ctx.out << identity_text(*opt.identity) << ": node-ID " << unsigned{r->data[1]}
-              << (r->data[1] == 0xFF ? " (unconfigured)" : "") << "\n";
-    }
-    return kExitOk;
+  if (!opt.identity) {
+    ctx.err << "planter-can: lss inquire needs --identity VENDOR PRODUCT REVISION SERIAL\n";
+    return kExitBadInput;
   }
+  if (!switch_selective(link, *opt.identity, opt.timeout_ns)) {
+    ctx.err << "planter-can: lss: no node with " << identity_text(*opt.identity) << " answered\n";
+    return kExitFailed;
+  }
+  send_lss(link, cs::kInquireNodeId);
+  const auto r = await_lss(link, cs::kInquireNodeId, opt.timeout_ns);
+  send_lss(link, cs::kSwitchGlobal, 0);
+  if (!r) {
+    ctx.err << "planter-can: lss: the node did not answer the node-ID inquiry\n";
+    return kExitFailed;
+  }
+  j["node_id"] = r->data[1];
+  if (ctx.json) {
+    ctx.out << j.dump(2) << "\n";
+  } else {
+    ctx.out << identity_text(*opt.identity) << ": node-ID " << unsigned{r->data[1]}
+            << (r->data[1] == 0xFF ? " (unconfigured)" : "") << "\n";
+  }
+  return kExitOk;
+}
+
+// The action and the new ID checked before anything is sent: kExitOk when they may go on. Two
+// nodes with one ID answer each other's SDOs and PDOs, so an ID already in use is refused.
+int check_action(ToolContext& ctx, const LssOptions& opt) {
   if (opt.action != "fastscan" && opt.action != "assign") {
     ctx.err << "planter-can: lss: '" << opt.action
             << "' is not an LSS action (fastscan, assign, inquire)\n";
     return kExitBadInput;
   }
-  if (opt.action == "assign" && (opt.new_id < 1 || opt.new_id > 127)) {
+  if (opt.action != "assign") return kExitOk;
+  if (opt.new_id < 1 || opt.new_id > 127) {
     ctx.err << "planter-can: lss assign: node-ID " << opt.new_id << " is out of range 1-127\n";
     return kExitBadInput;
   }
-  if (opt.action == "assign") {
-    // Two nodes with one ID answer each other's SDOs and PDOs: refuse an ID already in use.
-    SdoSession sdo(ctx.link, ctx.sdo_timeout_ns);
-    if (sdo.read(static_cast<std::uint8_t>(opt.new_id), 0x1000, 0).ok()) {
-      ctx.err << "planter-can: lss assign: node-ID " << opt.new_id
-              << " is already used by a node on the bus (it answered a read of 0x1000); "
-                 "choose a free ID (planter-can scan lists them)\n";
-      return kExitFailed;
-    }
+  SdoSession sdo(ctx.link, ctx.sdo_timeout_ns);
+  if (sdo.read(static_cast<std::uint8_t>(opt.new_id), 0x1000, 0).ok()) {
+    ctx.err << "planter-can: lss assign: node-ID " << opt.new_id
+            << " is already used by a node on the bus (it answered a read of 0x1000); "
+               "choose a free ID (planter-can scan lists them)\n";
+    return kExitFailed;
   }
-  std::array<std::uint32_t, 4> id{};
+  return kExitOk;
+}
+
+// Assign: learn the old ID, configure, store, back to waiting; an unconfigured node takes the
+// ID at once, a configured one on reset communication. Its boot-up frame confirms.
+int assign(ToolContext& ctx, const LssOptions& opt, const Identity& id, nlohmann::json& j) {
+  ToolLink& link = ctx.link;
+  send_lss(link, cs::kInquireNodeId);
+  const auto old = await_lss(link, cs::kInquireNodeId, opt.timeout_ns);
+  const std::uint8_t old_id = old ? old->data[1] : canopen::kUnconfiguredNodeId;
+  send_lss(link, cs::kConfigureNodeId, static_cast<std::uint32_t>(opt.new_id));
+  const auto conf = await_lss(link, cs::kConfigureNodeId, opt.timeout_ns);
+  if (!conf || conf->data[1] != 0) {
+    send_lss(link, cs::kSwitchGlobal, 0);
+    ctx.err << "planter-can: lss: the node " << (conf ? "refused" : "did not confirm")
+            << " node-ID " << opt.new_id << "\n";
+    return kExitFailed;
+  }
+  send_lss(link, cs::kStore);
+  const auto stored = await_lss(link, cs::kStore, opt.timeout_ns);
+  send_lss(link, cs::kSwitchGlobal, 0);
+  if (old_id != canopen::kUnconfiguredNodeId) {
+    link.send(canopen::nmt_frame(canopen::NmtCommand::kResetCommunication, old_id));
+  }
+  bool booted = false;
+  hal::CanFrame f;
+  const std::int64_t deadline = link.now_ns() + 1'000'000'000;
+  while (!booted && link.receive_until(f, deadline)) {
+    booted = f.is_standard_data() && f.cob_id() == canopen::kHeartbeatBase + opt.new_id &&
+             f.dlc >= 1 && f.data[0] == 0;
+  }
+  j["old_node_id"] = old_id;
+  j["new_node_id"] = opt.new_id;
+  j["stored"] = stored && stored->data[1] == 0;
+  j["boot_up_seen"] = booted;
+  if (ctx.json) {
+    ctx.out << j.dump(2) << "\n";
+  } else {
+    ctx.out << identity_text(id) << "\n  node-ID "
+            << (old_id == 0xFF ? std::string("unconfigured") : std::to_string(old_id)) << " -> "
+            << opt.new_id << (j["stored"].get<bool>() ? ", stored" : ", NOT stored")
+            << (booted ? ", boot-up seen" : ", no boot-up seen within 1 s") << "\n";
+  }
+  return booted && j["stored"].get<bool>() ? kExitOk : kExitFailed;
+}
+
+}  // namespace
+
+int run_lss(ToolContext& ctx, const LssOptions& opt) {
+  ToolLink& link = ctx.link;
+  nlohmann::json j{{"action", opt.action}};
+  if (opt.action == "inquire") return inquire(ctx, opt, j);
+  if (const int code = check_action(ctx, opt); code != kExitOk) return code;
+  Identity id{};
   if (opt.identity) {
     if (!switch_selective(link, *opt.identity, opt.timeout_ns)) {
       ctx.err << "planter-can: lss: no node with " << identity_text(*opt.identity) << " answered\n";
@@ -151,55 +209,14 @@ int run_lss(ToolContext& ctx, const LssOptions& opt) {
   j["found"] = true;
   j["identity"] = {
       {"vendor_id", id[0]}, {"product_code", id[1]}, {"revision", id[2]}, {"serial", id[3]}};
-  if (opt.action == "fastscan") {
-    send_lss(link, cs::kSwitchGlobal, 0);  // back to waiting, unchanged
-    if (ctx.json) {
-      ctx.out << j.dump(2) << "\n";
-    } else {
-      ctx.out << "unconfigured node: " << identity_text(id) << "\n";
-    }
-    return kExitOk;
-  }
-  // Assign: learn the old ID, configure, store, back to waiting; an unconfigured node takes
-  // the ID at once, a configured one on reset communication.
-  send_lss(link, cs::kInquireNodeId);
-  const auto old = await_lss(link, cs::kInquireNodeId, opt.timeout_ns);
-  const std::uint8_t old_id = old ? old->data[1] : canopen::kUnconfiguredNodeId;
-  send_lss(link, cs::kConfigureNodeId, static_cast<std::uint32_t>(opt.new_id));
-  const auto conf = await_lss(link, cs::kConfigureNodeId, opt.timeout_ns);
-  if (!conf || conf->data[1] != 0) {
-    send_lss(link, cs::kSwitchGlobal, 0);
-    ctx.err << "planter-can: lss: the node " << (conf ? "refused" : "did not confirm")
-            << " node-ID " << opt.new_id << "\n";
-    return kExitFailed;
-  }
-  send_lss(link, cs::kStore);
-  const auto stored = await_lss(link, cs::kStore, opt.timeout_ns);
-  send_lss(link, cs::kSwitchGlobal, 0);
-  if (old_id != canopen::kUnconfiguredNodeId) {
-    link.send(canopen::nmt_frame(canopen::NmtCommand::kResetCommunication, old_id));
-  }
-  // The node boots with its new ID: its boot-up frame confirms.
-  bool booted = false;
-  hal::CanFrame f;
-  const std::int64_t deadline = link.now_ns() + 1'000'000'000;
-  while (!booted && link.receive_until(f, deadline)) {
-    booted = f.is_standard_data() && f.cob_id() == canopen::kHeartbeatBase + opt.new_id &&
-             f.dlc >= 1 && f.data[0] == 0;
-  }
-  j["old_node_id"] = old_id;
-  j["new_node_id"] = opt.new_id;
-  j["stored"] = stored && stored->data[1] == 0;
-  j["boot_up_seen"] = booted;
+  if (opt.action == "assign") return assign(ctx, opt, id, j);
+  send_lss(link, cs::kSwitchGlobal, 0);  // fastscan: back to waiting, unchanged
   if (ctx.json) {
     ctx.out << j.dump(2) << "\n";
   } else {
-    ctx.out << identity_text(id) << "\n  node-ID "
-            << (old_id == 0xFF ? std::string("unconfigured") : std::to_string(old_id)) << " -> "
-            << opt.new_id << (j["stored"].get<bool>() ? ", stored" : ", NOT stored")
-            << (booted ? ", boot-up seen" : ", no boot-up seen within 1 s") << "\n";
+    ctx.out << "unconfigured node: " << identity_text(id) << "\n";
   }
-  return booted && j["stored"].get<bool>() ? kExitOk : kExitFailed;
+  return kExitOk;
 }
 
 }  // namespace planter::cantool

@@ -30,7 +30,8 @@ int fail(int code, const std::string& message) {
   return code;
 }
 
-void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
+// The recording: its rows and rate, what was left out, and the known inputs.
+void print_recording(const FitReport& r) {
   if (r.day)
     std::printf(
         "recording: %s, %zu rows, %.1f s: the first %zu rows searched, the model then tracked "
@@ -65,6 +66,83 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
     if (r.glitches.size() > 5) std::printf(" ... (all in fit.json)");
     std::printf("\n");
   }
+}
+
+// A channel's change point: when, and which parameter moved (or which it cannot tell).
+void print_change(const ChannelReport& c) {
+  std::printf("    a parameter changed at t = %.1f +- %.1f s:", c.change->at_s, c.change->at_sd_s);
+  for (const auto& m : c.change->changed)
+    std::printf("%s%s %.4g -> %.4g",
+                &m == &c.change->changed.front() ? " "
+                : c.change->tied                 ? ", or "
+                                                 : ", ",
+                m.name.c_str(), m.before, m.after);
+  if (c.change->tied)
+    std::printf(" (this recording cannot tell which: a sweep of %s over its range would)",
+                c.channel->input().c_str());
+  std::printf("\n");
+}
+
+// What a channel's fit found: its effects, process, change, tones and ties.
+void print_findings(const FitReport& r, const ChannelReport& c) {
+  for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
+    std::printf("    %s\n", effect_text(c, e).c_str());
+  if (!c.degenerate.empty()) std::printf("    %s\n", c.degenerate.c_str());
+  if (const std::string idle = not_exercised(c); !idle.empty())
+    std::printf("    not exercised by this recording, so not fitted: %s\n", idle.c_str());
+  if (c.logged_step > 0.0)
+    std::printf(
+        "    %s is recorded in steps of %.3g: their rounding, %.3g RMS, is the floor no "
+        "model matches closer than (not noise, not a mismatch)\n",
+        c.channel->output().c_str(), c.logged_step, c.resolution_rms);
+  if (c.disturbance)
+    std::printf("    %s (the process gives its one-step predictions a held-out RMS of %.3g)\n",
+                c.disturbance->describe().c_str(), c.disturbance->predicted_held_out);
+  for (const auto& note : c.beside_disturbance) std::printf("    %s\n", note.c_str());
+  for (const auto& note : c.refined) std::printf("    %s\n", note.c_str());
+  if (c.change) print_change(c);
+  for (const auto& f : c.fast_tones) {
+    std::printf(
+        "    periodic disturbance (vibration) above the analysed %.3g Hz: frequency_hz = "
+        "%.4g",
+        r.analysed_up_to_hz, f.tone.frequency_hz);
+    if (f.order > 1) std::printf(" (order %d of %.4g Hz)", f.order, f.fundamental_hz);
+    std::printf(" amplitude = %.4g; held-out RMS %.4g -> %.4g\n", f.tone.amplitude,
+                f.held_out_rms_before, f.held_out_rms_after);
+  }
+  for (const auto& tie : c.ties)
+    std::printf(
+        "    %s or %s: this recording cannot separate them (BIC %+.1f); to tell them "
+        "apart, record %s\n",
+        tie.chosen.c_str(), tie.alternative.c_str(), tie.delta_bic, tie.experiment.c_str());
+}
+
+// What a channel's fit could not settle: across the day, undetermined, at a range's edge,
+// unexplained.
+void print_doubts(const FitReport& r, const ChannelReport& c) {
+  if (r.day) {
+    const ChannelDay& d = r.day->channels[static_cast<std::size_t>(&c - r.channels.data())];
+    std::printf("    across %zu windows of %.0f s: %s\n", r.day->windows, r.day->window_s,
+                d.verdict.c_str());
+  }
+  if (!c.undetermined.empty())
+    std::printf(
+        "    not determined by the calibration part: %s; record the regime the held-out "
+        "part shows within the calibration part to determine it\n",
+        c.undetermined.c_str());
+  for (const std::string& edge : c.at_range_edge)
+    std::printf("    at the edge of its range: %s\n", edge.c_str());
+  if (c.unexplained) {
+    std::printf(
+        "    unexplained: worst window at %.0f s (%.1fx), input correlation %.2f, "
+        "spectrum peak %.2f Hz\n",
+        c.location.worst_window_start_s, c.location.worst_window_ratio,
+        c.location.input_correlation, c.location.dominant_frequency_hz);
+  }
+}
+
+void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
+  print_recording(r);
   for (const auto& c : r.channels) {
     std::printf("%-10s %-12s %-26s held-out RMS %.4g -> %.4g%s (noise %.3g",
                 c.channel->subsystem().c_str(), c.channel->output().c_str(), c.verdict.c_str(),
@@ -72,68 +150,8 @@ void print_summary(const FitReport& r, double wall_s, double nominal_pass_s) {
                 c.noise_rms);
     if (c.input_noise_rms > 0.0) std::printf(", from the input's noise %.3g", c.input_noise_rms);
     std::printf(")\n");
-    for (std::size_t e = 0; e < c.final_fit.effects.size(); ++e)
-      std::printf("    %s\n", effect_text(c, e).c_str());
-    if (!c.degenerate.empty()) std::printf("    %s\n", c.degenerate.c_str());
-    if (const std::string idle = not_exercised(c); !idle.empty())
-      std::printf("    not exercised by this recording, so not fitted: %s\n", idle.c_str());
-    if (c.logged_step > 0.0)
-      std::printf(
-          "    %s is recorded in steps of %.3g: their rounding, %.3g RMS, is the floor no "
-          "model matches closer than (not noise, not a mismatch)\n",
-          c.channel->output().c_str(), c.logged_step, c.resolution_rms);
-    if (c.disturbance)
-      std::printf("    %s (the process gives its one-step predictions a held-out RMS of %.3g)\n",
-                  c.disturbance->describe().c_str(), c.disturbance->predicted_held_out);
-    for (const auto& note : c.beside_disturbance) std::printf("    %s\n", note.c_str());
-    for (const auto& note : c.refined) std::printf("    %s\n", note.c_str());
-    if (c.change) {
-      std::printf("    a parameter changed at t = %.1f +- %.1f s:", c.change->at_s,
-                  c.change->at_sd_s);
-      for (const auto& m : c.change->changed)
-        std::printf("%s%s %.4g -> %.4g",
-                    &m == &c.change->changed.front() ? " "
-                    : c.change->tied                 ? ", or "
-                                                     : ", ",
-                    m.name.c_str(), m.before, m.after);
-      if (c.change->tied)
-        std::printf(" (this recording cannot tell which: a sweep of %s over its range would)",
-                    c.channel->input().c_str());
-      std::printf("\n");
-    }
-    for (const auto& f : c.fast_tones) {
-      std::printf(
-          "    periodic disturbance (vibration) above the analysed %.3g Hz: frequency_hz = "
-          "%.4g",
-          r.analysed_up_to_hz, f.tone.frequency_hz);
-      if (f.order > 1) std::printf(" (order %d of %.4g Hz)", f.order, f.fundamental_hz);
-      std::printf(" amplitude = %.4g; held-out RMS %.4g -> %.4g\n", f.tone.amplitude,
-                  f.held_out_rms_before, f.held_out_rms_after);
-    }
-    for (const auto& tie : c.ties)
-      std::printf(
-          "    %s or %s: this recording cannot separate them (BIC %+.1f); to tell them "
-          "apart, record %s\n",
-          tie.chosen.c_str(), tie.alternative.c_str(), tie.delta_bic, tie.experiment.c_str());
-    if (r.day) {
-      const ChannelDay& d = r.day->channels[static_cast<std::size_t>(&c - r.channels.data())];
-      std::printf("    across %zu windows of %.0f s: %s\n", r.day->windows, r.day->window_s,
-                  d.verdict.c_str());
-    }
-    if (!c.undetermined.empty())
-      std::printf(
-          "    not determined by the calibration part: %s; record the regime the held-out "
-          "part shows within the calibration part to determine it\n",
-          c.undetermined.c_str());
-    for (const std::string& edge : c.at_range_edge)
-      std::printf("    at the edge of its range: %s\n", edge.c_str());
-    if (c.unexplained) {
-      std::printf(
-          "    unexplained: worst window at %.0f s (%.1fx), input correlation %.2f, "
-          "spectrum peak %.2f Hz\n",
-          c.location.worst_window_start_s, c.location.worst_window_ratio,
-          c.location.input_correlation, c.location.dominant_frequency_hz);
-    }
+    print_findings(r, c);
+    print_doubts(r, c);
   }
   std::printf("analysis: %.2f s wall, %.0fx one nominal simulation pass of all rows (%.4f s)\n",
               wall_s, nominal_pass_s > 0 ? wall_s / nominal_pass_s : 0.0, nominal_pass_s);

@@ -47,21 +47,15 @@ void line_fit(const std::vector<double>& x, const std::vector<double>& y, double
   a = n > 0 ? (sy - b * sx) / n : 0.0;
 }
 
-}  // namespace
-
-ReducedOrderFit fit_reduced_order(
-    const CompressionSetup& base, const std::vector<double>& diameters_mm, int jobs,
-    const std::function<void(std::size_t done, std::size_t total)>& on_run_done) {
-  ReducedOrderFit fit;
-  sim::SeedlingForceModel& m = fit.model;
-  m.reference_diameter_mm = base.seedling.diameter_m * 1e3;
-  // The diameters, then the reference diameter loaded twice as fast (for the damping).
+// The compressions to run: each diameter (its discretisation scaled with it, so that every
+// diameter's wall is the same rings of particles: with a fixed 1.5 mm particle an 8.3 mm
+// seedling's inner ring shrinks to 3 particles and it squashes flat without collapsing, a jump
+// of the model, not of the seedling), then the reference loaded at its speed and twice as fast
+// (for the damping).
+std::vector<CompressionSetup> compression_setups(const CompressionSetup& base,
+                                                 const std::vector<double>& diameters_mm) {
   std::vector<CompressionSetup> setups;
   for (double d : diameters_mm) {
-    // The discretisation scales with the seedling, so that every diameter's wall is the same
-    // rings of particles: with a fixed 1.5 mm particle an 8.3 mm seedling's inner ring shrinks
-    // to 3 particles and it squashes flat without collapsing, a jump of the model, not of the
-    // seedling.
     const double scale = d * 1e-3 / base.seedling.diameter_m;
     CompressionSetup s = base;
     s.seedling.diameter_m = d * 1e-3;
@@ -70,24 +64,18 @@ ReducedOrderFit fit_reduced_order(
     s.bonds.radius_m *= scale;
     setups.push_back(s);
   }
-  CompressionSetup slow = base, fast = base;
+  CompressionSetup fast = base;
   fast.speedup = 2.0 * base.speedup;
-  setups.push_back(slow);
+  setups.push_back(base);
   setups.push_back(fast);
-  std::vector<CompressionResult> results(setups.size());
-  std::mutex progress;
-  std::size_t done = 0;
-  parallel_for(setups.size(), jobs, [&](std::size_t k) {
-    results[k] = run_compression(setups[k]);
-    if (on_run_done) {
-      const std::lock_guard<std::mutex> lock(progress);
-      on_run_done(++done, setups.size());
-    }
-  });
+  return setups;
+}
 
-  // Exponent: log F = log k + n log delta on each curve's elastic branch; n is their mean.
+// The exponent: log F = log k + n log delta on each collapsing curve's elastic branch; n is
+// their mean (1 where none collapses).
+double elastic_exponent(const std::vector<CompressionResult>& results, std::size_t curves) {
   std::vector<double> exponents;
-  for (std::size_t k = 0; k < diameters_mm.size(); ++k) {
+  for (std::size_t k = 0; k < curves; ++k) {
     const Branch b = elastic_branch(results[k]);
     if (b.delta_mm.size() < 3) continue;
     std::vector<double> lx, ly;
@@ -101,37 +89,51 @@ ReducedOrderFit fit_reduced_order(
   }
   double n_sum = 0;
   for (double n : exponents) n_sum += n;
-  m.exponent = exponents.empty() ? 1.0 : n_sum / static_cast<double>(exponents.size());
+  return exponents.empty() ? 1.0 : n_sum / static_cast<double>(exponents.size());
+}
 
+// k with n fixed, minimising sum (F - k delta^n)^2 over the elastic branch, and the fit's RMS.
+std::pair<double, double> stiffness_at(const Branch& b, double exponent) {
+  double num = 0, den = 0;
+  for (std::size_t i = 0; i < b.delta_mm.size(); ++i) {
+    const double x = std::pow(b.delta_mm[i], exponent);
+    num += b.force_N[i] * x;
+    den += x * x;
+  }
+  const double k_fit = den > 0 ? num / den : 0.0;
+  double ss = 0;
+  for (std::size_t i = 0; i < b.delta_mm.size(); ++i) {
+    const double e = b.force_N[i] - k_fit * std::pow(b.delta_mm[i], exponent);
+    ss += e * e;
+  }
+  return {k_fit, b.delta_mm.empty() ? 0.0 : std::sqrt(ss / static_cast<double>(b.delta_mm.size()))};
+}
+
+// After the peak: the lowest force over the next millimetre (the trough of the partial drop,
+// before the wall densifies), or infinity where the curve has no point there.
+double trough_after_peak_N(const CompressionResult& r) {
+  double trough = std::numeric_limits<double>::infinity();
+  const double dp = r.peak_displacement_m * 1e3;
+  for (const auto& p : r.curve) {
+    const double d = p.displacement_m * 1e3;
+    if (d > dp && d <= dp + 1.0) trough = std::min(trough, p.force_N);
+  }
+  return trough;
+}
+
+// The stiffness, first peak and its displacement as lines in the diameter, and the residual
+// after the collapse as the peaks' mean share.
+void fit_diameter_lines(const std::vector<double>& diameters_mm,
+                        const std::vector<CompressionResult>& results, ReducedOrderFit& fit) {
+  sim::SeedlingForceModel& m = fit.model;
   std::vector<double> ds, ks, fps, dps, residuals;
   for (std::size_t k = 0; k < diameters_mm.size(); ++k) {
     DiameterCurve dc;
     dc.diameter_mm = diameters_mm[k];
     dc.result = results[k];
-    const Branch b = elastic_branch(dc.result);
-    // k with n fixed: minimises sum (F - k delta^n)^2.
-    double num = 0, den = 0;
-    for (std::size_t i = 0; i < b.delta_mm.size(); ++i) {
-      const double x = std::pow(b.delta_mm[i], m.exponent);
-      num += b.force_N[i] * x;
-      den += x * x;
-    }
-    const double k_fit = den > 0 ? num / den : 0.0;
-    double ss = 0;
-    for (std::size_t i = 0; i < b.delta_mm.size(); ++i) {
-      const double e = b.force_N[i] - k_fit * std::pow(b.delta_mm[i], m.exponent);
-      ss += e * e;
-    }
-    dc.fit_rms_N =
-        b.delta_mm.empty() ? 0.0 : std::sqrt(ss / static_cast<double>(b.delta_mm.size()));
-    // After the peak: the lowest force over the next millimetre (the trough of the partial
-    // drop, before the wall densifies), as a share of the peak.
-    double trough = std::numeric_limits<double>::infinity();
-    const double dp = dc.result.peak_displacement_m * 1e3;
-    for (const auto& p : dc.result.curve) {
-      const double d = p.displacement_m * 1e3;
-      if (d > dp && d <= dp + 1.0) trough = std::min(trough, p.force_N);
-    }
+    const auto [k_fit, rms_N] = stiffness_at(elastic_branch(dc.result), m.exponent);
+    dc.fit_rms_N = rms_N;
+    const double trough = trough_after_peak_N(dc.result);
     const double fp = dc.result.peak_force_N;
     if (dc.result.first_peak_found && std::isfinite(trough) && fp > 0)
       residuals.push_back(std::max(0.0, trough) / fp);
@@ -142,7 +144,7 @@ ReducedOrderFit fit_reduced_order(
     ds.push_back(dc.diameter_mm);
     ks.push_back(k_fit);
     fps.push_back(fp);
-    dps.push_back(dp);
+    dps.push_back(dc.result.peak_displacement_m * 1e3);
   }
   if (ds.empty()) throw std::runtime_error("no DEM curve has a first peak: nothing to reduce");
   std::vector<double> dx;
@@ -154,10 +156,12 @@ ReducedOrderFit fit_reduced_order(
   for (double r : residuals) rsum += r;
   m.residual_fraction =
       residuals.empty() ? 1.0 : std::min(1.0, rsum / static_cast<double>(residuals.size()));
+}
 
-  // Damping: the force difference between the two loading speeds on the elastic branch.
-  const CompressionResult& rs = results[results.size() - 2];
-  const CompressionResult& rf = results[results.size() - 1];
+// Damping: the force difference between the two loading speeds on the elastic branch, per
+// unit of the speeds' difference.
+double damping_N_s_per_mm(const CompressionSetup& slow, const CompressionResult& rs,
+                          const CompressionSetup& fast, const CompressionResult& rf) {
   const double v_slow = slow.platen_speed_mps * slow.speedup * 1e3;
   const double v_fast = fast.platen_speed_mps * fast.speedup * 1e3;
   double dsum = 0;
@@ -169,9 +173,35 @@ ReducedOrderFit fit_reduced_order(
     dsum += rf.curve[i].force_N - rs.curve[i].force_N;
     ++dn;
   }
-  m.damping_N_s_per_mm = dn > 0 ? std::max(0.0, dsum / dn / (v_fast - v_slow)) : 0.0;
-  fit.damping_runs_speedups[0] = slow.speedup;
-  fit.damping_runs_speedups[1] = fast.speedup;
+  return dn > 0 ? std::max(0.0, dsum / dn / (v_fast - v_slow)) : 0.0;
+}
+
+}  // namespace
+
+ReducedOrderFit fit_reduced_order(
+    const CompressionSetup& base, const std::vector<double>& diameters_mm, int jobs,
+    const std::function<void(std::size_t done, std::size_t total)>& on_run_done) {
+  ReducedOrderFit fit;
+  sim::SeedlingForceModel& m = fit.model;
+  m.reference_diameter_mm = base.seedling.diameter_m * 1e3;
+  const std::vector<CompressionSetup> setups = compression_setups(base, diameters_mm);
+  std::vector<CompressionResult> results(setups.size());
+  std::mutex progress;
+  std::size_t done = 0;
+  parallel_for(setups.size(), jobs, [&](std::size_t k) {
+    results[k] = run_compression(setups[k]);
+    if (on_run_done) {
+      const std::lock_guard<std::mutex> lock(progress);
+      on_run_done(++done, setups.size());
+    }
+  });
+  m.exponent = elastic_exponent(results, diameters_mm.size());
+  fit_diameter_lines(diameters_mm, results, fit);
+  const std::size_t slow = setups.size() - 2, fast = setups.size() - 1;
+  m.damping_N_s_per_mm =
+      damping_N_s_per_mm(setups[slow], results[slow], setups[fast], results[fast]);
+  fit.damping_runs_speedups[0] = setups[slow].speedup;
+  fit.damping_runs_speedups[1] = setups[fast].speedup;
   m.loaded = true;
   return fit;
 }

@@ -112,8 +112,6 @@ bool write_as_planted(const daemon::AsPlantedLog& log, const std::string& record
   return true;
 }
 
-}  // namespace
-
 // One tick of the loop thread: the daemon's requests (stop, fault reset, run), the
 // controller's tick, and the hand-off to the recorder and the status readers. Returns false once
 // the machine is at rest after a stop.
@@ -448,8 +446,6 @@ int parse_options(int argc, char** argv, Options& opt) {
   }
   return -1;
 }
-
-namespace {
 
 // What planterd opens before its loop: the board, its hardware and the crash-safe recording.
 struct Opened {

@@ -44,8 +44,13 @@ one() {  # one INDEX RECORDING: its line into $work/INDEX.line
   local n=$1 r=$2 user sys minutes timed
   timed=$(timed_by_proof "$r")
   if [ "$r" != "$work/field-log.csv" ] && [ -s "$timed" ]; then
-    # The last line: time(1) puts "Command exited with non-zero status" before it on a failure.
-    read -r user sys < <(tail -n 1 "$timed")
+    # time(1) puts "Command exited with non-zero status" (or "terminated by signal") before its
+    # figures when the fit failed: that is a failed fit, as below, not a CPU time.
+    if grep -q '^Command ' "$timed"; then
+      echo "fit-cpu: planter-fit failed on $r in the proof ($(head -n 1 "$timed"))" >&2
+      return 1
+    fi
+    read -r user sys <"$timed"
   else
     /usr/bin/time -f "%U %S" -o "$work/$n.time" "$fit" "$r" --out "$work/fit-$n" --jobs 1 --force \
       >/dev/null || { echo "fit-cpu: planter-fit failed on $r" >&2; return 1; }

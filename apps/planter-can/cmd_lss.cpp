@@ -84,6 +84,14 @@ namespace {
 
 using Identity = std::array<std::uint32_t, 4>;
 
+// The node with --identity switched into configuration state, or false after saying none
+// answered.
+bool select_by_identity(ToolContext& ctx, const LssOptions& opt) {
+  if (switch_selective(ctx.link, *opt.identity, opt.timeout_ns)) return true;
+  ctx.err << "planter-can: lss: no node with " << identity_text(*opt.identity) << " answered\n";
+  return false;
+}
+
 // inquire: the node-ID of the node with the given identity.
 int inquire(ToolContext& ctx, const LssOptions& opt, nlohmann::json& j) {
   ToolLink& link = ctx.link;
@@ -91,10 +99,7 @@ int inquire(ToolContext& ctx, const LssOptions& opt, nlohmann::json& j) {
     ctx.err << "planter-can: lss inquire needs --identity VENDOR PRODUCT REVISION SERIAL\n";
     return kExitBadInput;
   }
-  if (!switch_selective(link, *opt.identity, opt.timeout_ns)) {
-    ctx.err << "planter-can: lss: no node with " << identity_text(*opt.identity) << " answered\n";
-    return kExitFailed;
-  }
+  if (!select_by_identity(ctx, opt)) return kExitFailed;
   send_lss(link, cs::kInquireNodeId);
   const auto r = await_lss(link, cs::kInquireNodeId, opt.timeout_ns);
   send_lss(link, cs::kSwitchGlobal, 0);
@@ -187,10 +192,7 @@ int run_lss(ToolContext& ctx, const LssOptions& opt) {
   if (const int code = check_action(ctx, opt); code != kExitOk) return code;
   Identity id{};
   if (opt.identity) {
-    if (!switch_selective(link, *opt.identity, opt.timeout_ns)) {
-      ctx.err << "planter-can: lss: no node with " << identity_text(*opt.identity) << " answered\n";
-      return kExitFailed;
-    }
+    if (!select_by_identity(ctx, opt)) return kExitFailed;
     id = *opt.identity;
   } else {
     int rounds = 0;

@@ -35,14 +35,27 @@ std::string text_of(const std::string& path) {
   return ss.str();
 }
 
+// One scratch folder for this process's boards, removed when it exits (a test of a bad board
+// leaves nothing in /tmp).
+struct ScratchBoards {
+  std::filesystem::path root =
+      std::filesystem::temp_directory_path() / ("planter-board-" + std::to_string(::getpid()));
+  ~ScratchBoards() {
+    std::error_code ec;
+    std::filesystem::remove_all(root, ec);
+  }
+};
+const std::filesystem::path& scratch_boards() {
+  static const ScratchBoards boards;
+  return boards.root;
+}
+
 // A scratch copy of the host-sim board with its calibration and its machine, with one line
 // replaced in the file that holds it (board first, then machine), or appended to the board.
 std::string board_with(const std::string& pattern, const std::string& replacement) {
   namespace fs = std::filesystem;
   const fs::path dir =
-      fs::temp_directory_path() /
-      ("planter-board-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
-       std::to_string(std::hash<std::string>{}(pattern + replacement)));
+      scratch_boards() / std::to_string(std::hash<std::string>{}(pattern + replacement));
   fs::create_directories(dir / "machines");
   std::string board = text_of(kBoard);
   std::string machine = text_of(kMachine);

@@ -40,11 +40,17 @@ std::string_view cut(std::string_view& rest, std::string_view marker) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   // In a folder of its own: a calibration and a machine the input names resolve beside it, to
   // nothing else.
-  static const std::string dir = [] {
-    const std::string d = "/tmp/planter-fuzz-board-" + std::to_string(::getpid());
-    std::filesystem::create_directories(d + "/machines");
-    return d;
-  }();
+  // Removed when the fuzzer exits.
+  struct Scratch {
+    std::string dir = "/tmp/planter-fuzz-board-" + std::to_string(::getpid());
+    Scratch() { std::filesystem::create_directories(dir + "/machines"); }
+    ~Scratch() {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+    }
+  };
+  static const Scratch scratch;
+  const std::string& dir = scratch.dir;
   const std::string path = dir + "/board.toml";
   std::string_view rest(reinterpret_cast<const char*>(data), size);
   const std::string_view board = cut(rest, "\n#@machine\n");

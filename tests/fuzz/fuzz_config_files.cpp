@@ -21,16 +21,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size < 1) return 0;
   // A scenario names its board and models relative to itself ("../boards/..."), as in the
   // repository: the file is written beside links to the repository's boards and models.
-  static const std::string dir = [] {
-    namespace fs = std::filesystem;
-    const fs::path d =
-        fs::temp_directory_path() / ("planter-fuzz-config-" + std::to_string(::getpid()));
-    fs::create_directories(d / "scenarios");
-    std::error_code ec;
-    fs::create_directory_symlink(PLANTER_SOURCE_DIR "/boards", d / "boards", ec);
-    fs::create_directory_symlink(PLANTER_SOURCE_DIR "/models", d / "models", ec);
-    return d.string();
-  }();
+  // Removed when the fuzzer exits (remove_all removes the links, not what they point to).
+  struct Scratch {
+    std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                ("planter-fuzz-config-" + std::to_string(::getpid()));
+    Scratch() {
+      std::filesystem::create_directories(dir / "scenarios");
+      std::error_code ec;
+      std::filesystem::create_directory_symlink(PLANTER_SOURCE_DIR "/boards", dir / "boards", ec);
+      std::filesystem::create_directory_symlink(PLANTER_SOURCE_DIR "/models", dir / "models", ec);
+    }
+    ~Scratch() {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+    }
+  };
+  static const Scratch scratch;
+  static const std::string dir = scratch.dir.string();
   static const std::string path = dir + "/scenarios/fuzz.toml";
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (f == nullptr) return 0;

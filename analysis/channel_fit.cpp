@@ -103,8 +103,11 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
   std::vector<double> x(lay.slots.size());
   for (std::size_t k = 0; k < x.size(); ++k) x[k] = *lay.slots[k];
   if (!x.empty()) {
-    auto* cost =
-        new ceres::DynamicNumericDiffCostFunction<SimulationError>(functor, ceres::TAKE_OWNERSHIP);
+    // Forward differences: p + 1 simulations a Jacobian where central ones take 2p + 1. The
+    // Jacobian only steers the trust region (the SDs below take their own); on the field log
+    // and the two slowest proof recordings the summaries were unchanged, at 0.6-0.75 of the CPU.
+    auto* cost = new ceres::DynamicNumericDiffCostFunction<SimulationError, ceres::FORWARD>(
+        functor, ceres::TAKE_OWNERSHIP);
     cost->AddParameterBlock(static_cast<int>(x.size()));
     cost->SetNumResiduals(static_cast<int>(at.size()));
     ceres::Problem problem;

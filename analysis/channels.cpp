@@ -1,7 +1,9 @@
 // The nominal structures of docs/recording-format.md as channels: ground, disc drive (speed and
 // torque), clamp, depth (position and draft).
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <deque>
 #include <limits>
 #include <optional>
@@ -509,32 +511,56 @@ ClampPeak clamp_peak(const Recording& r) {
 
 // (x - x0)^n over a recording, as exp(n ln(x - x0)) (the general pow() is twice as slow for
 // the same result here: x - x0 > 0, n in 0.9-2.5), 0 where x <= x0. The fits call it millions
-// of times, and a numeric Jacobian moves one parameter at a time: the logarithms are kept while
-// x and x0 stay, the powers while n does too (a step in k or in an effect's parameter reuses
-// both). One cache per thread: channels are analysed on several.
+// of times, and a numeric Jacobian moves one parameter at a time from a base point and back:
+// the logarithms are kept for the last two x0 and the powers for the last four (x0, n) while x
+// stays, so that a step in k, in n or in an effect's parameter reuses the base point's. One
+// cache per thread: channels are analysed on several.
 const std::vector<double>& law_power(const std::vector<double>& x, double x0, double n) {
-  struct Cache {
-    std::vector<double> x, log_d, power;
+  struct Logs {
+    double x0 = std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> log_d;
+  };
+  struct Powers {
     double x0 = std::numeric_limits<double>::quiet_NaN(), n = x0;
+    std::vector<double> power;
+    std::uint64_t used = 0;
+  };
+  struct Cache {
+    std::vector<double> x;
+    std::array<Logs, 2> logs;
+    std::array<Powers, 4> powers;
+    std::uint64_t clock = 0;
   };
   thread_local Cache c;
-  if (x0 != c.x0 || x != c.x) {
+  if (x != c.x) {
     c.x = x;
-    c.x0 = x0;
-    c.n = std::numeric_limits<double>::quiet_NaN();
-    c.log_d.resize(x.size());
+    for (auto& l : c.logs) l.x0 = std::numeric_limits<double>::quiet_NaN();
+    for (auto& p : c.powers) p.x0 = std::numeric_limits<double>::quiet_NaN();
+  }
+  ++c.clock;
+  for (auto& p : c.powers)
+    if (p.x0 == x0 && p.n == n) return p.used = c.clock, p.power;
+  // The logarithms: logs[1] the last x0 used, logs[0] the one before.
+  if (c.logs[0].x0 == x0) {
+    std::swap(c.logs[0], c.logs[1]);
+  } else if (c.logs[1].x0 != x0) {
+    std::swap(c.logs[0], c.logs[1]);
+    Logs& fresh = c.logs[1];
+    fresh.x0 = x0;
+    fresh.log_d.resize(x.size());
     for (std::size_t k = 0; k < x.size(); ++k) {
       const double d = x[k] - x0;
-      c.log_d[k] = d > 0.0 ? std::log(d) : -std::numeric_limits<double>::infinity();
+      fresh.log_d[k] = d > 0.0 ? std::log(d) : -std::numeric_limits<double>::infinity();
     }
   }
-  if (n != c.n) {
-    c.n = n;
-    c.power.resize(x.size());
-    // exp(n * -inf) is 0 for n > 0: the open clamp.
-    for (std::size_t k = 0; k < x.size(); ++k) c.power[k] = std::exp(n * c.log_d[k]);
-  }
-  return c.power;
+  const std::vector<double>& log_d = c.logs[1].log_d;
+  Powers& p = *std::min_element(c.powers.begin(), c.powers.end(),
+                                [](const Powers& a, const Powers& b) { return a.used < b.used; });
+  p.x0 = x0, p.n = n, p.used = c.clock;
+  p.power.resize(x.size());
+  // exp(n * -inf) is 0 for n > 0: the open clamp.
+  for (std::size_t k = 0; k < x.size(); ++k) p.power[k] = std::exp(n * log_d[k]);
+  return p.power;
 }
 
 class ClampChannel : public ChannelModel {
@@ -648,9 +674,13 @@ class DepthChannel : public ChannelModel {
         r.has("known_terrain_depth_mm") ? &r.at("known_terrain_depth_mm") : nullptr;
     double state = r.at("depth_mm")[0] - (terrain ? (*terrain)[0] : 0.0);
     y.assign(u.size(), r.at("depth_mm")[0]);
+    // The lag's step response once per distinct step: the rows are evenly sampled, and the fits
+    // run this millions of times.
+    double lag_dt = -1.0, lag_share = 0.0;
     for (std::size_t k = 1; k < u.size(); ++k) {
       const double dt = r.t[k] - r.t[k - 1];
-      const double step = (1.0 - std::exp(-dt / tau)) * (u[k - 1] - state);
+      if (dt != lag_dt) lag_dt = dt, lag_share = 1.0 - std::exp(-dt / tau);
+      const double step = lag_share * (u[k - 1] - state);
       state += std::clamp(step, -rate * dt, rate * dt);
       y[k] = state + (terrain ? (*terrain)[k] : 0.0);
     }

@@ -66,9 +66,10 @@ std::vector<Eigen::Matrix2d> transitions(const Series& x, double omega, double z
 }
 
 // The Kalman filter over rows [0, to) for states (d, d', constant), R = 1; the likelihood over
-// rows [skip, end). q = 0 is the constant and white noise alone.
+// rows [skip, end), unless only the trace is wanted (a logarithm a row saved). q = 0 is the
+// constant and white noise alone.
 Filtered run_filter(const Series& x, const std::vector<Eigen::Matrix2d>& phi, double omega,
-                    double q, std::size_t to, Trace* trace) {
+                    double q, std::size_t to, Trace* trace, bool likelihood = true) {
   const Eigen::Matrix2d p_inf = q * Eigen::Vector2d(1.0, omega * omega).asDiagonal();
   Eigen::Matrix3d p = Eigen::Matrix3d::Zero();
   p.topLeftCorner<2, 2>() = p_inf;
@@ -101,7 +102,8 @@ Filtered run_filter(const Series& x, const std::vector<Eigen::Matrix2d>& phi, do
     state += gain * nu;
     p -= gain * ph.transpose();
     p = 0.5 * (p + p.transpose());
-    if (k >= x.skip && k < x.end) sum_nu2 += nu * nu / s, sum_log_s += std::log(s), ++n;
+    if (likelihood && k >= x.skip && k < x.end)
+      sum_nu2 += nu * nu / s, sum_log_s += std::log(s), ++n;
     if (trace) trace->nu[k] = nu, trace->s[k] = s;
     if (keep) trace->x_filtered[k] = state, trace->p_filtered[k] = p;
   }
@@ -415,7 +417,7 @@ void standardised_innovations(const DisturbanceFit& d, std::vector<double>& e) {
     cache.phi = transitions(x, omega, d.shape.zeta);
   }
   Trace trace;
-  run_filter(x, cache.phi, omega, d.shape.q, n, &trace);
+  run_filter(x, cache.phi, omega, d.shape.q, n, &trace, false);
   for (std::size_t k = 0; k < n; ++k) e[k] = k < x.skip ? 0.0 : trace.nu[k] / std::sqrt(trace.s[k]);
   for (std::size_t k = n; k < e.size(); ++k) e[k] = 0.0;
 }

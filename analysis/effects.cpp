@@ -14,23 +14,58 @@
 
 namespace planter::analysis {
 
-void shift_in_time(const Recording& r, double shift_s, std::vector<double>& u) {
-  const std::vector<double> in = u;
-  const std::size_t n = in.size();
+namespace {
+
+// Where shift_in_time reads each row: between rows `from` and from + 1, `share` of the way
+// (within (0, 1]), or row `from` itself where the share is negative (held at the ends).
+struct ShiftPlan {
+  std::vector<double> t;
+  double shift_s = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::size_t> from;
+  std::vector<double> share;
+};
+
+// The plan for the first n rows.
+void plan_shift(const std::vector<double>& t, std::size_t n, double shift_s, ShiftPlan& plan) {
+  plan.t.assign(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(n));
+  plan.shift_s = shift_s;
+  plan.from.resize(n), plan.share.resize(n);
   std::size_t j = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    const double when = r.t[k] - shift_s;  // rises with k, so j only moves forward
-    if (when <= r.t[0]) {
-      u[k] = in[0];
+    const double when = t[k] - shift_s;  // rises with k, so j only moves forward
+    if (when <= t[0] || when >= t[n - 1]) {
+      plan.from[k] = when <= t[0] ? 0 : n - 1, plan.share[k] = -1.0;
       continue;
     }
-    if (when >= r.t[n - 1]) {
-      u[k] = in[n - 1];
-      continue;
-    }
-    while (j + 1 < n && r.t[j + 1] < when) ++j;
-    const double a = (when - r.t[j]) / (r.t[j + 1] - r.t[j]);
-    u[k] = in[j] + a * (in[j + 1] - in[j]);
+    while (j + 1 < n && t[j + 1] < when) ++j;
+    plan.from[k] = j, plan.share[k] = (when - t[j]) / (t[j + 1] - t[j]);
+  }
+}
+
+}  // namespace
+
+// The fits shift the same rows by the same time thousands of times (the drives' command path
+// at every simulation, a delay at each step of another parameter): the plan of the last two
+// shifts is kept, one cache per thread.
+void shift_in_time(const Recording& r, double shift_s, std::vector<double>& u) {
+  const std::size_t n = u.size();
+  const auto same = [&](const ShiftPlan& p) {
+    return p.shift_s == shift_s && p.t.size() == n &&
+           std::equal(p.t.begin(), p.t.end(), r.t.begin());
+  };
+  thread_local std::array<ShiftPlan, 2> plans;
+  if (same(plans[0])) {
+    std::swap(plans[0], plans[1]);
+  } else if (!same(plans[1])) {
+    std::swap(plans[0], plans[1]);
+    plan_shift(r.t, n, shift_s, plans[1]);
+  }
+  const ShiftPlan& plan = plans[1];
+  const std::vector<double> in = u;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t j = plan.from[k];
+    const double a = plan.share[k];
+    u[k] = a < 0.0 ? in[j] : in[j] + a * (in[j + 1] - in[j]);
   }
 }
 

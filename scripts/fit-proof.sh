@@ -65,6 +65,7 @@ sim_case() {  # sim_case NAME NOISE EXPECT [--base-sed SED_EXPR] [--drop COLUMN]
     read -ra dropped <<<"$drop"
     recording=$out/$name-field-log.csv
     /usr/bin/python3 "$root/scripts/drop-columns.py" "$out/$name/recording.csv" "$recording" "${dropped[@]}"
+    echo "$drop" >"$out/$name.drop"  # for scripts/fit-cpu.sh's longer runs of this case
   fi
   fit_case "$name" "$recording"
   judge "$name" "$expect"

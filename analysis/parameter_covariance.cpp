@@ -28,10 +28,22 @@ ParameterCovariance hac_covariance(const Eigen::MatrixXd& jac, const Eigen::Vect
     const Eigen::MatrixXd gamma = g.topRows(n - l).transpose() * g.bottomRows(n - l);
     s += w * (gamma + gamma.transpose());
   }
+  // J'J inverted with its columns scaled to a norm of 1 (the covariance is the same in exact
+  // arithmetic): columns whose norms span ten decades (a draft in N beside a relaxation time
+  // the rows barely move) would otherwise put a weakly determined direction under the
+  // pseudo-inverse's rank threshold, and its variance would read 0 instead of large.
+  Eigen::VectorXd unscale(p);
+  for (Eigen::Index c = 0; c < p; ++c) {
+    const double norm = jac.col(c).norm();
+    unscale(c) = norm > 0.0 ? 1.0 / norm : 1.0;
+  }
+  const Eigen::MatrixXd scaled = jac * unscale.asDiagonal();
   const Eigen::MatrixXd a_inv =
-      (jac.transpose() * jac).completeOrthogonalDecomposition().pseudoInverse();
+      (scaled.transpose() * scaled).completeOrthogonalDecomposition().pseudoInverse();
+  const Eigen::MatrixXd s_scaled = unscale.asDiagonal() * s * unscale.asDiagonal();
   // Degrees of freedom as in the independent form, so white residuals give sigma^2 (J'J)^-1.
-  out.covariance = static_cast<double>(n) / static_cast<double>(n - p) * a_inv * s * a_inv;
+  out.covariance = static_cast<double>(n) / static_cast<double>(n - p) * unscale.asDiagonal() *
+                   (a_inv * s_scaled * a_inv) * unscale.asDiagonal();
   return out;
 }
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/SVD>
 #include <cmath>
 #include <random>
 
@@ -53,6 +54,33 @@ TEST(ParameterCovariance, CorrelatedResidualsWidenTheIntervalUntilItHoldsTheTrut
   EXPECT_GT(c.widening, 3.5);
   EXPECT_GT(c.rate, 0.88);
   EXPECT_LT(c.rate, 0.99);
+}
+
+TEST(ParameterCovariance, AWeaklyDeterminedParameterBesideALargeOneReadsLargeNotZero) {
+  // A draft in N beside a relaxation time the rows barely move: the second column is 1e-6 of the
+  // first but for a small part of its own, and its scale is 1e-6 of the first's. Its SD, from
+  // J's singular values (the independent-rows form, which white residuals give), is large; the
+  // normal equations unscaled put that direction under the pseudo-inverse's threshold.
+  constexpr Eigen::Index kRows = 2000;
+  Eigen::MatrixXd jac(kRows, 2);
+  Eigen::VectorXd residual(kRows);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (Eigen::Index i = 0; i < kRows; ++i) {
+    const double t = static_cast<double>(i) / kRows;
+    jac(i, 0) = 1e4 * (1.0 + t);
+    jac(i, 1) = 1e-2 * (1.0 + t + 1e-4 * std::sin(37.0 * static_cast<double>(i)));
+    residual(i) = noise(rng);
+  }
+  const double sigma2 = residual.squaredNorm() / static_cast<double>(kRows - 2);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jac, Eigen::ComputeThinV);
+  double reference = 0.0;
+  for (Eigen::Index k = 0; k < 2; ++k)
+    reference += std::pow(svd.matrixV()(1, k) / svd.singularValues()(k), 2);
+  reference = std::sqrt(sigma2 * reference);
+  const double sd = std::sqrt(hac_covariance(jac, residual).covariance(1, 1));
+  EXPECT_GT(reference, 1.0);  // the case is the weak one it means to be
+  EXPECT_NEAR(sd / reference, 1.0, 0.2);
 }
 
 }  // namespace

@@ -283,28 +283,33 @@ std::string DisturbanceFit::describe() const {
   return buf;
 }
 
-std::optional<DisturbanceFit> fit_disturbance(const DisturbanceSpec& spec,
-                                              const std::vector<double>& gain,
-                                              const std::vector<double>& distance_m,
-                                              const std::vector<double>& residual,
-                                              std::size_t calibration_end,
-                                              const DisturbanceFit* near) {
+namespace {
+
+// The series the filter runs on: the residual, its gain normalised to an RMS of 1 over the
+// calibration rows where it is non-zero (g_rms), each row's step along the row and their median
+// (step_m), with the constant's diffuse prior. nullopt where fewer than 50 rows have a gain.
+struct Prepared {
+  Series x;
+  double g_rms = 0.0, step_m = 0.0;
+};
+std::optional<Prepared> prepare(const std::vector<double>& gain,
+                                const std::vector<double>& distance_m,
+                                const std::vector<double>& residual, std::size_t calibration_end) {
   const std::size_t n = residual.size();
-  if (gain.size() != n || distance_m.size() != n || calibration_end < 50 || calibration_end > n)
-    return std::nullopt;
   double g2 = 0.0, live = 0.0;
   std::size_t first_live = n;
   for (std::size_t k = 0; k < calibration_end; ++k)
     if (gain[k] != 0.0) g2 += gain[k] * gain[k], live += 1.0, first_live = std::min(first_live, k);
   if (live < 50.0) return std::nullopt;
-  const double g_rms = std::sqrt(g2 / live);
-  Series x;
+  Prepared out;
+  out.g_rms = std::sqrt(g2 / live);
+  Series& x = out.x;
   x.e = residual;
   x.g.resize(n);
   x.ds.assign(n, 0.0);
   std::vector<double> steps;
   for (std::size_t k = 0; k < n; ++k) {
-    x.g[k] = gain[k] / g_rms;
+    x.g[k] = gain[k] / out.g_rms;
     if (k > 0) x.ds[k] = std::max(0.0, distance_m[k] - distance_m[k - 1]);
     if (k > 0 && x.ds[k] > 0.0) steps.push_back(x.ds[k]);
   }
@@ -318,8 +323,68 @@ std::optional<DisturbanceFit> fit_disturbance(const DisturbanceSpec& spec,
   }
   const double r0 = std::max(d2 / static_cast<double>(calibration_end), 1e-30);
   x.prior_b = 1e4 * std::max(e_max * e_max, r0) / r0;
+  out.step_m = median_of(steps);
+  return out;
+}
+
+// The size: the RMS the process had over the calibration rows, smoothed, and its SD. A shaping
+// filter of one peak fitted to a profile of another spectrum reads its variance with a bias
+// (dense rows weigh the spectrum's steep tail), where the smoothed profile itself, at a noise
+// well under it, is the profile: E[mean d^2 | rows] = mean(d_s^2 + P_s). Its SD: the variance of
+// that mean over the independent stretches the rows hold (one a scale), 4 d^2 P + 2 P^2 each.
+void measure_size(const Prepared& prep, const Shape& z, double r, double row_m,
+                  DisturbanceFit& out) {
+  const Series& x = prep.x;
+  const double lambda = std::exp(z[0]), zeta = std::exp(z[1]), g2 = prep.g_rms * prep.g_rms;
+  Trace upto;
+  upto.keep_states = true;
+  const Filtered cal = evaluate(x, z, x.end, &upto);
+  out.mean = cal.mean / prep.g_rms;
+  const Smoothed sm = smooth(upto, transitions(x, 2.0 * std::numbers::pi / lambda, zeta));
+  double ms = 0.0, var = 0.0, rows = 0.0;
+  for (std::size_t k = x.skip; k < x.end; ++k)
+    ms += sm.d[k] * sm.d[k], var += sm.var[k], rows += 1.0;
+  ms /= rows, var /= rows;
+  // The states are in the residual's unit over the normalised gain, their variances in R's.
+  ms /= g2;
+  var *= r / g2;
+  out.rms = std::sqrt(ms + var);
+  const double stretches = std::max(1.0, row_m / std::max(out.scale_m, prep.step_m));
+  out.rms_sd =
+      std::sqrt((4.0 * ms * var + 2.0 * var * var) / stretches) / (2.0 * std::max(out.rms, 1e-300));
+}
+
+// What the filter over every row says: the calibration rows' standardised innovations'
+// whiteness, and the held-out rows' one-step innovations against what the model gives them.
+void check_innovations(const Series& x, const Trace& trace, double r, DisturbanceFit& out) {
+  std::vector<double> standardised;
+  for (std::size_t k = x.skip; k < x.end; ++k)
+    standardised.push_back(trace.nu[k] / std::sqrt(trace.s[k]));
+  out.whiteness_violations = whiteness_violations(standardised);
+  const std::size_t n = trace.nu.size();
+  double nu2 = 0.0, s_sum = 0.0;
+  for (std::size_t k = x.end; k < n; ++k) nu2 += trace.nu[k] * trace.nu[k], s_sum += trace.s[k];
+  const double held = static_cast<double>(n - x.end);
+  out.rms_held_out = held > 0 ? std::sqrt(nu2 / held) : 0.0;
+  out.predicted_held_out = held > 0 ? std::sqrt(r * s_sum / held) : 0.0;
+}
+
+}  // namespace
+
+std::optional<DisturbanceFit> fit_disturbance(const DisturbanceSpec& spec,
+                                              const std::vector<double>& gain,
+                                              const std::vector<double>& distance_m,
+                                              const std::vector<double>& residual,
+                                              std::size_t calibration_end,
+                                              const DisturbanceFit* near) {
+  const std::size_t n = residual.size();
+  if (gain.size() != n || distance_m.size() != n || calibration_end < 50 || calibration_end > n)
+    return std::nullopt;
+  const std::optional<Prepared> prep = prepare(gain, distance_m, residual, calibration_end);
+  if (!prep) return std::nullopt;
+  const Series& x = prep->x;
   const double row_m = distance_m[calibration_end - 1] - distance_m[0];
-  const double step_m = median_of(steps);
+  const double step_m = prep->step_m;
   if (!(row_m > 0.0) || !(step_m > 0.0)) return std::nullopt;
   const double lambda_lo = std::max(4.0 * step_m, 1e-4),
                lambda_hi = std::max(2.0 * lambda_lo, 0.5 * row_m);
@@ -354,43 +419,12 @@ std::optional<DisturbanceFit> fit_disturbance(const DisturbanceSpec& spec,
         out.periodic ? (*cov)(0, 0) : (*cov)(0, 0) + (*cov)(1, 1) + 2.0 * (*cov)(0, 1);
     out.scale_sd_m = out.scale_m * std::sqrt(std::max(0.0, var_ln_scale));
   }
-  // The size: the RMS the process had over the calibration rows, smoothed. A shaping filter of
-  // one peak fitted to a profile of another spectrum reads its variance with a bias (dense rows
-  // weigh the spectrum's steep tail), where the smoothed profile itself, at a noise well under
-  // it, is the profile: E[mean d^2 | rows] = mean(d_s^2 + P_s). Its SD: the variance of that
-  // mean over the independent stretches the rows hold (one a scale), 4 d^2 P + 2 P^2 each.
-  {
-    Trace upto;
-    upto.keep_states = true;
-    const Filtered cal = evaluate(x, z, calibration_end, &upto);
-    out.mean = cal.mean / g_rms;
-    const Smoothed sm = smooth(upto, transitions(x, 2.0 * std::numbers::pi / lambda, zeta));
-    double ms = 0.0, var = 0.0, rows = 0.0;
-    for (std::size_t k = x.skip; k < calibration_end; ++k)
-      ms += sm.d[k] * sm.d[k], var += sm.var[k], rows += 1.0;
-    ms /= rows, var /= rows;
-    // The states are in the residual's unit over the normalised gain, their variances in R's.
-    ms /= g_rms * g_rms;
-    var *= best.r / (g_rms * g_rms);
-    out.rms = std::sqrt(ms + var);
-    const double stretches = std::max(1.0, row_m / std::max(out.scale_m, step_m));
-    out.rms_sd = std::sqrt((4.0 * ms * var + 2.0 * var * var) / stretches) /
-                 (2.0 * std::max(out.rms, 1e-300));
-  }
-  std::vector<double> standardised;
-  for (std::size_t k = x.skip; k < calibration_end; ++k)
-    standardised.push_back(trace.nu[k] / std::sqrt(trace.s[k]));
-  out.whiteness_violations = whiteness_violations(standardised);
+  measure_size(*prep, z, best.r, row_m, out);
+  check_innovations(x, trace, best.r, out);
   out.neg2ll = best.neg2ll;  // summed over the calibration rows whatever rows were filtered
   out.shape.gain = x.g, out.shape.step_m = x.ds;
   out.shape.lambda_m = lambda, out.shape.zeta = zeta, out.shape.q = q;
   out.shape.prior_b = x.prior_b, out.shape.skip = x.skip;
-  double nu2 = 0.0, s_sum = 0.0;
-  for (std::size_t k = calibration_end; k < n; ++k)
-    nu2 += trace.nu[k] * trace.nu[k], s_sum += trace.s[k];
-  const double held = static_cast<double>(n - calibration_end);
-  out.rms_held_out = held > 0 ? std::sqrt(nu2 / held) : 0.0;
-  out.predicted_held_out = held > 0 ? std::sqrt(best.r * s_sum / held) : 0.0;
   return out;
 }
 

@@ -400,31 +400,11 @@ Recording analysed_rows_of(const Recording& whole, const FitReport& rep) {
                             rep.glitches);
 }
 
-FitReport analyse(const Recording& whole, const FitOptions& o) {
-  FitReport rep;
-  rep.options = o;
-  // Rows from a fault on are left out; with nothing before it, the usual messages follow.
-  const std::size_t stopped = first_stopped_row(whole);
-  std::optional<Recording> until_stopped;
-  if (stopped >= 2 && stopped < whole.size()) {
-    rep.stopped_state = whole.state[stopped];
-    rep.stopped_at_s = whole.t[stopped];
-    rep.stopped_rows = whole.size() - stopped;
-    until_stopped = first_rows(whole, stopped);
-  }
-  const Recording& full = until_stopped ? *until_stopped : whole;
-  rep.glitches = find_glitches(full, glitch_columns(full));
-  const Recording r = analysed_recording(full, o, rep.glitches);
-  rep.rate_hz = sample_rate_hz(full);
-  const bool decimated = r.size() < full.size();
-  rep.analysed_up_to_hz = decimated ? anti_alias_cutoff_hz(sample_rate_hz(r)) : 0.5 * rep.rate_hz;
-  rep.analysed_rows = r.size();
-  rep.file = r.file;
-  rep.rows = full.size();
-  rep.duration_s = r.t.back() - r.t.front();
-  rep.split.calibration_end =
-      static_cast<std::size_t>(static_cast<double>(r.size()) * (1.0 - o.held_out_fraction));
-  rep.held_out_from_s = r.t[rep.split.calibration_end];
+namespace {
+
+// The channels whose columns the recording holds and whose output moves; the others are listed
+// as unobservable, the known inputs each one takes as noted.
+std::vector<const ChannelModel*> observable_channels(const Recording& r, FitReport& rep) {
   std::vector<const ChannelModel*> todo;
   for (const ChannelModel* ch : all_channels()) {
     bool ok = true;
@@ -443,10 +423,15 @@ FitReport analyse(const Recording& whole, const FitOptions& o) {
                          "no observable subsystem: the header needs, for example, omega_cmd and "
                          "omega (disc drive), clamp_pos_mm and clamp_force (clamp), "
                          "depth_cmd_mm and depth_mm (depth), or v_ground and v_wheel (ground)");
+  return todo;
+}
+
+// Each channel analysed on o.jobs threads, into rep.channels in the channels' own order.
+void analyse_in_parallel(const std::vector<const ChannelModel*>& todo, const Recording& r,
+                         const FitOptions& o, FitReport& rep) {
   rep.channels.resize(todo.size());
   // Longest first (the clamp's channel, with its many nominal starts, is about half of the
-  // work): started last, it would run alone while the other worker idles. The report keeps
-  // the channels' own order.
+  // work): started last, it would run alone while the other worker idles.
   std::vector<std::size_t> order(todo.size());
   std::vector<std::size_t> cost(todo.size());
   for (std::size_t k = 0; k < todo.size(); ++k) {
@@ -473,49 +458,89 @@ FitReport analyse(const Recording& whole, const FitOptions& o) {
     pool.emplace_back(worker);
   worker();
   for (auto& t : pool) t.join();
-  // What the decimation removed: vibration above the analysed rate, looked for in each final
-  // residual at the recording's own rate (a 38 Hz tone is named at 38 Hz, not at its alias).
-  if (decimated) {
-    const Recording clean =
-        rep.glitches.empty() ? Recording{} : without_glitches(full, rep.glitches);
-    const Recording& at_rate = rep.glitches.empty() ? full : clean;
-    const auto held_out = static_cast<std::size_t>(
-        std::lower_bound(at_rate.t.begin(), at_rate.t.end(), rep.held_out_from_s) -
-        at_rate.t.begin());
-    for (auto& c : rep.channels) {
-      widen_delay_by_row(c.final_fit, r);  // as read on the thinned rows, unless refined below
-      // Not beside a named process: its shape is fitted on the thinned rows, and a free-run
-      // refit at the full rate without it gives the process's share back to the effects (a
-      // relaxation beside the stems' spread read 0.21, 5.8 s for 0.3, 3 s; 0.29, 3.6 s beside).
-      if (!c.disturbance) {
-        refine_delay_at_full_rate(c, at_rate, held_out, r, rep.split.calibration_end, o);
-        const std::optional<ChannelFit> confirmed =
-            confirm_at_full_rate(c, at_rate, held_out, r, rep.split.calibration_end);
-        refine_at_full_rate(c, at_rate, held_out, confirmed);
-      }
-      // The refined values' prediction on the analysed rows (the report's figures and plots).
-      predict(*c.channel, r, rep.split, c.final_fit);
-      std::vector<double> pred;
-      c.channel->simulate(at_rate, c.final_fit.nominal, c.final_fit.effects, pred);
-      const std::vector<double>& y = at_rate.at(c.channel->output());
-      // A tone is sought where the output moves: a leading stretch that holds the first value
-      // exactly (a sensor not yet reporting: the load cell read 0.00 for the first 37 rows)
-      // carries no vibration, and counted in the projection it took 0.24 % off a 38 Hz tone's
-      // amplitude (2.5 of its SDs at 0.5 N of noise).
-      std::size_t live = 0;
-      while (live + 1 < y.size() && y[live + 1] == y[0]) ++live;
-      const auto from = static_cast<std::ptrdiff_t>(live > 0 && live + 1 < held_out ? live + 1 : 0);
-      const std::vector<double> t(at_rate.t.begin() + from, at_rate.t.end());
-      std::vector<double> e = residual_of(pred, y);
-      e.erase(e.begin(), e.begin() + from);
-      c.fast_tones =
-          find_fast_tones(t, e, rep.analysed_up_to_hz, held_out - static_cast<std::size_t>(from));
-      if (!c.fast_tones.empty() && c.chosen.empty() && !c.change)
-        c.verdict =
-            c.unexplained ? "effect(s) found; a residual is still unexplained" : "effect(s) found";
+}
+
+// Vibration above the analysed rate, looked for in a channel's final residual at the
+// recording's own rate (a 38 Hz tone is named at 38 Hz, not at its alias).
+void seek_fast_tones(ChannelReport& c, const Recording& at_rate, std::size_t held_out,
+                     double analysed_up_to_hz) {
+  std::vector<double> pred;
+  c.channel->simulate(at_rate, c.final_fit.nominal, c.final_fit.effects, pred);
+  const std::vector<double>& y = at_rate.at(c.channel->output());
+  // A tone is sought where the output moves: a leading stretch that holds the first value
+  // exactly (a sensor not yet reporting: the load cell read 0.00 for the first 37 rows)
+  // carries no vibration, and counted in the projection it took 0.24 % off a 38 Hz tone's
+  // amplitude (2.5 of its SDs at 0.5 N of noise).
+  std::size_t live = 0;
+  while (live + 1 < y.size() && y[live + 1] == y[0]) ++live;
+  const auto from = static_cast<std::ptrdiff_t>(live > 0 && live + 1 < held_out ? live + 1 : 0);
+  const std::vector<double> t(at_rate.t.begin() + from, at_rate.t.end());
+  std::vector<double> e = residual_of(pred, y);
+  e.erase(e.begin(), e.begin() + from);
+  c.fast_tones =
+      find_fast_tones(t, e, analysed_up_to_hz, held_out - static_cast<std::size_t>(from));
+  if (!c.fast_tones.empty() && c.chosen.empty() && !c.change)
+    c.verdict =
+        c.unexplained ? "effect(s) found; a residual is still unexplained" : "effect(s) found";
+}
+
+// What the decimation left to the recording's own rate: each channel's delay, its named
+// effects confirmed and refined there, and the vibration above the analysed rate.
+void refine_at_recording_rate(FitReport& rep, const Recording& full, const Recording& r,
+                              const FitOptions& o) {
+  const Recording clean = rep.glitches.empty() ? Recording{} : without_glitches(full, rep.glitches);
+  const Recording& at_rate = rep.glitches.empty() ? full : clean;
+  const auto held_out = static_cast<std::size_t>(
+      std::lower_bound(at_rate.t.begin(), at_rate.t.end(), rep.held_out_from_s) -
+      at_rate.t.begin());
+  for (auto& c : rep.channels) {
+    widen_delay_by_row(c.final_fit, r);  // as read on the thinned rows, unless refined below
+    // Not beside a named process: its shape is fitted on the thinned rows, and a free-run
+    // refit at the full rate without it gives the process's share back to the effects (a
+    // relaxation beside the stems' spread read 0.21, 5.8 s for 0.3, 3 s; 0.29, 3.6 s beside).
+    if (!c.disturbance) {
+      refine_delay_at_full_rate(c, at_rate, held_out, r, rep.split.calibration_end, o);
+      const std::optional<ChannelFit> confirmed =
+          confirm_at_full_rate(c, at_rate, held_out, r, rep.split.calibration_end);
+      refine_at_full_rate(c, at_rate, held_out, confirmed);
     }
+    // The refined values' prediction on the analysed rows (the report's figures and plots).
+    predict(*c.channel, r, rep.split, c.final_fit);
+    seek_fast_tones(c, at_rate, held_out, rep.analysed_up_to_hz);
   }
-  if (!decimated)
+}
+
+}  // namespace
+
+FitReport analyse(const Recording& whole, const FitOptions& o) {
+  FitReport rep;
+  rep.options = o;
+  // Rows from a fault on are left out; with nothing before it, the usual messages follow.
+  const std::size_t stopped = first_stopped_row(whole);
+  std::optional<Recording> until_stopped;
+  if (stopped >= 2 && stopped < whole.size()) {
+    rep.stopped_state = whole.state[stopped];
+    rep.stopped_at_s = whole.t[stopped];
+    rep.stopped_rows = whole.size() - stopped;
+    until_stopped = first_rows(whole, stopped);
+  }
+  const Recording& full = until_stopped ? *until_stopped : whole;
+  rep.glitches = find_glitches(full, glitch_columns(full));
+  const Recording r = analysed_recording(full, o, rep.glitches);
+  rep.rate_hz = sample_rate_hz(full);
+  const bool decimated = r.size() < full.size();
+  rep.analysed_up_to_hz = decimated ? anti_alias_cutoff_hz(sample_rate_hz(r)) : 0.5 * rep.rate_hz;
+  rep.analysed_rows = r.size();
+  rep.file = r.file;
+  rep.rows = full.size();
+  rep.duration_s = r.t.back() - r.t.front();
+  rep.split.calibration_end =
+      static_cast<std::size_t>(static_cast<double>(r.size()) * (1.0 - o.held_out_fraction));
+  rep.held_out_from_s = r.t[rep.split.calibration_end];
+  analyse_in_parallel(observable_channels(r, rep), r, o, rep);
+  if (decimated)
+    refine_at_recording_rate(rep, full, r, o);
+  else
     for (auto& c : rep.channels) widen_delay_by_row(c.final_fit, r);
   for (auto& c : rep.channels) judge_friction_hold(c);
   judge_speed_loop_deficit(rep);

@@ -9,8 +9,8 @@
 #   every EVERY-th of them;
 # - 10 minutes: every EVERY-th of the proof's planter-sim cases (OUT/NAME.toml), run again over
 #   2.4 times its row and cut to its first 10 minutes (60,000 rows at 100 Hz), without the
-#   columns the proof dropped from it (OUT/NAME.drop). The outside generator's operator is
-#   scripted over its 5 minutes: its recordings are in the first sample only.
+#   columns the proof dropped from it (OUT/NAME.drop); and every EVERY-th of the outside
+#   generator's recordings twice, end to end (its operator is scripted over its 5 minutes).
 # Prints one line per recording, then each distribution, and last the count of 10-minute
 # recordings within 30 s.
 # Usage: scripts/fit-cpu.sh BUILD_DIR PROOF_OUT_DIR [EVERY]
@@ -58,6 +58,13 @@ EOF
   rm -rf "$run" "$run-log.csv"
 }
 
+# twice NAME: the outside generator's recording NAME twice, end to end, in $work/ten-NAME.csv.
+twice() {
+  local r=$proof/$1/recording.csv
+  /usr/bin/python3 "$root/scripts/long_recording.py" "$work/ten-$1.csv" 2 \
+    "$(($(grep -vc '^#' "$r") - 1))" "$r"
+}
+
 recordings=("$work/field-log.csv")
 groups=(recorded)
 i=0
@@ -77,12 +84,25 @@ for toml in "$proof"/*.toml; do
     recordings+=("$work/ten-$name.csv") groups+=(10min)
   fi
 done
+i=0
+for r in "$proof"/*/recording.csv; do
+  name=$(basename "$(dirname "$r")")
+  [ -f "$proof/$name.toml" ] && continue  # a planter-sim case, run again above
+  if [ $((i++ % every)) -eq 0 ]; then
+    twice "$name"
+    recordings+=("$work/ten-$name.csv") groups+=(10min)
+  fi
+done
 
 one() {  # one INDEX GROUP RECORDING: its line into $work/INDEX.line
   local n=$1 group=$2 r=$3 user sys timed name
   timed=$(timed_by_proof "$r")
   name=${r#"$proof"/}
-  [ "$group" = 10min ] && name=$(basename "$r" .csv) && name="${name#ten-} (run again over 10 min)"
+  if [ "$group" = 10min ]; then
+    name=$(basename "$r" .csv)
+    name=${name#ten-}
+    if [ -f "$proof/$name.toml" ]; then name="$name (run again over 10 min)"; else name="$name (twice, end to end)"; fi
+  fi
   if [ "${r#"$proof"/}" != "$r" ] && [ -s "$timed" ]; then
     # time(1) puts "Command exited with non-zero status" (or "terminated by signal") before its
     # figures when the fit failed: that is a failed fit, as below, not a CPU time.

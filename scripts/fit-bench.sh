@@ -19,7 +19,8 @@ rows=60000  # 10 minutes at 100 Hz: one copy, and planter-fit's window
 # CPU per recording on one core, as distributions (issue 52, goal under 30 s for 10 minutes):
 # every recording of the blind proof as the proof timed its fits (scripts/test.sh runs it just
 # before) and the field run as a field log; then every second planter-sim case of the proof run
-# again over 10 minutes (scripts/fit-cpu.sh), when the proof has run.
+# again over 10 minutes and every second outside recording twice end to end
+# (scripts/fit-cpu.sh), when the proof has run.
 if [ -d "$build/fit-proof" ]; then
   echo "== CPU per recording, one core (fits two at a time)"
   "$root/scripts/fit-cpu.sh" "$build" "$build/fit-proof" 2

@@ -13,6 +13,7 @@
 #include "analysis/channel_model.h"
 #include "analysis/decimation.h"
 #include "analysis/effect_hooks.h"
+#include "analysis/recent_two.h"
 #include "analysis/residual_stats.h"
 #include "sim/soil/opener_draft.h"
 
@@ -540,20 +541,18 @@ const std::vector<double>& law_power(const std::vector<double>& x, double x0, do
   ++c.clock;
   for (auto& p : c.powers)
     if (p.x0 == x0 && p.n == n) return p.used = c.clock, p.power;
-  // The logarithms: logs[1] the last x0 used, logs[0] the one before.
-  if (c.logs[0].x0 == x0) {
-    std::swap(c.logs[0], c.logs[1]);
-  } else if (c.logs[1].x0 != x0) {
-    std::swap(c.logs[0], c.logs[1]);
-    Logs& fresh = c.logs[1];
-    fresh.x0 = x0;
-    fresh.log_d.resize(x.size());
-    for (std::size_t k = 0; k < x.size(); ++k) {
-      const double d = x[k] - x0;
-      fresh.log_d[k] = d > 0.0 ? std::log(d) : -std::numeric_limits<double>::infinity();
-    }
-  }
-  const std::vector<double>& log_d = c.logs[1].log_d;
+  const std::vector<double>& log_d =
+      recent_two(
+          c.logs, [&](const Logs& l) { return l.x0 == x0; },
+          [&](Logs& fresh) {
+            fresh.x0 = x0;
+            fresh.log_d.resize(x.size());
+            for (std::size_t k = 0; k < x.size(); ++k) {
+              const double d = x[k] - x0;
+              fresh.log_d[k] = d > 0.0 ? std::log(d) : -std::numeric_limits<double>::infinity();
+            }
+          })
+          .log_d;
   Powers& p = *std::min_element(c.powers.begin(), c.powers.end(),
                                 [](const Powers& a, const Powers& b) { return a.used < b.used; });
   p.x0 = x0, p.n = n, p.used = c.clock;

@@ -9,6 +9,7 @@
 
 #include "analysis/decimation.h"
 #include "analysis/effect_hooks.h"
+#include "analysis/recent_two.h"
 #include "analysis/residual_stats.h"
 #include "analysis/tones.h"
 
@@ -54,13 +55,8 @@ void shift_in_time(const Recording& r, double shift_s, std::vector<double>& u) {
            std::equal(p.t.begin(), p.t.end(), r.t.begin());
   };
   thread_local std::array<ShiftPlan, 2> plans;
-  if (same(plans[0])) {
-    std::swap(plans[0], plans[1]);
-  } else if (!same(plans[1])) {
-    std::swap(plans[0], plans[1]);
-    plan_shift(r.t, n, shift_s, plans[1]);
-  }
-  const ShiftPlan& plan = plans[1];
+  const ShiftPlan& plan =
+      recent_two(plans, same, [&](ShiftPlan& fresh) { plan_shift(r.t, n, shift_s, fresh); });
   const std::vector<double> in = u;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t j = plan.from[k];

@@ -85,7 +85,8 @@ void run_ceres(SimulationError& functor, const std::vector<ParamSpec>& specs, st
   // Forward differences: p + 1 simulations a Jacobian where central ones take 2p + 1. The
   // Jacobian only steers the trust region (the SDs take their own, parameter_spread()); on the
   // field log and the two slowest proof recordings the summaries were unchanged, at 0.6-0.75
-  // of the CPU.
+  // of the CPU. It moved hil-commissioning's undetermined draft relaxation to another point of
+  // its flat valley, where an unscaled J'J had read its SD as 0 (parameter_covariance.cpp).
   auto* cost = new ceres::DynamicNumericDiffCostFunction<SimulationError, ceres::FORWARD>(
       &functor, ceres::DO_NOT_TAKE_OWNERSHIP);
   cost->AddParameterBlock(static_cast<int>(x.size()));

@@ -65,13 +65,15 @@ twice() {
     "$(($(grep -vc '^#' "$r") - 1))" "$r"
 }
 
+# Each recording with its group and the name its line shows.
 recordings=("$work/field-log.csv")
 groups=(recorded)
+names=(field-log.csv)
 i=0
 for r in "$proof"/*/recording.csv "$proof"/*-field-log.csv; do
   [ -f "$r" ] || continue
   if [ -s "$(timed_by_proof "$r")" ] || [ $((i++ % every)) -eq 0 ]; then
-    recordings+=("$r") groups+=(recorded)
+    recordings+=("$r") groups+=(recorded) names+=("${r#"$proof"/}")
   fi
 done
 [ ${#recordings[@]} -gt 1 ] || { echo "fit-cpu: no recordings under $proof (run scripts/fit-proof.sh first)" >&2; exit 2; }
@@ -81,7 +83,7 @@ for toml in "$proof"/*.toml; do
   if [ $((i++ % every)) -eq 0 ]; then
     name=$(basename "$toml" .toml)
     ten_minutes "$name"
-    recordings+=("$work/ten-$name.csv") groups+=(10min)
+    recordings+=("$work/ten-$name.csv") groups+=(10min) names+=("$name (run again over 10 min)")
   fi
 done
 i=0
@@ -90,19 +92,13 @@ for r in "$proof"/*/recording.csv; do
   [ -f "$proof/$name.toml" ] && continue  # a planter-sim case, run again above
   if [ $((i++ % every)) -eq 0 ]; then
     twice "$name"
-    recordings+=("$work/ten-$name.csv") groups+=(10min)
+    recordings+=("$work/ten-$name.csv") groups+=(10min) names+=("$name (twice, end to end)")
   fi
 done
 
-one() {  # one INDEX GROUP RECORDING: its line into $work/INDEX.line
-  local n=$1 group=$2 r=$3 user sys timed name
+one() {  # one INDEX GROUP RECORDING NAME: its line into $work/INDEX.line
+  local n=$1 group=$2 r=$3 name=$4 user sys timed
   timed=$(timed_by_proof "$r")
-  name=${r#"$proof"/}
-  if [ "$group" = 10min ]; then
-    name=$(basename "$r" .csv)
-    name=${name#ten-}
-    if [ -f "$proof/$name.toml" ]; then name="$name (run again over 10 min)"; else name="$name (twice, end to end)"; fi
-  fi
   if [ "${r#"$proof"/}" != "$r" ] && [ -s "$timed" ]; then
     # time(1) puts "Command exited with non-zero status" (or "terminated by signal") before its
     # figures when the fit failed: that is a failed fit, as below, not a CPU time.
@@ -125,7 +121,7 @@ print("%-8s %6.1f s CPU for %4.1f min  %s" % (group, cpu, (t[-1] - t[0]) / 60.0,
 }
 for n in "${!recordings[@]}"; do
   while [ "$(jobs -rp | wc -l)" -ge 2 ]; do wait -n; done
-  one "$n" "${groups[$n]}" "${recordings[$n]}" &
+  one "$n" "${groups[$n]}" "${recordings[$n]}" "${names[$n]}" &
 done
 wait
 for n in "${!recordings[@]}"; do

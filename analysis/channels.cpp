@@ -12,6 +12,7 @@
 #include "analysis/at_rest.h"
 #include "analysis/channel_model.h"
 #include "analysis/decimation.h"
+#include "analysis/draft_factors.h"
 #include "analysis/effect_hooks.h"
 #include "analysis/recent_two.h"
 #include "analysis/residual_stats.h"
@@ -533,7 +534,7 @@ const std::vector<double>& law_power(const std::vector<double>& x, double x0, do
     std::uint64_t clock = 0;
   };
   thread_local Cache c;
-  if (x != c.x) {
+  if (!same_bits(x, c.x)) {
     c.x = x;
     for (auto& l : c.logs) l.x0 = std::numeric_limits<double>::quiet_NaN();
     for (auto& p : c.powers) p.x0 = std::numeric_limits<double>::quiet_NaN();
@@ -770,25 +771,13 @@ class DraftChannel : public ChannelModel {
     law.depth_exponent = p[1];
     law.mobilisation_mm = p[3];
     law.rest_relaxation_s = p[4];
+    const std::vector<double>& share =
+        draft_share_along(law.mobilisation_mm, law.rest_relaxation_s, v, rest, r.t);
+    const std::vector<double>& depth_cm = draft_depth_along(d, law.depth_exponent);
     y.resize(d.size());
-    double share = 0.0;
-    // The fits run this millions of times: the rest decay once per distinct step (the rows
-    // are evenly sampled), the depth's power as exp(m ln) (opener_draft.h has both forms).
-    double decay_dt = -1.0, decay = 1.0;
     for (std::size_t k = 0; k < d.size(); ++k) {
       const double v_k = rest[k] ? 0.0 : v[k];
-      if (k > 0) {
-        const double dt = r.t[k] - r.t[k - 1];
-        if (dt != decay_dt) {
-          decay_dt = dt;
-          decay = soil::rest_decay(law, dt);
-        }
-        const double v_prev = rest[k - 1] ? 0.0 : v[k - 1];
-        share = soil::mobilised_share_after(law, share, 0.5 * (v_k + v_prev) * dt, decay);
-      }
-      const double ratio = std::max(0.0, d[k]) / soil::kDraftReferenceDepth_mm;
-      y[k] = law.texture_factor * soil::draft_per_cm_N(law, v_k) *
-             soil::draft_depth_cm_of_log(std::log(ratio), law.depth_exponent) * share;
+      y[k] = law.texture_factor * soil::draft_per_cm_N(law, v_k) * depth_cm[k] * share[k];
     }
     apply_output(r, fx, nullptr, nullptr, y);
   }

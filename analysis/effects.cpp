@@ -51,8 +51,7 @@ void plan_shift(const std::vector<double>& t, std::size_t n, double shift_s, Shi
 void shift_in_time(const Recording& r, double shift_s, std::vector<double>& u) {
   const std::size_t n = u.size();
   const auto same = [&](const ShiftPlan& p) {
-    return p.shift_s == shift_s && p.t.size() == n &&
-           std::equal(p.t.begin(), p.t.end(), r.t.begin());
+    return p.shift_s == shift_s && p.t.size() == n && same_bits(p.t.data(), r.t.data(), n);
   };
   thread_local std::array<ShiftPlan, 2> plans;
   const ShiftPlan& plan =
@@ -176,20 +175,8 @@ void relaxation(const OutputContext& c, const std::vector<double>& p, std::vecto
 // beta = gamma = 1 / (2 delta): z' = (x' - |x'| z / 2 - x' |z| / 2) / delta. Along a move in one
 // direction it is solved exactly: against the move z recovers linearly (d|z|/dx = 1/delta),
 // with it z approaches +-1 as 1 - exp(-travel / delta). It adds H z.
-// The Bouc-Wen state along the path `x` for one delta, filtered and thinned as the output was
-// when `stride` > 1 (only the ratio of cut-off to rate matters, hence rate 1). The solver moves
-// one parameter at a time and only a change of delta or of the path changes the state: it is
-// kept while they stay (a step in the height, the law's or another effect's parameter reuses
-// it). One cache per thread: channels are analysed on several.
-const std::vector<double>& hysteresis_state(const std::vector<double>& x, double delta,
-                                            std::size_t stride) {
-  struct Cache {
-    std::vector<double> x, z;
-    double delta = std::numeric_limits<double>::quiet_NaN();
-    std::size_t stride = 0;
-  };
-  thread_local Cache c;
-  if (delta == c.delta && stride == c.stride && x == c.x) return c.z;
+// The Bouc-Wen state along the path `x` at its own rate.
+std::vector<double> bouc_wen_path(const std::vector<double>& x, double delta) {
   std::vector<double> z(x.size(), 0.0);
   for (std::size_t k = 1; k < x.size(); ++k) {
     const double dx = x[k] - x[k - 1];
@@ -211,11 +198,36 @@ const std::vector<double>& hysteresis_state(const std::vector<double>& x, double
       z[k] = s * u;
     }
   }
-  c.z = stride > 1 ? thinned_as_filtered(std::move(z), stride, 1.0) : std::move(z);
-  c.x = x;
-  c.delta = delta;
-  c.stride = stride;
-  return c.z;
+  return z;
+}
+
+// The Bouc-Wen state along the path `x` for one delta, filtered and thinned as the output was
+// when `stride` > 1 (only the ratio of cut-off to rate matters, hence rate 1). The solver moves
+// one parameter at a time and only a change of delta or of the path changes the state: the
+// states of the last two deltas are kept (a step in the height, the law's or another effect's
+// parameter reuses the base point's, and so does the base after a step in delta). One cache
+// per thread: channels are analysed on several.
+const std::vector<double>& hysteresis_state(const std::vector<double>& x, double delta,
+                                            std::size_t stride) {
+  struct Slot {
+    std::vector<double> x, z;
+    double delta = std::numeric_limits<double>::quiet_NaN();
+    std::size_t stride = 0;
+  };
+  thread_local std::array<Slot, 2> slots;
+  return recent_two(
+             slots,
+             [&](const Slot& c) {
+               return delta == c.delta && stride == c.stride && same_bits(x, c.x);
+             },
+             [&](Slot& c) {
+               std::vector<double> z = bouc_wen_path(x, delta);
+               c.z = stride > 1 ? thinned_as_filtered(std::move(z), stride, 1.0) : std::move(z);
+               c.x = x;
+               c.delta = delta;
+               c.stride = stride;
+             })
+      .z;
 }
 
 void hysteresis(const OutputContext& c, const std::vector<double>& p, std::vector<double>& y) {

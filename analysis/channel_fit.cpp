@@ -66,8 +66,17 @@ struct SimulationError {
   mutable std::vector<Effect> effects;
   Layout* lay;  // points into nominal/effects above
   const ResidualFilter* filter = nullptr;
+  // The last point asked for and its residuals. Ceres asks for one point three times over an
+  // iteration whose projected line search takes the whole step: the search's first trial, the
+  // candidate (the same point) and the base of the next Jacobian.
+  mutable std::vector<double> last_point, last_residual;
   bool operator()(double const* const* p, double* residual) const {
-    for (std::size_t k = 0; k < lay->slots.size(); ++k) *lay->slots[k] = p[0][k];
+    const std::size_t n = lay->slots.size();
+    if (last_point.size() == n && std::equal(last_point.begin(), last_point.end(), p[0])) {
+      std::copy(last_residual.begin(), last_residual.end(), residual);
+      return true;
+    }
+    for (std::size_t k = 0; k < n; ++k) *lay->slots[k] = p[0][k];
     std::vector<double> pred;
     channel->simulate(*rec, nominal, effects, pred);
     const std::vector<double> e = error_of(pred, *y, filter);
@@ -75,6 +84,8 @@ struct SimulationError {
       const double v = e[(*at)[i]];
       residual[i] = std::isfinite(v) ? v : 1e6;
     }
+    last_point.assign(p[0], p[0] + n);
+    last_residual.assign(residual, residual + at->size());
     return true;
   }
 };
@@ -218,7 +229,7 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
     calibration_rows = first_rows(r, needed);
     simulated = &calibration_rows;
   }
-  SimulationError functor{&ch, simulated, &y, &at, nominal, effects, nullptr, filter};
+  SimulationError functor{&ch, simulated, &y, &at, nominal, effects, nullptr, filter, {}, {}};
   Layout lay = layout(functor.nominal, functor.effects, ch.nominal_params(), false);
   functor.lay = &lay;
   bounds_for_output(lay.specs, y);

@@ -175,29 +175,51 @@ void relaxation(const OutputContext& c, const std::vector<double>& p, std::vecto
 // beta = gamma = 1 / (2 delta): z' = (x' - |x'| z / 2 - x' |z| / 2) / delta. Along a move in one
 // direction it is solved exactly: against the move z recovers linearly (d|z|/dx = 1/delta),
 // with it z approaches +-1 as 1 - exp(-travel / delta). It adds H z.
-// The Bouc-Wen state along the path `x` at its own rate.
-std::vector<double> bouc_wen_path(const std::vector<double>& x, double delta) {
-  std::vector<double> z(x.size(), 0.0);
+// The rows where the path moves, each with its travel and direction: a held clamp is most of a
+// recording's rows, where the state holds.
+struct PathMoves {
+  std::vector<std::size_t> row;
+  std::vector<double> travel, sign;
+};
+
+PathMoves moves_along(const std::vector<double>& x) {
+  PathMoves m;
   for (std::size_t k = 1; k < x.size(); ++k) {
     const double dx = x[k] - x[k - 1];
-    z[k] = z[k - 1];
-    if (dx != 0.0) {
-      const double s = dx > 0.0 ? 1.0 : -1.0;
-      double u = s * z[k], travel = std::abs(dx);  // u: z along the move
-      if (u < 0.0) {
-        const double to_zero = -u * delta;
-        if (travel <= to_zero) {
-          u += travel / delta;
-          travel = 0.0;
-        } else {
-          travel -= to_zero;
-          u = 0.0;
-        }
-      }
-      if (travel > 0.0) u = 1.0 - (1.0 - u) * std::exp(-travel / delta);
-      z[k] = s * u;
-    }
+    if (dx == 0.0) continue;
+    m.row.push_back(k);
+    m.travel.push_back(std::abs(dx));
+    m.sign.push_back(dx > 0.0 ? 1.0 : -1.0);
   }
+  return m;
+}
+
+// The Bouc-Wen state at each of `rows` rows of a path that moves as `m` says.
+std::vector<double> bouc_wen_path(const PathMoves& m, std::size_t rows, double delta) {
+  std::vector<double> z(rows, 0.0);
+  double held = 0.0;
+  std::size_t from = 0;
+  for (std::size_t i = 0; i < m.row.size(); ++i) {
+    const std::size_t k = m.row[i];
+    std::fill(z.begin() + static_cast<std::ptrdiff_t>(from),
+              z.begin() + static_cast<std::ptrdiff_t>(k), held);
+    const double s = m.sign[i];
+    double u = s * held, travel = m.travel[i];  // u: z along the move
+    if (u < 0.0) {
+      const double to_zero = -u * delta;
+      if (travel <= to_zero) {
+        u += travel / delta;
+        travel = 0.0;
+      } else {
+        travel -= to_zero;
+        u = 0.0;
+      }
+    }
+    if (travel > 0.0) u = 1.0 - (1.0 - u) * std::exp(-travel / delta);
+    held = z[k] = s * u;
+    from = k + 1;
+  }
+  std::fill(z.begin() + static_cast<std::ptrdiff_t>(std::min(from, rows)), z.end(), held);
   return z;
 }
 
@@ -205,27 +227,33 @@ std::vector<double> bouc_wen_path(const std::vector<double>& x, double delta) {
 // when `stride` > 1 (only the ratio of cut-off to rate matters, hence rate 1). The solver moves
 // one parameter at a time and only a change of delta or of the path changes the state: the
 // states of the last two deltas are kept (a step in the height, the law's or another effect's
-// parameter reuses the base point's, and so does the base after a step in delta). One cache
-// per thread: channels are analysed on several.
+// parameter reuses the base point's, and so does the base after a step in delta), with the
+// path's moves. One cache per thread: channels are analysed on several.
 const std::vector<double>& hysteresis_state(const std::vector<double>& x, double delta,
                                             std::size_t stride) {
   struct Slot {
-    std::vector<double> x, z;
+    std::vector<double> z;
     double delta = std::numeric_limits<double>::quiet_NaN();
     std::size_t stride = 0;
   };
-  thread_local std::array<Slot, 2> slots;
+  struct Cache {
+    std::vector<double> x;
+    PathMoves moves;
+    std::array<Slot, 2> slots;
+  };
+  thread_local Cache c;
+  if (!same_bits(x, c.x) || c.x.empty()) {
+    c.x = x;
+    c.moves = moves_along(x);
+    for (Slot& s : c.slots) s.delta = std::numeric_limits<double>::quiet_NaN();
+  }
   return recent_two(
-             slots,
-             [&](const Slot& c) {
-               return delta == c.delta && stride == c.stride && same_bits(x, c.x);
-             },
-             [&](Slot& c) {
-               std::vector<double> z = bouc_wen_path(x, delta);
-               c.z = stride > 1 ? thinned_as_filtered(std::move(z), stride, 1.0) : std::move(z);
-               c.x = x;
-               c.delta = delta;
-               c.stride = stride;
+             c.slots, [&](const Slot& s) { return delta == s.delta && stride == s.stride; },
+             [&](Slot& s) {
+               std::vector<double> z = bouc_wen_path(c.moves, x.size(), delta);
+               s.z = stride > 1 ? thinned_as_filtered(std::move(z), stride, 1.0) : std::move(z);
+               s.delta = delta;
+               s.stride = stride;
              })
       .z;
 }

@@ -71,11 +71,7 @@ Location locate(const ChannelModel& ch, const Recording& r, const std::vector<do
     if (u) ut.push_back((*u)[k]);
   }
   const std::size_t n = et.size();
-  const double band = 1.96 / std::sqrt(static_cast<double>(n));
-  int outside = 0;
-  for (long lag = 1; lag <= 50; ++lag)
-    if (std::abs(correlation(et, et, 0, n, lag)) > band) ++outside;
-  l.whiteness_violations = outside / 50.0;
+  l.whiteness_violations = whiteness_violations(et);
   if (u) {
     for (long lag = -20; lag <= 20; ++lag)
       l.input_correlation = std::max(l.input_correlation, std::abs(correlation(ut, et, 0, n, lag)));

@@ -8,6 +8,8 @@
 #include <limits>
 #include <numbers>
 
+#include "analysis/residual_stats.h"
+
 namespace planter::analysis {
 namespace {
 
@@ -249,25 +251,6 @@ Smoothed smooth(const Trace& t, const std::vector<Eigen::Matrix2d>& phi) {
     out.d[k] = x(0), out.var[k] = std::max(0.0, p(0, 0));
   }
   return out;
-}
-
-// The share of lags 1-50 at which v's autocorrelation is outside +-1.96 / sqrt(N).
-double whiteness_violations(const std::vector<double>& v) {
-  const std::size_t n = v.size();
-  if (n < 60) return 0.0;
-  double mean = 0.0;
-  for (double x : v) mean += x / static_cast<double>(n);
-  double var = 0.0;
-  for (double x : v) var += (x - mean) * (x - mean);
-  if (!(var > 0.0)) return 0.0;
-  const double band = 1.96 / std::sqrt(static_cast<double>(n));
-  int outside = 0;
-  for (std::size_t lag = 1; lag <= 50; ++lag) {
-    double c = 0.0;
-    for (std::size_t k = lag; k < n; ++k) c += (v[k] - mean) * (v[k - lag] - mean);
-    outside += std::abs(c / var) > band;
-  }
-  return outside / 50.0;
 }
 
 }  // namespace

@@ -71,4 +71,27 @@ inline std::size_t rows_at_top(const std::vector<double>& y) {
 // differences, yet its rounding is up to 1 N either way.
 inline double resolution_rms(double step) { return step / std::sqrt(12.0); }
 
+// The share of lags 1-50 at which v's sample autocorrelation lies outside +-1.96 / sqrt(N): the
+// sample autocorrelation about the whole series' mean over its whole variance, and the band a
+// white series' stays in at 95 % (Box & Jenkins, "Time Series Analysis", sec. 2.1.6 and 6.2.2,
+// Bartlett's approximation). A model that explains a residual leaves it white. 0 for a series
+// under 60 values or without variance.
+inline double whiteness_violations(const std::vector<double>& v) {
+  const std::size_t n = v.size();
+  if (n < 60) return 0.0;
+  double mean = 0.0;
+  for (double x : v) mean += x / static_cast<double>(n);
+  double var = 0.0;
+  for (double x : v) var += (x - mean) * (x - mean);
+  if (!(var > 0.0)) return 0.0;
+  const double band = 1.96 / std::sqrt(static_cast<double>(n));
+  int outside = 0;
+  for (std::size_t lag = 1; lag <= 50; ++lag) {
+    double c = 0.0;
+    for (std::size_t k = lag; k < n; ++k) c += (v[k] - mean) * (v[k - lag] - mean);
+    outside += std::abs(c / var) > band;
+  }
+  return outside / 50.0;
+}
+
 }  // namespace planter::analysis

@@ -72,7 +72,6 @@ void run_cascade(Biquad first, Biquad second, std::vector<double>& x, bool forwa
     // The state after the last copied row: the watched one, stepped on to its phase.
     first.z1 = watched[0], first.z2 = watched[1], second.z1 = watched[2], second.z2 = watched[3];
     for (std::size_t step = 0; step < (last - i) % cycle; ++step) second.step(first.step(in));
-    held += last - i;
     i = last;
   }
 }

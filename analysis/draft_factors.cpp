@@ -20,7 +20,7 @@ const std::vector<double>& draft_depth_along(const std::vector<double>& depth_mm
     std::array<Power, 2> powers;
   };
   thread_local Cache c;
-  if (!same_bits(depth_mm, c.depth_mm) || c.log_ratio.size() != depth_mm.size()) {
+  if (!same_bits(depth_mm, c.depth_mm)) {
     c.depth_mm = depth_mm;
     c.log_ratio.resize(depth_mm.size());
     // ln(d / T_ref), -inf at or above the surface (its power is then 0).

@@ -175,6 +175,7 @@ void relaxation(const OutputContext& c, const std::vector<double>& p, std::vecto
 // beta = gamma = 1 / (2 delta): z' = (x' - |x'| z / 2 - x' |z| / 2) / delta. Along a move in one
 // direction it is solved exactly: against the move z recovers linearly (d|z|/dx = 1/delta),
 // with it z approaches +-1 as 1 - exp(-travel / delta). It adds H z.
+//
 // The rows where the path moves, each with its travel and direction: a held clamp is most of a
 // recording's rows, where the state holds.
 struct PathMoves {
@@ -242,7 +243,7 @@ const std::vector<double>& hysteresis_state(const std::vector<double>& x, double
     std::array<Slot, 2> slots;
   };
   thread_local Cache c;
-  if (!same_bits(x, c.x) || c.x.empty()) {
+  if (!same_bits(x, c.x)) {
     c.x = x;
     c.moves = moves_along(x);
     for (Slot& s : c.slots) s.delta = std::numeric_limits<double>::quiet_NaN();

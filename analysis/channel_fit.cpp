@@ -66,9 +66,8 @@ struct SimulationError {
   mutable std::vector<Effect> effects;
   Layout* lay;  // points into nominal/effects above
   const ResidualFilter* filter = nullptr;
-  // The last point asked for and its residuals. Ceres asks for one point three times over an
-  // iteration whose projected line search takes the whole step: the search's first trial, the
-  // candidate (the same point) and the base of the next Jacobian.
+  // The last point asked for and its residuals. Ceres asks for an accepted step's point twice:
+  // as the candidate, then as the base of the next Jacobian.
   mutable std::vector<double> last_point, last_residual;
   bool operator()(double const* const* p, double* residual) const {
     const std::size_t n = lay->slots.size();

@@ -11,7 +11,7 @@ packages=(g++ cmake ninja-build clang-format libtomlplusplus-dev libcli11-dev nl
           libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libboost-dev libceres-dev
           pkg-config libgpiod-dev libsocketcan-dev systemd rt-tests
           can-utils python3-can clang libclang-rt-14-dev libjs-dygraphs chromium
-          libcpp-httplib-dev chromium-driver python3-selenium help2man
+          libcpp-httplib-dev chromium-driver python3-selenium help2man xz-utils
           libgps-dev gpsd gpsd-clients)
 "$root/scripts/apt-install.sh" setup "${packages[@]}"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null

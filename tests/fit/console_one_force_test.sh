@@ -14,13 +14,9 @@ trap 'rm -rf "$work"' EXIT
 xz -dc "$src/tests/fit/data/console-28s-one-force.csv.xz" >"$work/console.csv"
 "$tool" "$work/console.csv" --out "$work/fit" >"$work/summary.txt"
 cat "$work/summary.txt"
-/usr/bin/python3 - "$work/fit/fit.json" <<'PY'
-import json, sys
-fit = json.load(open(sys.argv[1]))
-named = ["%s: %s" % (c["output"], c["verdict"]) for c in fit["channels"]
-         if c["verdict"] != "no significant mismatch"]
-ok = len(fit["channels"]) == 6 and not named
-print("%s kept console recording: %d channels, %s" % ("PASS" if ok else "FAIL", len(fit["channels"]),
-      "; ".join(named) or "none named"))
-sys.exit(0 if ok else 1)
-PY
+# Counted on the printed summary, as fit_explains_the_simulator_test.sh counts it.
+channels=$(grep -cE "^(ground|disc drive|clamp|depth) " "$work/summary.txt")
+clean=$(grep -cE "^(ground|disc drive|clamp|depth) .* no significant mismatch " "$work/summary.txt")
+[ "$channels" -eq 6 ] && [ "$clean" -eq 6 ] ||
+  { echo "FAIL: $clean of $channels channels are 'no significant mismatch' on the kept console recording"; exit 1; }
+echo "PASS: the kept console recording, 6 of 6 channels clean"

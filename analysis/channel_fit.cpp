@@ -270,9 +270,9 @@ double solve(const ChannelModel& ch, const Recording& r, const Split& split,
   for (std::size_t k = 0; k < x.size(); ++k) x[k] = *lay.slots[k];
   if (!x.empty()) run_ceres(functor, lay.specs, at.size(), huber, x);
   // The nominal law's own fit goes on from its bounds: it is the base every candidate is
-  // judged against, and a base left short credits an effect with the law's misfit. An effect's
-  // fit does not: with it, a play and a hysteresis took the field log's stems' spread (the force
-  // loop moves the roller with each stem) and passed every rule beside the process.
+  // judged against, and a base left short credits an effect with the law's misfit. Not in an
+  // effect's fit: tried there, a play and a hysteresis took the field log's stems' spread (the
+  // force loop moves the roller with each stem) and passed every rule beside the process.
   if (!x.empty() && effects.empty()) solve_free_of_bounds(functor, lay, at.size(), huber, x);
   // Write the solution back to the caller's vectors.
   Solved s{ch, r, filter, nominal, effects, layout(nominal, effects, ch.nominal_params(), false),

@@ -22,7 +22,7 @@ clean=$(grep -cE "^(ground|disc drive|clamp|depth) .* no significant mismatch " 
 [ "$channels" -eq 6 ] && [ "$clean" -eq 6 ] ||
   { echo "FAIL: $clean of $channels channels are 'no significant mismatch' on the kept console recording"; exit 1; }
 # The clamp's line: "held-out RMS A -> B (noise N)".
-read -r held noise < <(sed -nE 's/^clamp +clamp_force .*held-out RMS ([0-9.e+-]+) -> [0-9.e+-]+ \(noise ([0-9.e+-]+)\).*/\1 \2/p' "$work/summary.txt")
+read -r held noise < <(sed -nE 's/^clamp +clamp_force .*held-out RMS ([0-9.e+-]+) -> [0-9.e+-]+ \(noise ([0-9.e+-]+)\).*/\1 \2/p' "$work/summary.txt") || true
 [ -n "${held:-}" ] || { echo "FAIL: no clamp_force line with its held-out RMS and noise"; exit 1; }
 awk -v h="$held" -v n="$noise" 'BEGIN { exit !(h <= 1.1 * n) }' ||
   { echo "FAIL: the clamp's nominal stopped at a held-out RMS of $held N, noise $noise N (10 % over it at most)"; exit 1; }

@@ -578,6 +578,13 @@ class ClampChannel : public ChannelModel {
     static const DisturbanceSpec stems{"stems' spread in the nip", "mm", 1.0};
     return r.has("known_nip_mm") ? nullptr : &stems;
   }
+  // The machine counted seedlings (its photo-eye, at release): stems went through the nip. A
+  // recording without the count, or with none planted, may hold no stem at all.
+  bool disturbance_shown(const Recording& r) const override {
+    if (disturbance(r) == nullptr || !r.has("seedlings")) return false;
+    const auto [lo, hi] = std::minmax_element(r.at("seedlings").begin(), r.at("seedlings").end());
+    return lo != r.at("seedlings").end() && *hi - *lo >= 1.0;
+  }
   std::vector<double> disturbance_gain(const Recording& r, const std::vector<double>& p,
                                        const std::vector<double>&) const override {
     const auto& x = r.at("clamp_pos_mm");

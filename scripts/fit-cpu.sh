@@ -72,6 +72,8 @@ names=(field-log.csv)
 i=0
 for r in "$proof"/*/recording.csv "$proof"/*-field-log.csv; do
   [ -f "$r" ] || continue
+  # A case the proof fitted as a field log was timed on that log, not on its full recording.
+  [ -f "${r%/recording.csv}-field-log.csv" ] && continue
   if [ -s "$(timed_by_proof "$r")" ] || [ $((i++ % every)) -eq 0 ]; then
     recordings+=("$r") groups+=(recorded) names+=("${r#"$proof"/}")
   fi

@@ -249,8 +249,8 @@ for name in "${names[@]}"; do
   [ -s "$out/$name.coverage" ] && grep -h "^missed statistical" "$out/$name.coverage" | sed 's/^/  /'
 done
 # What outside trials found (issue 52), apart: field logs without their known disturbances
-# (one over 36 m, one with a relaxation hidden beside them), a noisy input, a changed clamp, a hard limit, a
-# coarse log and a first-order loop alone.
+# (one over 36 m, one with a relaxation hidden beside them), a noisy input, a changed clamp, a
+# hard limit, a coarse log and a first-order loop alone.
 field_passed=0
 field_total=0
 for name in "${names[@]}"; do

@@ -203,6 +203,7 @@ class ChannelAnalysis {
     judge_what_is_left();
     if (process_first && !rep_.disturbance) {
       rep_.beside_disturbance.clear();
+      rep_.chosen.clear();
       rep_.change.reset();
       rep_.final_fit = rep_.nominal;
       choose_effects();

@@ -122,10 +122,10 @@ class ChannelModel {
   [[nodiscard]] virtual const DisturbanceSpec* disturbance(const Recording&) const {
     return nullptr;
   }
-  // Whether the recording itself shows that disturbance is there (stems counted through the
-  // clamp's nip). Then it is the first thing the residual is read as, and an effect must earn
-  // its place beside it; otherwise the effects come first and it must earn its place beside
-  // them (named_disturbance.h).
+  // Where disturbance() names one: whether the recording itself shows it is there (stems
+  // counted through the clamp's nip). Then it is the first thing the residual is read as, and an
+  // effect must earn its place beside it; otherwise the effects come first and it must earn its
+  // place beside them (named_disturbance.h).
   [[nodiscard]] virtual bool disturbance_shown(const Recording&) const { return false; }
   // The residual's (prediction less record) sensitivity to that disturbance at each row, for
   // the nominal values and the prediction given.

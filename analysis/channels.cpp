@@ -581,9 +581,10 @@ class ClampChannel : public ChannelModel {
   // The machine counted seedlings (its photo-eye, at release): stems went through the nip. A
   // recording without the count, or with none planted, may hold no stem at all.
   bool disturbance_shown(const Recording& r) const override {
-    if (disturbance(r) == nullptr || !r.has("seedlings")) return false;
-    const auto [lo, hi] = std::minmax_element(r.at("seedlings").begin(), r.at("seedlings").end());
-    return lo != r.at("seedlings").end() && *hi - *lo >= 1.0;
+    if (!r.has("seedlings") || r.at("seedlings").empty()) return false;
+    const std::vector<double>& count = r.at("seedlings");
+    const auto [lo, hi] = std::minmax_element(count.begin(), count.end());
+    return *hi - *lo >= 1.0;
   }
   std::vector<double> disturbance_gain(const Recording& r, const std::vector<double>& p,
                                        const std::vector<double>&) const override {

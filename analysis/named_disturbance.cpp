@@ -232,8 +232,10 @@ void name_disturbance(ChannelReport& c, const Recording& r, const Split& split,
   refit_beside(c, r, split, s_m, d);
   if (!chosen_without) {
     seek_effect_beside(c, r, split, o, s_m, d);
-    if (!c.chosen.empty() && !earns_beside(c, r, split, o, s_m, *spec)) return;
-    if (!c.chosen.empty()) refit_beside(c, r, split, s_m, d);
+    if (!c.chosen.empty()) {
+      if (!earns_beside(c, r, split, o, s_m, *spec)) return;
+      refit_beside(c, r, split, s_m, d);
+    }
   }
   // The size's SD with the gain's own: the process is the residual over the gain.
   const double relative = gain_relative_sd(ch, r, c.final_fit, split.calibration_end);

@@ -126,30 +126,28 @@ run_case soil-heavier 1.0 "depth_force:change:draft_100mm=1.5@143" \
 # Field logs (issue 52): what the scenario varies on purpose, without its known_* columns (and
 # without the truth columns a real machine cannot have), is named as disturbances along the row,
 # each with the dropped column's size. The terrain alone; then terrain, slip and stems together.
+# What the field scenario varies on purpose (terrain, the slip along the row, stems of every
+# diameter), and the three disturbances a field log of it names.
+field_sed="s|^roughness_mm = .*|roughness_mm = 6.0|; s|^slip_variation_pct = .*|slip_variation_pct = 1.0|; s|^diameter_min_mm = .*|diameter_min_mm = 8.3|; s|^diameter_max_mm = .*|diameter_max_mm = 11.4|"
+field_disturbances="v_wheel:disturbance:known_slip*100;clamp_force:disturbance:known_nip_mm;depth_mm:disturbance:known_terrain_depth_mm"
 run_case terrain 1.0 "depth_mm:disturbance:known_terrain_depth_mm" \
   --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|" --drop known_terrain_depth_mm
-run_case field-log 1.0 \
-  "v_wheel:disturbance:known_slip*100;clamp_force:disturbance:known_nip_mm;depth_mm:disturbance:known_terrain_depth_mm" \
-  --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|; s|^slip_variation_pct = .*|slip_variation_pct = 1.0|; s|^diameter_min_mm = .*|diameter_min_mm = 8.3|; s|^diameter_max_mm = .*|diameter_max_mm = 11.4|" \
-  --drop "known_* true_*"
+run_case field-log 1.0 "$field_disturbances" --base-sed "$field_sed" --drop "known_* true_*"
 # The same field over 36 m, about ten and a half minutes. With that much of the row, effects
 # chosen before the stems' spread read it as a play and a hysteresis: the force loop moves the
 # roller with each stem, so the roller's history carries them.
-run_case field-log-36m 1.0 \
-  "v_wheel:disturbance:known_slip*100;clamp_force:disturbance:known_nip_mm;depth_mm:disturbance:known_terrain_depth_mm" \
-  --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|; s|^slip_variation_pct = .*|slip_variation_pct = 1.0|; s|^diameter_min_mm = .*|diameter_min_mm = 8.3|; s|^diameter_max_mm = .*|diameter_max_mm = 11.4|; s|^distance_m = .*|distance_m = 36.0|" \
+run_case field-log-36m 1.0 "$field_disturbances" --base-sed "$field_sed; s|^distance_m = .*|distance_m = 36.0|" \
   --drop "known_* true_*"
 # The same field log with the clamp's relaxation hidden: named beside the disturbances, the
 # stems' spread among them.
 run_case field-log-relaxation 1.0 \
-  "clamp_force:viscoelastic relaxation (creep) of the clamp:fraction=0.3,tau_s=3;v_wheel:disturbance:known_slip*100;clamp_force:disturbance:known_nip_mm;depth_mm:disturbance:known_terrain_depth_mm" \
-  --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|; s|^slip_variation_pct = .*|slip_variation_pct = 1.0|; s|^diameter_min_mm = .*|diameter_min_mm = 8.3|; s|^diameter_max_mm = .*|diameter_max_mm = 11.4|" \
+  "clamp_force:viscoelastic relaxation (creep) of the clamp:fraction=0.3,tau_s=3;$field_disturbances" \
+  --base-sed "$field_sed" \
   --drop "known_* true_*" "clamp_relaxation_frac = 0.3" "clamp_relaxation_tau_s = 3.0"
 # Nothing hidden, and everything the field scenario varies on purpose put back (terrain, the
 # slip's variation along the row, seedlings of every diameter in the nip), carried in the
 # recording as known disturbances: clean on every channel (issue 32, item 2).
-run_case clean-with-known-disturbances 1.0 clean \
-  --base-sed "s|^roughness_mm = .*|roughness_mm = 6.0|; s|^slip_variation_pct = .*|slip_variation_pct = 1.0|; s|^diameter_min_mm = .*|diameter_min_mm = 8.3|; s|^diameter_max_mm = .*|diameter_max_mm = 11.4|"
+run_case clean-with-known-disturbances 1.0 clean --base-sed "$field_sed"
 # A second generator, written apart from planter-sim (scripts/outside_machine.py): no firmware,
 # an open-loop operator, Runge-Kutta at 1 ms, jittered 100 Hz sampling, its own machine values.
 outside_case() {  # outside_case NAME EXPECT [outside_machine.py options...]

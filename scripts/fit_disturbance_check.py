@@ -4,9 +4,10 @@
 Usage: fit_disturbance_check.py FIT_JSON FULL_RECORDING.csv OUTPUT=COLUMN[:SCALE] ...
 Each OUTPUT must have its disturbance named and no effect; every other channel must be "no
 significant mismatch". The named RMS is compared with the SD of COLUMN (times SCALE, e.g. 100
-for a slip fraction shown in %) over the rows the fit calibrated on (t before held_out_from_s):
-within 1.96 of its stated SD, or the line says by how many SDs it misses. Prints one line per
-channel; exit 0 when every check holds, 1 otherwise.
+for a slip fraction shown in %) along the row (each row weighted by its travel, true_x_m) over
+the rows the fit calibrated on (t before held_out_from_s): within 1.96 of its stated SD, or the
+line says by how many SDs it misses. Prints one line per channel; exit 0 when every check holds,
+1 otherwise.
 """
 import csv
 import json
@@ -15,13 +16,23 @@ import sys
 
 
 def column_sd(path, column, until_s):
-    values = []
+    """The column's SD along the row over the rows before until_s: each row weighted by the
+    distance travelled to the next (true_x_m), as the process is one of distance (analysis/
+    disturbance.h), its RMS what the row shows and not what a stop lingers over. A recording
+    without true_x_m weighs each row alike."""
+    values, x = [], []
     with open(path) as f:
         for row in csv.DictReader(line for line in f if not line.startswith("#")):
             if float(row["t"]) < until_s:
                 values.append(float(row[column]))
-    mean = sum(values) / len(values)
-    return math.sqrt(sum((v - mean) ** 2 for v in values) / len(values))
+                x.append(float(row["true_x_m"]) if "true_x_m" in row else float(len(x)))
+    x.append(x[-1] + (x[-1] - x[-2] if len(x) > 1 else 1.0))
+    weights = [max(b - a, 0.0) for a, b in zip(x, x[1:])]
+    if sum(weights) <= 0:
+        weights = [1.0] * len(values)
+    total = sum(weights)
+    mean = sum(w * v for w, v in zip(weights, values)) / total
+    return math.sqrt(sum(w * (v - mean) ** 2 for w, v in zip(weights, values)) / total)
 
 
 def main():

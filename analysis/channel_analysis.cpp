@@ -202,7 +202,8 @@ class ChannelAnalysis {
     if (!process_first) choose_effects();
     judge_what_is_left();
     if (process_first && !rep_.disturbance) {
-      rep_.beside_disturbance.clear();
+      // Why the process read first was not named stays in the report, before what follows.
+      for (std::string& why : rep_.beside_disturbance) why = "read first (stems counted): " + why;
       rep_.chosen.clear();
       rep_.change.reset();
       rep_.final_fit = rep_.nominal;

@@ -42,7 +42,12 @@ port=$((29000 + RANDOM % 900))
 head -600 "$tmp/run/gnss.nmea" >"$tmp/head.nmea"
 gpsfake -q -P "$port" -c 0.05 -1 "$tmp/head.nmea" >"$tmp/gpsfake.log" 2>&1 &
 pids+=($!)
-sleep 1
+# gpsfake starts gpsd in a second or more, more beside other tests (a CI run under the
+# sanitizers found none listening 1 s on): waited for, up to 30 s, by connecting.
+for _ in $(seq 300); do
+  (exec 3<>"/dev/tcp/127.0.0.1/$port") 2>/dev/null && break
+  sleep 0.1
+done
 timeout 30 "$can" gnss --port "$port" --duration 4 >"$tmp/watch.log" 2>&1 || { cat "$tmp/watch.log" "$tmp/gpsfake.log"; fail "planter-can gnss through gpsfake"; }
 grep -q "connected, .* fixes, [1-9][0-9]* usable" "$tmp/watch.log" || { cat "$tmp/watch.log"; fail "no usable fix through gpsd"; }
 tail -1 "$tmp/watch.log"

@@ -649,16 +649,23 @@ class ChannelAnalysis {
 
 }  // namespace
 
+std::string bic_shortfall(double delta_bic, double min_delta_bic) {
+  char buf[120];
+  if (delta_bic > 0.0)
+    std::snprintf(buf, sizeof buf, "raises BIC by %.1f; it must lower it by %.0f", delta_bic,
+                  min_delta_bic);
+  else
+    std::snprintf(buf, sizeof buf, "lowers BIC by %.1f; %.0f is required", -delta_bic,
+                  min_delta_bic);
+  return buf;
+}
+
 std::string rejection(const Candidate& c, const FitOptions& o) {
   if (!c.not_separable.empty()) return c.not_separable;
   if (!c.loses_as_pair.empty()) return c.loses_as_pair;
   if (std::string why = unresolved_size(c); !why.empty()) return why;
   char buf[200];
-  if (c.delta_bic >= -o.min_delta_bic) {
-    std::snprintf(buf, sizeof buf, "lowers BIC by %.1f; %.0f is required", -c.delta_bic,
-                  o.min_delta_bic);
-    return buf;
-  }
+  if (c.delta_bic >= -o.min_delta_bic) return bic_shortfall(c.delta_bic, o.min_delta_bic);
   if (c.explained < o.min_explained) {
     std::snprintf(buf, sizeof buf,
                   "explains %.0f %% of the residual beyond noise; %.0f %% is required",

@@ -174,4 +174,8 @@ struct FitOptions {
 // it does. The analysis decides by this, and the report prints it.
 std::string rejection(const Candidate& c, const FitOptions& o);
 
+// The BIC rule's shortfall in words: "lowers BIC by 6.0; 20 is required", or where the change
+// raises BIC, "raises BIC by 13.8; it must lower it by 20" (not "lowers BIC by -13.8").
+std::string bic_shortfall(double delta_bic, double min_delta_bic);
+
 }  // namespace planter::analysis

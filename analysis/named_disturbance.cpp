@@ -21,11 +21,7 @@ std::optional<DisturbanceFit> fitted_beside(const ChannelModel& ch, const Distur
 // Why the process does not earn its place, or "" when it does.
 std::string rejection(const DisturbanceFit& d, double held_out_rms, const FitOptions& o) {
   char buf[240];
-  if (d.delta_bic >= -o.min_delta_bic) {
-    std::snprintf(buf, sizeof buf, "lowers BIC by %.1f; %.0f is required", -d.delta_bic,
-                  o.min_delta_bic);
-    return buf;
-  }
+  if (d.delta_bic >= -o.min_delta_bic) return bic_shortfall(d.delta_bic, o.min_delta_bic);
   if (!(d.rms >= 2.0 * d.rms_sd)) {
     std::snprintf(buf, sizeof buf, "its size, %.3g, is within two SD (%.2g) of none", d.rms,
                   d.rms_sd);

@@ -19,9 +19,12 @@ run_dir="$build/vm-hil"
 rm -rf "$run_dir" && mkdir -p "$run_dir"
 # Under TCG the guest's tests take 9-10 min on a 2-core host (CI of d1f8294: done 9:40 after
 # the VM started; the 600 s this guard had then ran out during its power-down): 900 s leaves
-# room, and still ends a hung guest.
+# room, and still ends a hung guest. Each line is shown with the seconds since the VM started,
+# as the host read it (line-buffered on the way): where the stage's minutes go.
+vm_start=$SECONDS
 PLANTER_VM_SHOW="$root:$build" "$root/scripts/vm/run.sh" "$build/vm-cache" "$run_dir" 900 \
   sh "$root/tests/hil/guest_hil_test.sh" "$root" "$build" "$deb" 2>&1 |
-  grep -v -e '^\s*$' -e 'SeaBIOS' -e 'Booting from ROM' -e 'reboot: Power down' | tr -d '\033' |
-  sed 's/^c\[?7l\[2J\(\[0m\)\?//'
+  grep --line-buffered -v -e '^\s*$' -e 'SeaBIOS' -e 'Booting from ROM' -e 'reboot: Power down' |
+  sed -u -e 's/\x1b//g' -e 's/^c\[?7l\[2J\(\[0m\)\?//' |
+  while IFS= read -r line; do printf '[%3d s] %s\n' $((SECONDS - vm_start)) "$line"; done
 exit "${PIPESTATUS[0]}"

@@ -17,9 +17,10 @@ fi
 "$root/scripts/vm/prepare.sh" "$build/vm-cache"
 run_dir="$build/vm-hil"
 rm -rf "$run_dir" && mkdir -p "$run_dir"
-# Under TCG the guest's tests take 9-10 min on a 2-core host (CI of d1f8294: done 9:40 after
-# the VM started; the 600 s this guard had then ran out during its power-down): 900 s leaves
-# room, and still ends a hung guest. Each line is shown with the seconds since the VM started,
+# Under TCG the guest's tests took 9-10 min on a 2-core host (CI of d1f8294: done 9:40 after
+# the VM started; the 600 s this guard had then ran out during its power-down), 6.5 min since
+# the guest's dpkg -i skips man-db's index (2c09871): 900 s leaves room on a slower host, and
+# still ends a hung guest. Each line is shown with the seconds since the VM started,
 # as the host read it (line-buffered on the way): where the stage's minutes go.
 vm_start=$SECONDS
 PLANTER_VM_SHOW="$root:$build" "$root/scripts/vm/run.sh" "$build/vm-cache" "$run_dir" 900 \
